@@ -1,0 +1,2 @@
+//! Shared scene generators for umbra's criterion benchmarks and paper-table
+//! harness.

@@ -1,0 +1,242 @@
+//! Planes through three grid points, with exact integer coefficients.
+
+use crate::GridPoint;
+use std::hash::{Hash, Hasher};
+
+/// Largest magnitude of a normal component of a [`Plane`]: `2^51`.
+///
+/// With grid coordinates of magnitude at most `2^24`, coordinate differences
+/// are below `2^25` and each component of a cross product is below `2^51`.
+pub const NORMAL_LIMIT: i64 = 1 << 51;
+
+/// Largest magnitude of a plane offset: `2^77` (three products of `2^51` by
+/// `2^24`, summed).
+pub const OFFSET_LIMIT: i128 = 1 << 77;
+
+/// An oriented plane `a x + b y + c z + d = 0` through three grid points.
+///
+/// The normal `(a, b, c)` follows the right-hand rule over the three points;
+/// the **front** is the side the normal points to, where `a x + b y + c z + d`
+/// is positive. Coefficients are divided by their greatest common divisor, so
+/// two planes are equal (same set, same orientation) exactly when their
+/// coefficients are equal. The `f64` copies of the coefficients serve the
+/// floating-point filter in [`predicates`](crate::predicates).
+#[derive(Debug, Clone, Copy)]
+pub struct Plane {
+    normal: [i64; 3],
+    offset: i128,
+    approx: [f64; 4],
+}
+
+impl Plane {
+    /// The plane through `p`, `q`, `r`, oriented by the right-hand rule
+    /// (counter-clockwise seen from the front). `None` if they are collinear.
+    pub fn through(p: GridPoint, q: GridPoint, r: GridPoint) -> Option<Self> {
+        let [px, py, pz] = p.to_i64();
+        let [qx, qy, qz] = q.to_i64();
+        let [rx, ry, rz] = r.to_i64();
+        let (ux, uy, uz) = (qx - px, qy - py, qz - pz);
+        let (vx, vy, vz) = (rx - px, ry - py, rz - pz);
+        let a = uy * vz - uz * vy;
+        let b = uz * vx - ux * vz;
+        let c = ux * vy - uy * vx;
+        if a == 0 && b == 0 && c == 0 {
+            return None;
+        }
+        let d = -(i128::from(a) * i128::from(px)
+            + i128::from(b) * i128::from(py)
+            + i128::from(c) * i128::from(pz));
+        Some(Self::normalized(a, b, c, d))
+    }
+
+    /// The plane with the given normal through the grid point `p`.
+    ///
+    /// The normal must have components within [`NORMAL_LIMIT`] for the
+    /// kernel's bounds to hold; this is the case for any normal of a plane
+    /// through three grid points (such as a cross product of two differences
+    /// of grid points). Returns `None` for a zero or out-of-range normal.
+    pub fn with_normal_through(normal: [i64; 3], p: GridPoint) -> Option<Self> {
+        if normal == [0, 0, 0] || normal.iter().any(|c| c.abs() > NORMAL_LIMIT) {
+            return None;
+        }
+        let [px, py, pz] = p.to_i64();
+        let d = -(i128::from(normal[0]) * i128::from(px)
+            + i128::from(normal[1]) * i128::from(py)
+            + i128::from(normal[2]) * i128::from(pz));
+        Some(Self::normalized(normal[0], normal[1], normal[2], d))
+    }
+
+    fn normalized(a: i64, b: i64, c: i64, d: i128) -> Self {
+        let g = gcd_u128(
+            gcd_u128(
+                gcd_u128(u128::from(a.unsigned_abs()), u128::from(b.unsigned_abs())),
+                u128::from(c.unsigned_abs()),
+            ),
+            d.unsigned_abs(),
+        );
+        // g >= 1 because the normal is not zero.
+        let gi = g as i128;
+        let a = (i128::from(a) / gi) as i64;
+        let b = (i128::from(b) / gi) as i64;
+        let c = (i128::from(c) / gi) as i64;
+        let d = d / gi;
+        Self {
+            normal: [a, b, c],
+            offset: d,
+            approx: [a as f64, b as f64, c as f64, d as f64],
+        }
+    }
+
+    /// The normal `(a, b, c)`.
+    #[inline]
+    pub fn normal(&self) -> [i64; 3] {
+        self.normal
+    }
+
+    /// The offset `d`.
+    #[inline]
+    pub fn offset(&self) -> i128 {
+        self.offset
+    }
+
+    /// `(a, b, c, d)` rounded to `f64`; `a`, `b`, `c` are exact (below
+    /// `2^53`), `d` is correctly rounded.
+    #[inline]
+    pub fn approx(&self) -> &[f64; 4] {
+        &self.approx
+    }
+
+    /// The same plane with the opposite orientation (front and back swapped).
+    #[inline]
+    pub fn flipped(&self) -> Self {
+        Self {
+            normal: [-self.normal[0], -self.normal[1], -self.normal[2]],
+            offset: -self.offset,
+            approx: [
+                -self.approx[0],
+                -self.approx[1],
+                -self.approx[2],
+                -self.approx[3],
+            ],
+        }
+    }
+
+    /// Whether `other` is the same set of points with the opposite
+    /// orientation.
+    #[inline]
+    pub fn is_opposite(&self, other: &Plane) -> bool {
+        self.normal[0] == -other.normal[0]
+            && self.normal[1] == -other.normal[1]
+            && self.normal[2] == -other.normal[2]
+            && self.offset == -other.offset
+    }
+
+    /// Whether `other` is the same set of points, whatever its orientation.
+    #[inline]
+    pub fn is_coincident(&self, other: &Plane) -> bool {
+        self == other || self.is_opposite(other)
+    }
+
+    /// Index of the normal's component of largest magnitude (0, 1 or 2):
+    /// the axis to project along for a 2D view of the plane.
+    pub fn dominant_axis(&self) -> usize {
+        let m = self.normal.map(i64::unsigned_abs);
+        if m[0] >= m[1] && m[0] >= m[2] {
+            0
+        } else if m[1] >= m[2] {
+            1
+        } else {
+            2
+        }
+    }
+
+    /// The normal as `f64`, unit length (for shading and output only).
+    pub fn unit_normal_f64(&self) -> [f64; 3] {
+        let [a, b, c, _] = self.approx;
+        let len = (a * a + b * b + c * c).sqrt();
+        [a / len, b / len, c / len]
+    }
+}
+
+impl PartialEq for Plane {
+    fn eq(&self, other: &Self) -> bool {
+        self.normal == other.normal && self.offset == other.offset
+    }
+}
+
+impl Eq for Plane {}
+
+impl Hash for Plane {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.normal.hash(state);
+        self.offset.hash(state);
+    }
+}
+
+fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gp(x: i32, y: i32, z: i32) -> GridPoint {
+        GridPoint { x, y, z }
+    }
+
+    #[test]
+    fn orientation_follows_the_right_hand_rule() {
+        let p = Plane::through(gp(0, 0, 0), gp(1, 0, 0), gp(0, 1, 0)).unwrap();
+        assert_eq!(p.normal(), [0, 0, 1]);
+        assert_eq!(p.offset(), 0);
+        let q = Plane::through(gp(0, 0, 5), gp(0, 7, 5), gp(3, 0, 5)).unwrap();
+        assert_eq!(q.normal(), [0, 0, -1]);
+        assert_eq!(q.offset(), 5);
+        assert!(q.is_opposite(&Plane::through(gp(0, 0, 5), gp(3, 0, 5), gp(0, 7, 5)).unwrap()));
+    }
+
+    #[test]
+    fn equal_planes_have_equal_coefficients() {
+        let a = Plane::through(gp(0, 0, 2), gp(4, 0, 2), gp(0, 6, 2)).unwrap();
+        let b = Plane::through(gp(10, 10, 2), gp(-3, 10, 2), gp(10, -30, 2)).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(a.flipped().flipped(), a);
+        assert!(a.flipped().is_opposite(&a));
+        assert!(a.is_coincident(&a.flipped()));
+        assert_ne!(a, a.flipped());
+    }
+
+    #[test]
+    fn collinear_points_make_no_plane() {
+        assert!(Plane::through(gp(0, 0, 0), gp(1, 1, 1), gp(2, 2, 2)).is_none());
+    }
+
+    #[test]
+    fn extreme_coordinates_stay_within_bounds() {
+        let l = crate::GRID_LIMIT;
+        let p = Plane::through(gp(-l, -l, l), gp(l, -l, -l), gp(-l, l, -l)).unwrap();
+        assert!(p.normal().iter().all(|c| c.abs() <= NORMAL_LIMIT));
+        assert!(p.offset().abs() < OFFSET_LIMIT);
+        let q = Plane::through(gp(-l, l, -l), gp(l, -l + 1, l), gp(l - 1, l, -l + 2)).unwrap();
+        assert!(q.normal().iter().all(|c| c.abs() <= NORMAL_LIMIT));
+        assert!(q.offset().abs() < OFFSET_LIMIT);
+    }
+}

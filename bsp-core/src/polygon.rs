@@ -1,0 +1,502 @@
+//! Convex polygons with implicit vertices, and their exact splitting.
+
+use crate::predicates::{
+    self, PointFilter, Side, cross_of_differences, dot_i128, side_of_implicit, side_of_point,
+};
+use crate::{Error, GridPoint, Plane};
+use smallvec::SmallVec;
+
+/// Inline capacity of a polygon's plane and vertex lists.
+const INLINE: usize = 4;
+
+/// How a coplanar polygon faces relative to a plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Facing {
+    /// The polygon's support plane is the plane itself.
+    Same,
+    /// The polygon's support plane is the plane, flipped.
+    Opposite,
+}
+
+/// Where a polygon lies relative to a plane, without constructing parts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PolygonSide {
+    /// Every vertex on or behind the plane, one strictly behind.
+    Back,
+    /// Every vertex on or in front of the plane, one strictly in front.
+    Front,
+    /// Vertices strictly on both sides: a split makes two parts.
+    Both,
+    /// Every vertex on the plane.
+    Coplanar(Facing),
+}
+
+/// The result of [`ConvexPolygon::split`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum Split {
+    /// The polygon is behind the plane (touching it at most along an edge or
+    /// a vertex); it is unchanged.
+    Back,
+    /// The polygon is in front of the plane; it is unchanged.
+    Front,
+    /// The plane cuts the polygon: `(back part, front part)`.
+    Both(ConvexPolygon, ConvexPolygon),
+    /// The polygon lies in the plane.
+    Coplanar(Facing),
+}
+
+/// A vertex of a polygon: an input grid point, or the intersection of the
+/// polygon's support plane with its two edge planes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Vertex {
+    Grid(GridPoint),
+    Implicit(PointFilter),
+}
+
+/// A strictly convex planar polygon in the plane-based representation.
+///
+/// It is a support plane and a cycle of edge planes; the polygon is the part
+/// of the support plane behind every edge plane. Vertex `i` is the
+/// intersection of the support plane with edge planes `i - 1` and `i`; edge
+/// `i` runs from vertex `i` to vertex `i + 1`, counter-clockwise seen from
+/// the front of the support plane. Vertices are never rounded: those of the
+/// input are grid points, those made by splitting are implicit, and either
+/// kind is turned into `f64` only on demand.
+///
+/// Every polygon carries `source`, the index of the input polygon it came
+/// from, through every split.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConvexPolygon {
+    support: Plane,
+    edges: SmallVec<[Plane; INLINE]>,
+    vertices: SmallVec<[Vertex; INLINE]>,
+    source: u32,
+}
+
+impl ConvexPolygon {
+    /// A polygon from grid points in counter-clockwise order (seen from the
+    /// front).
+    ///
+    /// Repeated and collinear vertices are dropped first. Errors: fewer than
+    /// three vertices remain, zero area, points not in one plane, or a
+    /// polygon that is not convex.
+    pub fn from_grid_points(points: &[GridPoint], source: u32) -> Result<Self, Error> {
+        let mut pts: SmallVec<[GridPoint; 8]> = SmallVec::new();
+        for &p in points {
+            if pts.last() != Some(&p) {
+                pts.push(p);
+            }
+        }
+        while pts.len() > 1 && pts.first() == pts.last() {
+            pts.pop();
+        }
+        remove_collinear(&mut pts);
+        if pts.len() < 3 {
+            return Err(Error::TooFewVertices);
+        }
+        let area = vector_area(&pts);
+        if area == [0, 0, 0] {
+            return Err(Error::ZeroArea);
+        }
+        let mut support = Plane::through(pts[0], pts[1], pts[2]).ok_or(Error::TooFewVertices)?;
+        if pts.iter().any(|&p| side_of_point(&support, p) != Side::On) {
+            return Err(Error::NonPlanar);
+        }
+        let n = support.normal();
+        let along =
+            i128::from(n[0]) * area[0] + i128::from(n[1]) * area[1] + i128::from(n[2]) * area[2];
+        if along < 0 {
+            support = support.flipped();
+        }
+        check_convex(&pts, &support)?;
+
+        let axis = support.dominant_axis();
+        let sign = support.normal()[axis].signum();
+        let count = pts.len();
+        let mut edges = SmallVec::with_capacity(count);
+        for i in 0..count {
+            let (p, q) = (pts[i], pts[(i + 1) % count]);
+            let d = [
+                i64::from(q.x) - i64::from(p.x),
+                i64::from(q.y) - i64::from(p.y),
+                i64::from(q.z) - i64::from(p.z),
+            ];
+            // Normal d x (sign * e_axis): the plane through the edge, parallel
+            // to the dominant axis, with the polygon behind it.
+            let mut e = [0_i64; 3];
+            e[axis] = sign;
+            let normal = [
+                d[1] * e[2] - d[2] * e[1],
+                d[2] * e[0] - d[0] * e[2],
+                d[0] * e[1] - d[1] * e[0],
+            ];
+            let plane = Plane::with_normal_through(normal, p).ok_or(Error::ZeroArea)?;
+            edges.push(plane);
+        }
+        Ok(Self {
+            support,
+            edges,
+            vertices: pts.iter().map(|&p| Vertex::Grid(p)).collect(),
+            source,
+        })
+    }
+
+    /// A polygon from its support plane and its cycle of edge planes, with
+    /// every vertex implicit.
+    ///
+    /// Errors: fewer than three edges, consecutive edge planes that do not
+    /// meet the support plane in one point, or a cycle that does not bound a
+    /// strictly convex polygon (some vertex not strictly behind every
+    /// non-adjacent edge plane).
+    pub fn from_planes(support: Plane, edges: &[Plane], source: u32) -> Result<Self, Error> {
+        let n = edges.len();
+        if n < 3 {
+            return Err(Error::TooFewVertices);
+        }
+        let mut vertices = SmallVec::with_capacity(n);
+        for i in 0..n {
+            let prev = &edges[(i + n - 1) % n];
+            let filter =
+                PointFilter::new(&support, prev, &edges[i]).ok_or(Error::NoIntersection)?;
+            vertices.push(Vertex::Implicit(filter));
+        }
+        let polygon = Self {
+            support,
+            edges: edges.iter().copied().collect(),
+            vertices,
+            source,
+        };
+        for i in 0..n {
+            for j in 0..n {
+                if j != i && j != (i + n - 1) % n && polygon.vertex_side(i, &edges[j]) != Side::Back
+                {
+                    return Err(Error::NonConvex);
+                }
+            }
+        }
+        Ok(polygon)
+    }
+
+    /// The support plane; the polygon's front is its front.
+    #[inline]
+    pub fn support(&self) -> &Plane {
+        &self.support
+    }
+
+    /// The edge planes; edge `i` runs from vertex `i` to vertex `i + 1`, and
+    /// the polygon lies behind each.
+    #[inline]
+    pub fn edges(&self) -> &[Plane] {
+        &self.edges
+    }
+
+    /// Number of vertices (and edges).
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.edges.len()
+    }
+
+    /// Always false: a polygon has at least three vertices.
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The index of the input polygon this one came from.
+    #[inline]
+    pub fn source(&self) -> u32 {
+        self.source
+    }
+
+    /// The same polygon with another source index.
+    pub fn with_source(mut self, source: u32) -> Self {
+        self.source = source;
+        self
+    }
+
+    /// The three planes whose intersection is vertex `i`.
+    #[inline]
+    pub fn vertex_planes(&self, i: usize) -> [&Plane; 3] {
+        let n = self.len();
+        [&self.support, &self.edges[(i + n - 1) % n], &self.edges[i]]
+    }
+
+    /// Vertex `i` if it is an input grid point.
+    pub fn vertex_grid_point(&self, i: usize) -> Option<GridPoint> {
+        match self.vertices[i] {
+            Vertex::Grid(p) => Some(p),
+            Vertex::Implicit(_) => None,
+        }
+    }
+
+    /// Side of vertex `i` with respect to `plane`, exact.
+    #[inline]
+    pub fn vertex_side(&self, i: usize, plane: &Plane) -> Side {
+        match &self.vertices[i] {
+            Vertex::Grid(p) => side_of_point(plane, *p),
+            Vertex::Implicit(filter) => side_of_implicit(filter, self.vertex_planes(i), plane),
+        }
+    }
+
+    /// Vertex `i` in grid units, as `f64` (for output and illumination).
+    pub fn vertex_f64(&self, i: usize) -> [f64; 3] {
+        match &self.vertices[i] {
+            Vertex::Grid(p) => p.to_f64(),
+            Vertex::Implicit(filter) => predicates::implicit_to_f64(filter, self.vertex_planes(i)),
+        }
+    }
+
+    /// All vertices in grid units, as `f64`, counter-clockwise.
+    pub fn vertices_f64(&self) -> Vec<[f64; 3]> {
+        (0..self.len()).map(|i| self.vertex_f64(i)).collect()
+    }
+
+    /// Area in squared grid units (from `f64` vertices).
+    pub fn area(&self) -> f64 {
+        let v = self.vertices_f64();
+        let n = self.support.unit_normal_f64();
+        let mut twice = 0.0;
+        for i in 1..v.len() - 1 {
+            let c = cross(sub(v[i], v[0]), sub(v[i + 1], v[0]));
+            twice += c[0] * n[0] + c[1] * n[1] + c[2] * n[2];
+        }
+        0.5 * twice
+    }
+
+    /// Area centroid in grid units.
+    pub fn centroid(&self) -> [f64; 3] {
+        let v = self.vertices_f64();
+        let n = self.support.unit_normal_f64();
+        let (mut total, mut acc) = (0.0, [0.0; 3]);
+        for i in 1..v.len() - 1 {
+            let c = cross(sub(v[i], v[0]), sub(v[i + 1], v[0]));
+            let a = c[0] * n[0] + c[1] * n[1] + c[2] * n[2];
+            total += a;
+            for k in 0..3 {
+                acc[k] += a * (v[0][k] + v[i][k] + v[i + 1][k]) / 3.0;
+            }
+        }
+        if total == 0.0 {
+            return v[0];
+        }
+        acc.map(|c| c / total)
+    }
+
+    /// The same region facing the other way (support plane flipped, vertex
+    /// order reversed).
+    pub fn flipped(&self) -> Self {
+        let n = self.len();
+        Self {
+            support: self.support.flipped(),
+            edges: self.edges.iter().rev().copied().collect(),
+            vertices: (0..n).map(|k| self.vertices[(n - k) % n]).collect(),
+            source: self.source,
+        }
+    }
+
+    /// Where the polygon lies relative to `plane`, exact, without building
+    /// parts.
+    pub fn classify(&self, plane: &Plane) -> PolygonSide {
+        let (mut back, mut front) = (false, false);
+        for i in 0..self.len() {
+            match self.vertex_side(i, plane) {
+                Side::Back => back = true,
+                Side::Front => front = true,
+                Side::On => {}
+            }
+            if back && front {
+                return PolygonSide::Both;
+            }
+        }
+        match (back, front) {
+            (true, _) => PolygonSide::Back,
+            (false, true) => PolygonSide::Front,
+            (false, false) => PolygonSide::Coplanar(self.facing(plane)),
+        }
+    }
+
+    fn facing(&self, plane: &Plane) -> Facing {
+        // Every vertex is on `plane` and the polygon has area, so `plane` is
+        // the support plane or its opposite.
+        if *plane == self.support {
+            Facing::Same
+        } else {
+            Facing::Opposite
+        }
+    }
+
+    /// Splits the polygon by `plane`, every decision exact.
+    ///
+    /// A part is made only where vertices lie strictly on both sides, so no
+    /// part has zero area and none is lost: the parts tile the polygon.
+    pub fn split(&self, plane: &Plane) -> Split {
+        let n = self.len();
+        let mut sides: SmallVec<[Side; 8]> = SmallVec::with_capacity(n);
+        let (mut back, mut front) = (false, false);
+        for i in 0..n {
+            let s = self.vertex_side(i, plane);
+            back |= s == Side::Back;
+            front |= s == Side::Front;
+            sides.push(s);
+        }
+        match (back, front) {
+            (true, true) => Split::Both(
+                self.part(&sides, Side::Back, *plane),
+                self.part(&sides, Side::Front, plane.flipped()),
+            ),
+            (true, false) => Split::Back,
+            (false, true) => Split::Front,
+            (false, false) => Split::Coplanar(self.facing(plane)),
+        }
+    }
+
+    /// The part on side `keep` of a plane that cuts the polygon; `closing`
+    /// is the plane oriented with that part behind it.
+    fn part(&self, sides: &[Side], keep: Side, closing: Plane) -> ConvexPolygon {
+        let n = self.len();
+        let kept = |e: usize| sides[e] == keep || sides[(e + 1) % n] == keep;
+        // The kept edges form one cyclic run; find its first edge.
+        let start = (0..n)
+            .find(|&e| kept(e) && !kept((e + n - 1) % n))
+            .expect("a cut polygon has a run of kept edges");
+        let mut run_len = 0;
+        while run_len < n && kept((start + run_len) % n) {
+            run_len += 1;
+        }
+        let last = (start + run_len - 1) % n;
+
+        let mut edges: SmallVec<[Plane; INLINE]> = SmallVec::with_capacity(run_len + 1);
+        let mut vertices: SmallVec<[Vertex; INLINE]> = SmallVec::with_capacity(run_len + 1);
+        // Vertex between the closing plane and the first kept edge.
+        vertices.push(self.vertex_on_cut(start, &self.edges[start], &closing, sides));
+        for k in 0..run_len {
+            let e = (start + k) % n;
+            edges.push(self.edges[e]);
+            if k > 0 {
+                vertices.push(self.vertices[e]);
+            }
+        }
+        // Vertex between the last kept edge and the closing plane.
+        let after = (last + 1) % n;
+        vertices.push(self.vertex_on_cut(after, &self.edges[last], &closing, sides));
+        edges.push(closing);
+        ConvexPolygon {
+            support: self.support,
+            edges,
+            vertices,
+            source: self.source,
+        }
+    }
+
+    /// The vertex where `edge` meets the cut: old vertex `old` if it lies on
+    /// the cutting plane, else a new implicit vertex.
+    fn vertex_on_cut(&self, old: usize, edge: &Plane, closing: &Plane, sides: &[Side]) -> Vertex {
+        if sides[old] == Side::On {
+            return self.vertices[old];
+        }
+        let filter = PointFilter::new(&self.support, edge, closing)
+            .expect("an edge whose ends lie strictly on both sides meets the plane in a point");
+        Vertex::Implicit(filter)
+    }
+
+    /// Checks the representation: at least three vertices; each vertex on
+    /// its three planes; each strictly behind every other edge plane (strict
+    /// convexity, no zero-length edge). Exact. Used by tests and fuzzing.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        let n = self.len();
+        if n < 3 || self.vertices.len() != n {
+            return Err(format!("{n} edges and {} vertices", self.vertices.len()));
+        }
+        for i in 0..n {
+            for (k, plane) in self.vertex_planes(i).into_iter().enumerate() {
+                if self.vertex_side(i, plane) != Side::On {
+                    return Err(format!("vertex {i} is not on its plane {k}"));
+                }
+            }
+            for j in 0..n {
+                if j != i
+                    && j != (i + n - 1) % n
+                    && self.vertex_side(i, &self.edges[j]) != Side::Back
+                {
+                    return Err(format!("vertex {i} is not strictly behind edge {j}"));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Drops vertices collinear with their neighbours until none is left.
+fn remove_collinear(pts: &mut SmallVec<[GridPoint; 8]>) {
+    let mut changed = true;
+    while changed && pts.len() >= 3 {
+        changed = false;
+        let n = pts.len();
+        for i in 0..n {
+            let (a, b, c) = (pts[(i + n - 1) % n], pts[i], pts[(i + 1) % n]);
+            if predicates::collinear(a, b, c) {
+                pts.remove(i);
+                changed = true;
+                break;
+            }
+        }
+    }
+}
+
+/// Twice the vector area, `sum p_i x p_(i+1)`, exact.
+fn vector_area(pts: &[GridPoint]) -> [i128; 3] {
+    let mut acc = [0_i128; 3];
+    let n = pts.len();
+    for i in 0..n {
+        let [ax, ay, az] = pts[i].to_i64().map(i128::from);
+        let [bx, by, bz] = pts[(i + 1) % n].to_i64().map(i128::from);
+        acc[0] += ay * bz - az * by;
+        acc[1] += az * bx - ax * bz;
+        acc[2] += ax * by - ay * bx;
+    }
+    acc
+}
+
+/// Strict convexity of a planar cycle: every turn to the left of `support`
+/// and the edge directions winding around once.
+fn check_convex(pts: &[GridPoint], support: &Plane) -> Result<(), Error> {
+    let n = pts.len();
+    let normal = support.normal();
+    for i in 0..n {
+        let turn = cross_of_differences(pts[i], pts[(i + 1) % n], pts[(i + 2) % n]);
+        if dot_i128(turn, normal) <= 0 {
+            return Err(Error::NonConvex);
+        }
+    }
+    // All left turns still allow a star that winds twice; in a convex
+    // polygon each coordinate of the edge direction changes sign at most
+    // twice around the cycle.
+    for axis in 0..3 {
+        let signs: SmallVec<[i64; 8]> = (0..n)
+            .map(|i| {
+                (i64::from(pts[(i + 1) % n].to_array()[axis]) - i64::from(pts[i].to_array()[axis]))
+                    .signum()
+            })
+            .filter(|&d| d != 0)
+            .collect();
+        let changes = (0..signs.len())
+            .filter(|&i| signs[i] != signs[(i + 1) % signs.len()])
+            .count();
+        if changes > 2 {
+            return Err(Error::NonConvex);
+        }
+    }
+    Ok(())
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}

@@ -1,0 +1,513 @@
+//! The only module that decides a side.
+//!
+//! Two kinds of points are classified against planes:
+//!
+//! - **grid points** (input vertices, light positions): the sign of
+//!   `a x + b y + c z + d`, exact in `i128`;
+//! - **implicit points**, the intersection of three planes (vertices made by
+//!   splitting). Their side of a fourth plane is the sign of a 4x4
+//!   determinant of plane coefficients, below `2^235` in magnitude. A
+//!   floating-point filter with a proven error bound answers almost every
+//!   query; when it cannot, the determinant is evaluated exactly with 256-bit
+//!   integers. [`exact_fallbacks`] counts how often that happens.
+//!
+//! # The filter's error bound
+//!
+//! The homogeneous coordinates `X` of the intersection are 3x3 minors of the
+//! 3x4 matrix of plane coefficients, so that `q · X` is the 4x4 determinant
+//! with `q` as its last row. Every quantity is a polynomial in the
+//! coefficients, evaluated as a tree of `+`, `-` and `*` in which each
+//! coefficient is rounded once (only `d` can need it: normal components are
+//! below `2^53`) and each operation rounds once. For such a tree of depth `D`
+//! (roundings on the longest path from a leaf to the root) the computed value
+//! `v'` satisfies `|v' - v| <= gamma_D * P` where `P` is the same tree
+//! evaluated on absolute values with every subtraction made an addition (the
+//! *permanent*), and `gamma_D = D u / (1 - D u)`, `u = 2^-53` (Higham,
+//! *Accuracy and Stability of Numerical Algorithms*, ch. 3). The minors have
+//! depth 6 (conversion, product, difference; conversion, product, two sums);
+//! `q · X` adds a product and three sums: depth 10. The permanent is computed
+//! alongside in floating point, with relative error at most `gamma_10`
+//! (all its terms are positive). Hence `|s'| > 12 u P'` implies
+//! `|s'| > gamma_10 P >= |s' - s|`, and the sign of `s'` is the sign of `s`.
+//! Integers leave no room for underflow, and `2^240` is far from overflow.
+
+use crate::{Error, GridPoint, Plane};
+use ethnum::I256;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Which side of an oriented plane a point lies on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Side {
+    /// Strictly behind: the plane's expression is negative.
+    Back,
+    /// On the plane.
+    On,
+    /// Strictly in front: the plane's expression is positive.
+    Front,
+}
+
+impl Side {
+    /// The side of a value's sign.
+    #[inline]
+    pub fn of_sign<T: PartialOrd + Default>(v: T) -> Self {
+        let zero = T::default();
+        if v > zero {
+            Side::Front
+        } else if v < zero {
+            Side::Back
+        } else {
+            Side::On
+        }
+    }
+
+    /// Front for Back and Back for Front.
+    #[inline]
+    pub fn flipped(self) -> Self {
+        match self {
+            Side::Back => Side::Front,
+            Side::On => Side::On,
+            Side::Front => Side::Back,
+        }
+    }
+}
+
+static EXACT_FALLBACKS: AtomicU64 = AtomicU64::new(0);
+
+/// How many implicit-point queries the floating-point filter could not
+/// decide, so far, in this process (all threads).
+pub fn exact_fallbacks() -> u64 {
+    EXACT_FALLBACKS.load(Ordering::Relaxed)
+}
+
+/// Unit roundoff of `f64`.
+const U: f64 = f64::EPSILON / 2.0;
+/// Filter coefficient for `q · X` (depth 10, see the module docs).
+const SIDE_BOUND: f64 = 12.0 * U;
+/// Filter coefficient for a 3x3 minor (depth 6).
+const MINOR_BOUND: f64 = 8.0 * U;
+
+/// Side of a grid point. Exact: every term fits `i128`.
+#[inline]
+pub fn side_of_point(plane: &Plane, p: GridPoint) -> Side {
+    Side::of_sign(plane_value_at(plane, p))
+}
+
+/// `a x + b y + c z + d` at a grid point, exactly.
+#[inline]
+pub fn plane_value_at(plane: &Plane, p: GridPoint) -> i128 {
+    let [a, b, c] = plane.normal();
+    i128::from(a) * i128::from(p.x)
+        + i128::from(b) * i128::from(p.y)
+        + i128::from(c) * i128::from(p.z)
+        + plane.offset()
+}
+
+/// Side of the point at infinity in direction `dir` (a viewer infinitely far
+/// away, such as a directional light): the sign of `normal · dir`.
+///
+/// Exact: a normal component below `2^51` times an `i32` fits `i128`.
+#[inline]
+pub fn side_of_direction(plane: &Plane, dir: [i32; 3]) -> Side {
+    let [a, b, c] = plane.normal();
+    Side::of_sign(
+        i128::from(a) * i128::from(dir[0])
+            + i128::from(b) * i128::from(dir[1])
+            + i128::from(c) * i128::from(dir[2]),
+    )
+}
+
+/// Whether three grid points are collinear (exact).
+pub fn collinear(p: GridPoint, q: GridPoint, r: GridPoint) -> bool {
+    cross_of_differences(p, q, r) == [0, 0, 0]
+}
+
+/// `(q - p) x (r - p)`, exact in `i64` (components below `2^51`).
+pub fn cross_of_differences(p: GridPoint, q: GridPoint, r: GridPoint) -> [i64; 3] {
+    let [px, py, pz] = p.to_i64();
+    let [qx, qy, qz] = q.to_i64();
+    let [rx, ry, rz] = r.to_i64();
+    let (ux, uy, uz) = (qx - px, qy - py, qz - pz);
+    let (vx, vy, vz) = (rx - px, ry - py, rz - pz);
+    [uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx]
+}
+
+/// Exact dot product of two vectors with components below `2^62`.
+pub fn dot_i128(u: [i64; 3], v: [i64; 3]) -> i128 {
+    i128::from(u[0]) * i128::from(v[0])
+        + i128::from(u[1]) * i128::from(v[1])
+        + i128::from(u[2]) * i128::from(v[2])
+}
+
+/// Floating-point filter data of an implicit point: approximate homogeneous
+/// coordinates (scaled so that the true `w` is positive) and, per
+/// coordinate, the permanent that bounds its error.
+///
+/// It does not store the three planes: whoever owns it (an
+/// [`ImplicitPoint`], a polygon's vertex) keeps them, for the exact path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointFilter {
+    coords: [f64; 4],
+    magnitudes: [f64; 4],
+}
+
+impl PointFilter {
+    /// The filter of `p1 ∩ p2 ∩ p3`; `None` if the planes do not meet in a
+    /// single point (decided exactly).
+    pub fn new(p1: &Plane, p2: &Plane, p3: &Plane) -> Option<Self> {
+        let (mut coords, magnitudes) = homogeneous_f64(p1.approx(), p2.approx(), p3.approx());
+        let w_sign = if coords[3].abs() > MINOR_BOUND * magnitudes[3] {
+            coords[3].signum() as i32
+        } else {
+            EXACT_FALLBACKS.fetch_add(1, Ordering::Relaxed);
+            exact_homogeneous(p1, p2, p3)[3].signum128() as i32
+        };
+        match w_sign {
+            0 => None,
+            s => {
+                if s < 0 {
+                    coords = coords.map(|c| -c);
+                }
+                Some(Self { coords, magnitudes })
+            }
+        }
+    }
+
+    /// The approximate homogeneous coordinates `(x, y, z, w)`, `w > 0` in
+    /// exact arithmetic.
+    pub fn coords(&self) -> [f64; 4] {
+        self.coords
+    }
+
+    /// The filter's verdict: `Some(side)` if certain, `None` if the exact
+    /// path must decide.
+    #[inline]
+    pub fn side(&self, q: &Plane) -> Option<Side> {
+        let a = q.approx();
+        let x = &self.coords;
+        let m = &self.magnitudes;
+        let s = a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + a[3] * x[3];
+        let t = a[0].abs() * m[0] + a[1].abs() * m[1] + a[2].abs() * m[2] + a[3].abs() * m[3];
+        let bound = SIDE_BOUND * t;
+        if s > bound {
+            Some(Side::Front)
+        } else if s < -bound {
+            Some(Side::Back)
+        } else if t == 0.0 {
+            // Every term of the permanent is zero, so is every term of s.
+            Some(Side::On)
+        } else {
+            None
+        }
+    }
+
+    /// Coordinates in grid units if the filter data is accurate enough
+    /// (absolute error below `2^-20` grid units), else `None`.
+    fn to_f64_if_accurate(self) -> Option<[f64; 3]> {
+        let [x, y, z, w] = self.coords;
+        let m = &self.magnitudes;
+        let ew = MINOR_BOUND * m[3];
+        if w <= 2.0 * ew {
+            return None;
+        }
+        let p = [x / w, y / w, z / w];
+        for j in 0..3 {
+            // |x/w - x'/w'| <= (e_x + |x'/w'| e_w) / (w' - e_w), plus rounding.
+            let err = (MINOR_BOUND * m[j] + p[j].abs() * ew) / (w - ew) + p[j].abs() * U;
+            if !(err <= 1.0 / (1u64 << 20) as f64) {
+                return None;
+            }
+        }
+        Some(p)
+    }
+}
+
+/// Side of the implicit point `p1 ∩ p2 ∩ p3` (with its filter data) with
+/// respect to `q`.
+#[inline]
+pub fn side_of_implicit(filter: &PointFilter, planes: [&Plane; 3], q: &Plane) -> Side {
+    match filter.side(q) {
+        Some(side) => side,
+        None => exact_side_of_implicit(planes, q),
+    }
+}
+
+/// Side of the implicit point `p1 ∩ p2 ∩ p3` with respect to `q`, in exact
+/// 256-bit arithmetic only (counted in [`exact_fallbacks`]). The planes must
+/// meet in one point.
+#[cold]
+pub fn exact_side_of_implicit(planes: [&Plane; 3], q: &Plane) -> Side {
+    EXACT_FALLBACKS.fetch_add(1, Ordering::Relaxed);
+    if planes.iter().any(|p| p.is_coincident(q)) {
+        return Side::On;
+    }
+    let x = exact_homogeneous(planes[0], planes[1], planes[2]);
+    let [a, b, c] = q.normal();
+    let s = I256::from(a) * x[0]
+        + I256::from(b) * x[1]
+        + I256::from(c) * x[2]
+        + I256::from(q.offset()) * x[3];
+    let sign = s.signum128() * x[3].signum128();
+    Side::of_sign(sign)
+}
+
+/// Exact homogeneous coordinates of `p1 ∩ p2 ∩ p3` (the 3x3 minors of the
+/// coefficient matrix, signed as the cofactors of a fourth row).
+pub fn exact_homogeneous(p1: &Plane, p2: &Plane, p3: &Plane) -> [I256; 4] {
+    let row = |p: &Plane| {
+        let [a, b, c] = p.normal();
+        [
+            I256::from(a),
+            I256::from(b),
+            I256::from(c),
+            I256::from(p.offset()),
+        ]
+    };
+    cofactors(
+        &row(p1),
+        &row(p2),
+        &row(p3),
+        |a, b| a * b,
+        |a, b| a - b,
+        |a, b| a + b,
+    )
+}
+
+/// Approximate homogeneous coordinates and their permanents.
+fn homogeneous_f64(r0: &[f64; 4], r1: &[f64; 4], r2: &[f64; 4]) -> ([f64; 4], [f64; 4]) {
+    let coords = cofactors(r0, r1, r2, |a, b| a * b, |a, b| a - b, |a, b| a + b);
+    let abs = |r: &[f64; 4]| r.map(f64::abs);
+    let magnitudes = cofactors(
+        &abs(r0),
+        &abs(r1),
+        &abs(r2),
+        |a, b| a * b,
+        |a, b| a + b,
+        |a, b| a + b,
+    );
+    // The permanents carry no sign: cofactor signs are irrelevant there.
+    (coords, magnitudes.map(f64::abs))
+}
+
+/// The cofactors of a fourth row of the 4x4 matrix with rows `r0`, `r1`,
+/// `r2`: `X_j = (-1)^(j+1) det(columns other than j)`. `sub` is used for
+/// every difference of products, so that passing `+` gives the permanent.
+#[inline(always)]
+fn cofactors<T: Copy>(
+    r0: &[T; 4],
+    r1: &[T; 4],
+    r2: &[T; 4],
+    mul: impl Fn(T, T) -> T,
+    sub: impl Fn(T, T) -> T,
+    add: impl Fn(T, T) -> T,
+) -> [T; 4] {
+    let m = |j: usize, k: usize| sub(mul(r0[j], r1[k]), mul(r0[k], r1[j]));
+    let (m01, m02, m03, m12, m13, m23) = (m(0, 1), m(0, 2), m(0, 3), m(1, 2), m(1, 3), m(2, 3));
+    // det of columns (j, k, l) expanded along r2.
+    let det = |j: usize, k: usize, l: usize, mkl: T, mjl: T, mjk: T| {
+        add(sub(mul(r2[j], mkl), mul(r2[k], mjl)), mul(r2[l], mjk))
+    };
+    // -det, written so that the signs of X0 and X2 come from the order of
+    // the operands of one difference, which keeps `sub = +` a permanent.
+    let neg_det = |j: usize, k: usize, l: usize, mkl: T, mjl: T, mjk: T| {
+        sub(mul(r2[k], mjl), add(mul(r2[j], mkl), mul(r2[l], mjk)))
+    };
+    [
+        neg_det(1, 2, 3, m23, m13, m12),
+        det(0, 2, 3, m23, m03, m02),
+        neg_det(0, 1, 3, m13, m03, m01),
+        det(0, 1, 2, m12, m02, m01),
+    ]
+}
+
+/// A point given as the intersection of three planes, with its filter data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImplicitPoint {
+    planes: [Plane; 3],
+    filter: PointFilter,
+}
+
+impl ImplicitPoint {
+    /// The intersection of three planes; an error if they do not meet in a
+    /// single point.
+    pub fn new(p1: Plane, p2: Plane, p3: Plane) -> Result<Self, Error> {
+        let filter = PointFilter::new(&p1, &p2, &p3).ok_or(Error::NoIntersection)?;
+        Ok(Self {
+            planes: [p1, p2, p3],
+            filter,
+        })
+    }
+
+    /// The three planes that define the point.
+    pub fn planes(&self) -> &[Plane; 3] {
+        &self.planes
+    }
+
+    /// The filter data.
+    pub fn filter(&self) -> &PointFilter {
+        &self.filter
+    }
+
+    /// Side with respect to `q`, exact.
+    #[inline]
+    pub fn side(&self, q: &Plane) -> Side {
+        let [a, b, c] = &self.planes;
+        side_of_implicit(&self.filter, [a, b, c], q)
+    }
+
+    /// Whether this and `other` are the same point (exact).
+    pub fn same_point(&self, other: &ImplicitPoint) -> bool {
+        other.planes.iter().all(|q| self.side(q) == Side::On)
+    }
+
+    /// Coordinates in grid units, for output and illumination only.
+    pub fn to_f64(&self) -> [f64; 3] {
+        implicit_to_f64(
+            &self.filter,
+            [&self.planes[0], &self.planes[1], &self.planes[2]],
+        )
+    }
+}
+
+/// Coordinates in grid units of an implicit point: from the filter when it
+/// is accurate to `2^-20` grid units, else from the exact coordinates.
+pub fn implicit_to_f64(filter: &PointFilter, planes: [&Plane; 3]) -> [f64; 3] {
+    if let Some(p) = filter.to_f64_if_accurate() {
+        return p;
+    }
+    let x = exact_homogeneous(planes[0], planes[1], planes[2]);
+    let w = x[3].as_f64();
+    [x[0].as_f64() / w, x[1].as_f64() / w, x[2].as_f64() / w]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gp(x: i32, y: i32, z: i32) -> GridPoint {
+        GridPoint { x, y, z }
+    }
+
+    fn axis_plane(axis: usize, value: i32) -> Plane {
+        // x_axis = value, normal along +axis.
+        let mut n = [0_i64; 3];
+        n[axis] = 1;
+        let mut p = [0; 3];
+        p[axis] = value;
+        Plane::with_normal_through(n, gp(p[0], p[1], p[2])).unwrap()
+    }
+
+    #[test]
+    fn homogeneous_coordinates_solve_the_three_planes() {
+        let p = ImplicitPoint::new(axis_plane(0, 5), axis_plane(1, -3), axis_plane(2, 7)).unwrap();
+        assert_eq!(p.to_f64(), [5.0, -3.0, 7.0]);
+        assert_eq!(p.side(&axis_plane(0, 4)), Side::Front);
+        assert_eq!(p.side(&axis_plane(0, 6)), Side::Back);
+        assert_eq!(p.side(&axis_plane(0, 5)), Side::On);
+        // The orientation of the defining planes does not change the point.
+        let q = ImplicitPoint::new(
+            axis_plane(1, -3).flipped(),
+            axis_plane(0, 5),
+            axis_plane(2, 7).flipped(),
+        )
+        .unwrap();
+        assert!(p.same_point(&q));
+        assert_eq!(q.side(&axis_plane(0, 4)), Side::Front);
+    }
+
+    #[test]
+    fn parallel_planes_do_not_meet() {
+        let r = ImplicitPoint::new(axis_plane(0, 5), axis_plane(0, 6), axis_plane(2, 7));
+        assert_eq!(r, Err(Error::NoIntersection));
+    }
+
+    #[test]
+    fn filter_and_exact_agree_on_random_planes() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
+        let l = crate::GRID_LIMIT - 1;
+        let mut point = || {
+            gp(
+                rng.random_range(-l..=l),
+                rng.random_range(-l..=l),
+                rng.random_range(-l..=l),
+            )
+        };
+        let mut decided = 0;
+        for _ in 0..2000 {
+            let planes: Vec<Plane> = (0..4)
+                .filter_map(|_| Plane::through(point(), point(), point()))
+                .collect();
+            let [p1, p2, p3, q] = planes[..] else {
+                continue;
+            };
+            let Some(f) = PointFilter::new(&p1, &p2, &p3) else {
+                continue;
+            };
+            let exact = exact_side_of_implicit([&p1, &p2, &p3], &q);
+            if let Some(side) = f.side(&q) {
+                assert_eq!(side, exact);
+                decided += 1;
+            }
+        }
+        assert!(decided > 1900, "filter decided only {decided}");
+    }
+
+    #[test]
+    fn exact_path_decides_what_the_filter_cannot() {
+        // A point on q that is not one of its defining planes: the filter
+        // cannot certify a zero, the exact path must.
+        let o = |x: i32, y: i32, z: i32| gp(x + 100_003, y - 200_017, z + 300_007);
+        let a = Plane::through(o(0, 0, 0), o(1000, 3, 7), o(5, 1000, 11)).unwrap();
+        let b = Plane::through(o(0, 0, 0), o(-7, 13, 1000), o(1000, 5, -3)).unwrap();
+        let c = Plane::through(o(0, 0, 0), o(17, 1000, -5), o(-3, 2, 999)).unwrap();
+        let q = Plane::through(o(0, 0, 0), o(123, 456, 789), o(-50, 900, 13)).unwrap();
+        let f = PointFilter::new(&a, &b, &c).unwrap();
+        assert_eq!(f.side(&q), None);
+        let before = exact_fallbacks();
+        assert_eq!(side_of_implicit(&f, [&a, &b, &c], &q), Side::On);
+        assert!(exact_fallbacks() > before);
+        // A plane one unit off the point: the filter may or may not decide,
+        // and both answers agree.
+        let q1 = Plane::through(o(1, 0, 0), o(124, 456, 789), o(-49, 900, 13)).unwrap();
+        let exact = exact_side_of_implicit([&a, &b, &c], &q1);
+        assert_ne!(exact, Side::On);
+        assert_eq!(side_of_implicit(&f, [&a, &b, &c], &q1), exact);
+    }
+
+    #[test]
+    fn near_degenerate_points_are_decided_exactly() {
+        // Two planes nearly parallel at the grid's extent: the intersection is
+        // ill-conditioned, yet its sides are exact and consistent with the
+        // grid points that it coincides with.
+        let l = crate::GRID_LIMIT - 1;
+        let a = Plane::through(gp(-l, 0, -l), gp(l, 1, -l), gp(-l, 0, l)).unwrap();
+        let b = Plane::through(gp(-l, 0, -l), gp(l, 2, -l), gp(-l, 0, l)).unwrap();
+        let c = axis_plane(0, -l);
+        let p = ImplicitPoint::new(a, b, c);
+        // a and b share the line through (-l,0,-l) and (-l,0,l), which lies
+        // in c: no single point.
+        assert!(p.is_err());
+        let c2 = axis_plane(2, 12345);
+        let p = ImplicitPoint::new(a, b, c2).unwrap();
+        let on = Plane::through(gp(-l, 0, 12345), gp(-l, 0, 0), gp(0, 99, 12345)).unwrap();
+        assert_eq!(p.side(&on), Side::On);
+        let f = p.to_f64();
+        assert!((f[0] + f64::from(l)).abs() < 1e-6 && f[1].abs() < 1e-6);
+    }
+
+    #[test]
+    fn grid_point_and_direction_sides_are_exact() {
+        let l = crate::GRID_LIMIT;
+        let p = Plane::through(gp(-l, -l, -l), gp(l, -l + 1, -l), gp(-l, l, l - 1)).unwrap();
+        assert_eq!(side_of_point(&p, gp(-l, -l, -l)), Side::On);
+        assert_eq!(side_of_point(&p, gp(l, -l + 1, -l)), Side::On);
+        let n = p.normal();
+        let dir = [
+            n[0].signum() as i32,
+            n[1].signum() as i32,
+            n[2].signum() as i32,
+        ];
+        assert_eq!(side_of_direction(&p, dir), Side::Front);
+        assert_eq!(side_of_direction(&p, dir.map(|c| -c)), Side::Back);
+    }
+}
