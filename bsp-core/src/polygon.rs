@@ -354,13 +354,15 @@ impl ConvexPolygon {
     /// is the plane oriented with that part behind it.
     fn part(&self, sides: &[Side], keep: Side, closing: Plane) -> ConvexPolygon {
         let n = self.len();
-        let kept = |e: usize| sides[e] == keep || sides[(e + 1) % n] == keep;
-        // The kept edges form one cyclic run; find its first edge.
+        // The kept boundary enters the `keep` side along one edge (its start
+        // vertex elsewhere, its end vertex strictly on `keep`), runs over the
+        // vertices strictly on `keep`, and leaves along the first edge whose
+        // end vertex is not.
         let start = (0..n)
-            .find(|&e| kept(e) && !kept((e + n - 1) % n))
-            .expect("a cut polygon has a run of kept edges");
-        let mut run_len = 0;
-        while run_len < n && kept((start + run_len) % n) {
+            .find(|&e| sides[e] != keep && sides[(e + 1) % n] == keep)
+            .expect("a cut polygon has a vertex strictly on each side");
+        let mut run_len = 1;
+        while sides[(start + run_len) % n] == keep {
             run_len += 1;
         }
         let last = (start + run_len - 1) % n;
