@@ -68,10 +68,18 @@ enum Slot {
 /// Builds the autopartition with an explicit stack (no recursion, so an
 /// unbalanced tree cannot overflow the call stack). An empty input gives a
 /// root that is an empty front region.
+///
+/// Polygons stay in one arena and work lists hold their indices, so a level
+/// of the tree moves four bytes per polygon, not the polygon. A split puts
+/// its back part in the cut polygon's slot, so the arena ends at the number
+/// of fragments.
 pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Built {
+    let mut arena = polygons;
     let mut nodes: Vec<BuiltNode> = Vec::new();
+    let mut node_members: Vec<Vec<u32>> = Vec::new();
     let mut root = Link::EmptyFront;
-    let mut stack: Vec<(Slot, Vec<ConvexPolygon>)> = vec![(Slot::Root, polygons)];
+    let all: Vec<u32> = (0..arena.len() as u32).collect();
+    let mut stack: Vec<(Slot, Vec<u32>)> = vec![(Slot::Root, all)];
     while let Some((slot, list)) = stack.pop() {
         let link = if list.is_empty() {
             match slot {
@@ -79,26 +87,29 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
                 Slot::Back(_) => Link::EmptyBack,
             }
         } else {
-            let plane = *list[choose_splitter(&list, options)].support();
+            let plane = *arena[list[choose_splitter(&arena, &list, options)] as usize].support();
             let (mut coplanar, mut front, mut back) = (Vec::new(), Vec::new(), Vec::new());
-            for polygon in list {
-                match polygon.split(&plane) {
-                    Split::Back => back.push(polygon),
-                    Split::Front => front.push(polygon),
+            for index in list {
+                match arena[index as usize].split(&plane) {
+                    Split::Back => back.push(index),
+                    Split::Front => front.push(index),
                     Split::Both(b, f) => {
-                        back.push(b);
-                        front.push(f);
+                        arena[index as usize] = b;
+                        back.push(index);
+                        front.push(arena.len() as u32);
+                        arena.push(f);
                     }
-                    Split::Coplanar(_) => coplanar.push(polygon),
+                    Split::Coplanar(_) => coplanar.push(index),
                 }
             }
             let id = nodes.len() as u32;
             nodes.push(BuiltNode {
                 plane,
-                polygons: coplanar,
+                polygons: Vec::new(),
                 front: Link::EmptyFront,
                 back: Link::EmptyBack,
             });
+            node_members.push(coplanar);
             // Popped last-in first-out: the front subtree is built first.
             stack.push((Slot::Back(id), back));
             stack.push((Slot::Front(id), front));
@@ -110,11 +121,23 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
             Slot::Back(parent) => nodes[parent as usize].back = link,
         }
     }
+    // Every arena slot belongs to exactly one node: move the polygons out.
+    let mut slots: Vec<Option<ConvexPolygon>> = arena.into_iter().map(Some).collect();
+    for (node, members) in nodes.iter_mut().zip(node_members) {
+        node.polygons = members
+            .into_iter()
+            .map(|i| {
+                slots[i as usize]
+                    .take()
+                    .expect("each fragment sits at one node")
+            })
+            .collect();
+    }
     Built { nodes, root }
 }
 
 /// Index of the polygon whose support plane splits `list` best.
-fn choose_splitter(list: &[ConvexPolygon], options: &BuildOptions) -> usize {
+fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions) -> usize {
     let n = list.len();
     if n <= 2 {
         return 0;
@@ -124,10 +147,10 @@ fn choose_splitter(list: &[ConvexPolygon], options: &BuildOptions) -> usize {
     let mut best = (u64::MAX, 0);
     for c in 0..candidates {
         let index = c * n / candidates;
-        let plane = list[index].support();
+        let plane = arena[list[index] as usize].support();
         let (mut front, mut back, mut cut) = (0_i64, 0_i64, 0_u64);
         for s in 0..sample {
-            match list[s * n / sample].classify(plane) {
+            match arena[list[s * n / sample] as usize].classify(plane) {
                 PolygonSide::Front => front += 1,
                 PolygonSide::Back => back += 1,
                 PolygonSide::Both => cut += 1,

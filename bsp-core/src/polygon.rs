@@ -297,6 +297,9 @@ impl ConvexPolygon {
     /// Where the polygon lies relative to `plane`, exact, without building
     /// parts.
     pub fn classify(&self, plane: &Plane) -> PolygonSide {
+        if let Some(facing) = self.coincident_facing(plane) {
+            return PolygonSide::Coplanar(facing);
+        }
         let (mut back, mut front) = (false, false);
         for i in 0..self.len() {
             match self.vertex_side(i, plane) {
@@ -315,6 +318,20 @@ impl ConvexPolygon {
         }
     }
 
+    /// `Some(facing)` if `plane` is the support plane or its opposite: the
+    /// common case of a fragment meeting its own plane in a tree, answered
+    /// without testing vertices.
+    #[inline]
+    fn coincident_facing(&self, plane: &Plane) -> Option<Facing> {
+        if *plane == self.support {
+            Some(Facing::Same)
+        } else if plane.is_opposite(&self.support) {
+            Some(Facing::Opposite)
+        } else {
+            None
+        }
+    }
+
     fn facing(&self, plane: &Plane) -> Facing {
         // Every vertex is on `plane` and the polygon has area, so `plane` is
         // the support plane or its opposite.
@@ -330,6 +347,9 @@ impl ConvexPolygon {
     /// A part is made only where vertices lie strictly on both sides, so no
     /// part has zero area and none is lost: the parts tile the polygon.
     pub fn split(&self, plane: &Plane) -> Split {
+        if let Some(facing) = self.coincident_facing(plane) {
+            return Split::Coplanar(facing);
+        }
         let n = self.len();
         let mut sides: SmallVec<[Side; 8]> = SmallVec::with_capacity(n);
         let (mut back, mut front) = (false, false);

@@ -136,22 +136,42 @@ fn a_long_chain_builds_and_traverses_without_recursion() {
     // alike: a tree as deep as the input. Built and walked on a thread with
     // a 256 KiB stack, far too small for recursion of that depth.
     let run = || {
-        let options = BuildOptions { candidates: 1, sample: 1, split_weight: 1 };
+        let options = BuildOptions {
+            candidates: 1,
+            sample: 1,
+            split_weight: 1,
+        };
         let squares: Vec<ConvexPolygon> = (0..3_000)
             .map(|z| {
                 let g = |x: i32, y: i32| GridPoint { x, y, z };
-                ConvexPolygon::from_grid_points(&[g(0, 0), g(4, 0), g(4, 4), g(0, 4)], z as u32).unwrap()
+                ConvexPolygon::from_grid_points(&[g(0, 0), g(4, 0), g(4, 4), g(0, 4)], z as u32)
+                    .unwrap()
             })
             .collect();
         let bsp = SceneBsp::build(squares, &options);
         assert_eq!(bsp.polygons().len(), 3_000);
         assert_eq!(bsp.depth(), 3_000);
         let eye = GridPoint { x: 1, y: 1, z: -5 };
-        let order: Vec<u32> = bsp.front_to_back(Viewpoint::Point(eye)).map(|(_, p)| p.source()).collect();
+        let order: Vec<u32> = bsp
+            .front_to_back(Viewpoint::Point(eye))
+            .map(|(_, p)| p.source())
+            .collect();
         assert_eq!(order, (0..3_000).collect::<Vec<u32>>());
-        let far_side = GridPoint { x: 1, y: 1, z: 5_000 };
-        let order: Vec<u32> = bsp.front_to_back(Viewpoint::Point(far_side)).map(|(_, p)| p.source()).collect();
+        let far_side = GridPoint {
+            x: 1,
+            y: 1,
+            z: 5_000,
+        };
+        let order: Vec<u32> = bsp
+            .front_to_back(Viewpoint::Point(far_side))
+            .map(|(_, p)| p.source())
+            .collect();
         assert_eq!(order, (0..3_000).rev().collect::<Vec<u32>>());
     };
-    std::thread::Builder::new().stack_size(256 * 1024).spawn(run).unwrap().join().unwrap();
+    std::thread::Builder::new()
+        .stack_size(256 * 1024)
+        .spawn(run)
+        .unwrap()
+        .join()
+        .unwrap();
 }
