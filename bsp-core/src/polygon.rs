@@ -433,11 +433,17 @@ impl ConvexPolygon {
                     return Err(format!("vertex {i} is not on its plane {k}"));
                 }
             }
-            for j in 0..n {
-                if j != i
-                    && j != (i + n - 1) % n
-                    && self.vertex_side(i, &self.edges[j]) != Side::Back
-                {
+        }
+        self.check_strictly_inside()
+    }
+
+    /// Every vertex strictly behind every edge plane it is not on: strict
+    /// convexity, no zero-length edge.
+    fn check_strictly_inside(&self) -> Result<(), String> {
+        let n = self.len();
+        for i in 0..n {
+            for (j, edge) in self.edges.iter().enumerate() {
+                if j != i && j != (i + n - 1) % n && self.vertex_side(i, edge) != Side::Back {
                     return Err(format!("vertex {i} is not strictly behind edge {j}"));
                 }
             }
