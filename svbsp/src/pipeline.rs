@@ -137,9 +137,9 @@ pub fn compute_shadows(
             let mut next = Vec::with_capacity(list.len());
             for fragment in list {
                 let piece = fragment.polygon.source() as usize;
-                let outline = fragment.polygon.vertices_f64();
                 let facing = light.source.side(fragment.polygon.support());
-                if facing == Side::On || light.wholly_beyond_range(&outline) {
+                let beyond = light.range.is_some() && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
+                if facing == Side::On || beyond {
                     // Edge-on to the light or beyond its reach: it neither
                     // receives nor casts.
                     next.push(Fragment {

@@ -91,28 +91,39 @@ impl ShadowVolumeTree {
     /// goes to the light's side.
     pub fn filter(&self, polygon: ConvexPolygon) -> Filtered {
         let mut out = Filtered::default();
+        // A piece walks down in place; only the back part of a cut waits on
+        // the stack (moving polygons is the dominant cost otherwise).
         let mut stack = vec![(self.root, Slot::Root, polygon)];
-        while let Some((child, slot, piece)) = stack.pop() {
-            match child {
-                VolumeChild::Lit => out.lit.push((piece, slot)),
-                VolumeChild::Shadow => out.shadowed.push(piece),
-                VolumeChild::Node(i) => {
-                    let node = &self.nodes[i as usize];
-                    match piece.split(&node.plane) {
-                        Split::Front => stack.push((node.front, Slot::Front(i), piece)),
-                        Split::Back => stack.push((node.back, Slot::Back(i), piece)),
-                        Split::Both(back, front) => {
-                            stack.push((node.back, Slot::Back(i), back));
-                            stack.push((node.front, Slot::Front(i), front));
-                        }
-                        Split::Coplanar(_) => match self.light.side(&node.plane) {
-                            Side::Back => stack.push((node.back, Slot::Back(i), piece)),
-                            Side::Front | Side::On => {
-                                stack.push((node.front, Slot::Front(i), piece))
-                            }
-                        },
+        while let Some((mut child, mut slot, mut piece)) = stack.pop() {
+            loop {
+                let i = match child {
+                    VolumeChild::Lit => {
+                        out.lit.push((piece, slot));
+                        break;
                     }
-                }
+                    VolumeChild::Shadow => {
+                        out.shadowed.push(piece);
+                        break;
+                    }
+                    VolumeChild::Node(i) => i,
+                };
+                let node = &self.nodes[i as usize];
+                let go_front = match piece.split(&node.plane) {
+                    Split::Front => true,
+                    Split::Back => false,
+                    Split::Both(back, front) => {
+                        stack.push((node.back, Slot::Back(i), back));
+                        piece = front;
+                        true
+                    }
+                    // In a cap's plane: not behind it, so on the light's side.
+                    Split::Coplanar(_) => self.light.side(&node.plane) != Side::Back,
+                };
+                (child, slot) = if go_front {
+                    (node.front, Slot::Front(i))
+                } else {
+                    (node.back, Slot::Back(i))
+                };
             }
         }
         out
