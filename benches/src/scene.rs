@@ -9,7 +9,10 @@ pub fn pieces(triangles: &[[[f64; 3]; 3]], extra: &[[f64; 3]]) -> (Grid, Vec<Con
     let grid = Grid::enclosing(points, 0.01).expect("a finite, non-empty scene");
     let mut out = Vec::with_capacity(triangles.len());
     for t in triangles {
-        let g: Vec<GridPoint> = t.iter().map(|&p| grid.snap(p).expect("inside the grid")).collect();
+        let g: Vec<GridPoint> = t
+            .iter()
+            .map(|&p| grid.snap(p).expect("inside the grid"))
+            .collect();
         if let Ok(p) = ConvexPolygon::from_grid_points(&g, out.len() as u32) {
             out.push(p);
         }

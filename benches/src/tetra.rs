@@ -2,7 +2,12 @@
 //! scene of Chin & Feiner 1989's Table 1.
 
 /// Cube corners with `x * y * z = +1`: a regular tetrahedron's vertices.
-const CORNERS: [[f64; 3]; 4] = [[1.0, 1.0, 1.0], [1.0, -1.0, -1.0], [-1.0, 1.0, -1.0], [-1.0, -1.0, 1.0]];
+const CORNERS: [[f64; 3]; 4] = [
+    [1.0, 1.0, 1.0],
+    [1.0, -1.0, -1.0],
+    [-1.0, 1.0, -1.0],
+    [-1.0, -1.0, 1.0],
+];
 
 /// The SPD light position.
 pub const LIGHT: [f64; 3] = [2.0, -18.0, -5.0];
@@ -18,7 +23,15 @@ pub fn tetra_triangles(depth: u32) -> Vec<[[f64; 3]; 3]> {
     while let Some((c, w, d)) = stack.pop() {
         if d > 1 {
             for k in CORNERS.iter().rev() {
-                stack.push(([c[0] + k[0] * w / 2.0, c[1] + k[1] * w / 2.0, c[2] + k[2] * w / 2.0], w / 2.0, d - 1));
+                stack.push((
+                    [
+                        c[0] + k[0] * w / 2.0,
+                        c[1] + k[1] * w / 2.0,
+                        c[2] + k[2] * w / 2.0,
+                    ],
+                    w / 2.0,
+                    d - 1,
+                ));
             }
             continue;
         }
@@ -56,7 +69,11 @@ fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {

@@ -6,9 +6,6 @@ use crate::predicates::{
 use crate::{Error, GridPoint, Plane};
 use smallvec::SmallVec;
 
-/// Inline capacity of a polygon's plane and vertex lists.
-const INLINE: usize = 4;
-
 /// How a coplanar polygon faces relative to a plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Facing {
@@ -71,8 +68,8 @@ enum Vertex {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConvexPolygon {
     support: Plane,
-    edges: SmallVec<[Plane; INLINE]>,
-    vertices: SmallVec<[Vertex; INLINE]>,
+    edges: Vec<Plane>,
+    vertices: Vec<Vertex>,
     source: u32,
 }
 
@@ -116,7 +113,7 @@ impl ConvexPolygon {
         let axis = support.dominant_axis();
         let sign = support.normal()[axis].signum();
         let count = pts.len();
-        let mut edges = SmallVec::with_capacity(count);
+        let mut edges = Vec::with_capacity(count);
         for i in 0..count {
             let (p, q) = (pts[i], pts[(i + 1) % count]);
             let d = [
@@ -156,7 +153,7 @@ impl ConvexPolygon {
         if n < 3 {
             return Err(Error::TooFewVertices);
         }
-        let mut vertices = SmallVec::with_capacity(n);
+        let mut vertices = Vec::with_capacity(n);
         for i in 0..n {
             let prev = &edges[(i + n - 1) % n];
             let filter =
@@ -385,8 +382,8 @@ impl ConvexPolygon {
         }
         let last = (start + run_len - 1) % n;
 
-        let mut edges: SmallVec<[Plane; INLINE]> = SmallVec::with_capacity(run_len + 1);
-        let mut vertices: SmallVec<[Vertex; INLINE]> = SmallVec::with_capacity(run_len + 1);
+        let mut edges: Vec<Plane> = Vec::with_capacity(run_len + 1);
+        let mut vertices: Vec<Vertex> = Vec::with_capacity(run_len + 1);
         // Vertex between the closing plane and the first kept edge.
         vertices.push(self.vertex_on_cut(start, &self.edges[start], &closing, sides));
         for k in 0..run_len {

@@ -138,7 +138,8 @@ pub fn compute_shadows(
             for fragment in list {
                 let piece = fragment.polygon.source() as usize;
                 let facing = light.source.side(fragment.polygon.support());
-                let beyond = light.range.is_some() && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
+                let beyond = light.range.is_some()
+                    && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
                 if facing == Side::On || beyond {
                     // Edge-on to the light or beyond its reach: it neither
                     // receives nor casts.

@@ -21,13 +21,33 @@ struct PaperRow {
 }
 
 const TABLE_1: [PaperRow; 2] = [
-    PaperRow { name: "Tetra256", depth: 4, input: 258, front_facing: 130, edges: 390, nodes: 577, fragments: 723, seconds: 4.15 },
-    PaperRow { name: "Tetra1024", depth: 5, input: 1026, front_facing: 514, edges: 1542, nodes: 2894, fragments: 3345, seconds: 25.44 },
+    PaperRow {
+        name: "Tetra256",
+        depth: 4,
+        input: 258,
+        front_facing: 130,
+        edges: 390,
+        nodes: 577,
+        fragments: 723,
+        seconds: 4.15,
+    },
+    PaperRow {
+        name: "Tetra1024",
+        depth: 5,
+        input: 1026,
+        front_facing: 514,
+        edges: 1542,
+        nodes: 2894,
+        fragments: 3345,
+        seconds: 25.44,
+    },
 ];
 
 fn main() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    println!("Chin & Feiner 1989, Table 1 (paper: HP 9000/350; umbra: this machine, {cores} cores, one used)");
+    println!(
+        "Chin & Feiner 1989, Table 1 (paper: HP 9000/350; umbra: this machine, {cores} cores, one used)"
+    );
     println!(
         "{:<24} {:>7} {:>7} {:>7} {:>7} {:>9} {:>11}",
         "scene", "input", "facing", "edges", "nodes", "fragments", "seconds"
@@ -53,7 +73,8 @@ fn main() {
             let mut out = None;
             for _ in 0..20 {
                 let start = Instant::now();
-                let result = compute_shadows(&pieces, &flags, &[light], &BuildOptions::default()).expect("valid scene");
+                let result = compute_shadows(&pieces, &flags, &[light], &BuildOptions::default())
+                    .expect("valid scene");
                 best = best.min(start.elapsed().as_secs_f64());
                 out = Some(result);
             }
