@@ -162,7 +162,7 @@ impl ConvexPolygon {
         }
         let polygon = Self {
             support,
-            edges: edges.iter().copied().collect(),
+            edges: edges.to_vec(),
             vertices,
             source,
         };
