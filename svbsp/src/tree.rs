@@ -149,14 +149,22 @@ impl ShadowVolumeTree {
     /// it) and capped by `cap` (oriented with the light in front). Planes
     /// that already bound the leaf's region (equal to a plane above it, as
     /// for an edge made by an SVBSP split) are left out: their lit side
-    /// would be empty. Returns the number of nodes added.
-    pub fn insert_volume(&mut self, slot: Slot, shadow_planes: &[Plane], cap: Plane) -> usize {
+    /// would be empty; this is also what spares a second plane for an edge
+    /// shared by two lit faces of one surface (the 1989 paper's silhouette
+    /// optimisation). Returns the numbers of nodes added and planes left out.
+    pub fn insert_volume(
+        &mut self,
+        slot: Slot,
+        shadow_planes: &[Plane],
+        cap: Plane,
+    ) -> (usize, usize) {
         let above = self.planes_above(slot);
         let mut chain: Vec<Plane> = shadow_planes
             .iter()
             .filter(|p| !above.iter().any(|a| a.is_coincident(p)))
             .copied()
             .collect();
+        let skipped = shadow_planes.len() - chain.len();
         chain.push(cap);
         let first = self.nodes.len() as u32;
         let mut parent = match slot {
@@ -185,6 +193,6 @@ impl ShadowVolumeTree {
             Slot::Front(i) => self.nodes[i as usize].front = link,
             Slot::Back(i) => self.nodes[i as usize].back = link,
         }
-        count
+        (count, skipped)
     }
 }

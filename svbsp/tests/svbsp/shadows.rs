@@ -157,6 +157,44 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    #[test]
+    fn closed_surfaces_skip_their_back_faces_without_changing_shadows(pieces in boxes_on_floor(), light in light_above()) {
+        let open = run(&pieces, &[light]);
+        let mut flags = vec![PieceFlags { closed_surface: true, ..PieceFlags::default() }; pieces.len()];
+        flags[0].closed_surface = false;
+        let closed = compute_shadows(&pieces, &flags, &[light], &BuildOptions::default()).unwrap();
+        check_partition(&pieces, &closed)?;
+        check_oracle(&pieces, &closed, &[light])?;
+        prop_assert!(close(&lit_area(&open, pieces.len(), 0), &lit_area(&closed, pieces.len(), 0), 1e-9));
+        prop_assert!(closed.fragments.len() <= open.fragments.len());
+    }
+
+    #[test]
+    fn receivers_that_cast_nothing(pieces in triangles_over_floor(), light in light_above(), mask in prop::collection::vec(prop::bool::ANY, 16)) {
+        let flags: Vec<PieceFlags> = (0..pieces.len())
+            .map(|i| PieceFlags { casts_shadows: mask[i % mask.len()], ..PieceFlags::default() })
+            .collect();
+        let out = compute_shadows(&pieces, &flags, &[light], &BuildOptions::default()).unwrap();
+        check_partition(&pieces, &out)?;
+        // The oracle over casting pieces only.
+        let casting: Vec<ConvexPolygon> = pieces.iter().zip(&flags).filter(|(_, f)| f.casts_shadows).map(|(p, _)| p.clone()).collect();
+        let casters: Vec<Caster> = casting.iter().map(Caster::new).collect();
+        for f in &out.fragments {
+            let own = &pieces[f.polygon.source() as usize];
+            if light.source.side(own.support()) != Side::Front {
+                prop_assert_eq!(f.umbra_mask, 1);
+                continue;
+            }
+            for s in samples(&f.polygon) {
+                prop_assert_eq!(sees_light(s, light.source, &casters, own), f.lit_mask == 1);
+            }
+        }
+    }
+}
+
 #[test]
 fn a_directional_light_matches_a_very_far_point_light() {
     let mut pieces = vec![crate::scenes::floor(600)];
