@@ -10,7 +10,10 @@
 //! crack, overlap or lose area, and results do not depend on the order of
 //! floating-point operations.
 //!
-//! On top of the predicates: [`ConvexPolygon`] splitting.
+//! On top of the predicates: [`ConvexPolygon`] splitting, the scene BSP
+//! ([`SceneBsp`], an autopartition with front-to-back traversal from a point
+//! or a direction) and BSP solids ([`BspSolid`], Thibault-Naylor in / out
+//! trees).
 //!
 //! # Example
 //!
@@ -37,14 +40,20 @@
 //! }
 //! ```
 
+mod autopartition;
 mod error;
 mod grid;
 mod plane;
 mod polygon;
 pub mod predicates;
+mod scene_bsp;
+mod solid;
 
+pub use autopartition::BuildOptions;
 pub use error::Error;
 pub use grid::{GRID_BITS, GRID_LIMIT, Grid, GridPoint};
 pub use plane::{NORMAL_LIMIT, OFFSET_LIMIT, Plane};
 pub use polygon::{ConvexPolygon, Facing, PolygonSide, Split};
 pub use predicates::{ImplicitPoint, Side};
+pub use scene_bsp::{Location, SceneBsp, SceneChild, SceneNode, Traversal, Viewpoint};
+pub use solid::{BspSolid, Containment, PointClass, Region, SolidChild, SolidNode};

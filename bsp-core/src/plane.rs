@@ -24,8 +24,10 @@ pub const OFFSET_LIMIT: i128 = 1 << 77;
 #[derive(Debug, Clone, Copy)]
 pub struct Plane {
     normal: [i64; 3],
+    /// `offset` rounded to `f64`, kept because converting an `i128` is slow
+    /// on the filter's hot path (the normal converts exactly and quickly).
+    approx_offset: f64,
     offset: i128,
-    approx: [f64; 4],
 }
 
 impl Plane {
@@ -82,8 +84,8 @@ impl Plane {
         let d = d / gi;
         Self {
             normal: [a, b, c],
+            approx_offset: d as f64,
             offset: d,
-            approx: [a as f64, b as f64, c as f64, d as f64],
         }
     }
 
@@ -102,8 +104,9 @@ impl Plane {
     /// `(a, b, c, d)` rounded to `f64`; `a`, `b`, `c` are exact (below
     /// `2^53`), `d` is correctly rounded.
     #[inline]
-    pub fn approx(&self) -> &[f64; 4] {
-        &self.approx
+    pub fn approx(&self) -> [f64; 4] {
+        let [a, b, c] = self.normal;
+        [a as f64, b as f64, c as f64, self.approx_offset]
     }
 
     /// The same plane with the opposite orientation (front and back swapped).
@@ -111,13 +114,8 @@ impl Plane {
     pub fn flipped(&self) -> Self {
         Self {
             normal: [-self.normal[0], -self.normal[1], -self.normal[2]],
+            approx_offset: -self.approx_offset,
             offset: -self.offset,
-            approx: [
-                -self.approx[0],
-                -self.approx[1],
-                -self.approx[2],
-                -self.approx[3],
-            ],
         }
     }
 
@@ -152,7 +150,7 @@ impl Plane {
 
     /// The normal as `f64`, unit length (for shading and output only).
     pub fn unit_normal_f64(&self) -> [f64; 3] {
-        let [a, b, c, _] = self.approx;
+        let [a, b, c, _] = self.approx();
         let len = (a * a + b * b + c * c).sqrt();
         [a / len, b / len, c / len]
     }

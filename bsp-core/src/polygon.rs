@@ -6,9 +6,6 @@ use crate::predicates::{
 use crate::{Error, GridPoint, Plane};
 use smallvec::SmallVec;
 
-/// Inline capacity of a polygon's plane and vertex lists.
-const INLINE: usize = 4;
-
 /// How a coplanar polygon faces relative to a plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Facing {
@@ -32,6 +29,9 @@ pub enum PolygonSide {
 }
 
 /// The result of [`ConvexPolygon::split`].
+// Results are matched at once and the parts moved on; boxing them would
+// cost two allocations per cut on the hottest path of every tree.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Split {
     /// The polygon is behind the plane (touching it at most along an edge or
@@ -68,8 +68,8 @@ enum Vertex {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConvexPolygon {
     support: Plane,
-    edges: SmallVec<[Plane; INLINE]>,
-    vertices: SmallVec<[Vertex; INLINE]>,
+    edges: Vec<Plane>,
+    vertices: Vec<Vertex>,
     source: u32,
 }
 
@@ -113,7 +113,7 @@ impl ConvexPolygon {
         let axis = support.dominant_axis();
         let sign = support.normal()[axis].signum();
         let count = pts.len();
-        let mut edges = SmallVec::with_capacity(count);
+        let mut edges = Vec::with_capacity(count);
         for i in 0..count {
             let (p, q) = (pts[i], pts[(i + 1) % count]);
             let d = [
@@ -153,7 +153,7 @@ impl ConvexPolygon {
         if n < 3 {
             return Err(Error::TooFewVertices);
         }
-        let mut vertices = SmallVec::with_capacity(n);
+        let mut vertices = Vec::with_capacity(n);
         for i in 0..n {
             let prev = &edges[(i + n - 1) % n];
             let filter =
@@ -162,18 +162,13 @@ impl ConvexPolygon {
         }
         let polygon = Self {
             support,
-            edges: edges.iter().copied().collect(),
+            edges: edges.to_vec(),
             vertices,
             source,
         };
-        for i in 0..n {
-            for j in 0..n {
-                if j != i && j != (i + n - 1) % n && polygon.vertex_side(i, &edges[j]) != Side::Back
-                {
-                    return Err(Error::NonConvex);
-                }
-            }
-        }
+        polygon
+            .check_strictly_inside()
+            .map_err(|_| Error::NonConvex)?;
         Ok(polygon)
     }
 
@@ -297,6 +292,9 @@ impl ConvexPolygon {
     /// Where the polygon lies relative to `plane`, exact, without building
     /// parts.
     pub fn classify(&self, plane: &Plane) -> PolygonSide {
+        if let Some(facing) = self.coincident_facing(plane) {
+            return PolygonSide::Coplanar(facing);
+        }
         let (mut back, mut front) = (false, false);
         for i in 0..self.len() {
             match self.vertex_side(i, plane) {
@@ -315,6 +313,20 @@ impl ConvexPolygon {
         }
     }
 
+    /// `Some(facing)` if `plane` is the support plane or its opposite: the
+    /// common case of a fragment meeting its own plane in a tree, answered
+    /// without testing vertices.
+    #[inline]
+    fn coincident_facing(&self, plane: &Plane) -> Option<Facing> {
+        if *plane == self.support {
+            Some(Facing::Same)
+        } else if plane.is_opposite(&self.support) {
+            Some(Facing::Opposite)
+        } else {
+            None
+        }
+    }
+
     fn facing(&self, plane: &Plane) -> Facing {
         // Every vertex is on `plane` and the polygon has area, so `plane` is
         // the support plane or its opposite.
@@ -330,6 +342,9 @@ impl ConvexPolygon {
     /// A part is made only where vertices lie strictly on both sides, so no
     /// part has zero area and none is lost: the parts tile the polygon.
     pub fn split(&self, plane: &Plane) -> Split {
+        if let Some(facing) = self.coincident_facing(plane) {
+            return Split::Coplanar(facing);
+        }
         let n = self.len();
         let mut sides: SmallVec<[Side; 8]> = SmallVec::with_capacity(n);
         let (mut back, mut front) = (false, false);
@@ -354,19 +369,21 @@ impl ConvexPolygon {
     /// is the plane oriented with that part behind it.
     fn part(&self, sides: &[Side], keep: Side, closing: Plane) -> ConvexPolygon {
         let n = self.len();
-        let kept = |e: usize| sides[e] == keep || sides[(e + 1) % n] == keep;
-        // The kept edges form one cyclic run; find its first edge.
+        // The kept boundary enters the `keep` side along one edge (its start
+        // vertex elsewhere, its end vertex strictly on `keep`), runs over the
+        // vertices strictly on `keep`, and leaves along the first edge whose
+        // end vertex is not.
         let start = (0..n)
-            .find(|&e| kept(e) && !kept((e + n - 1) % n))
-            .expect("a cut polygon has a run of kept edges");
-        let mut run_len = 0;
-        while run_len < n && kept((start + run_len) % n) {
+            .find(|&e| sides[e] != keep && sides[(e + 1) % n] == keep)
+            .expect("a cut polygon has a vertex strictly on each side");
+        let mut run_len = 1;
+        while sides[(start + run_len) % n] == keep {
             run_len += 1;
         }
         let last = (start + run_len - 1) % n;
 
-        let mut edges: SmallVec<[Plane; INLINE]> = SmallVec::with_capacity(run_len + 1);
-        let mut vertices: SmallVec<[Vertex; INLINE]> = SmallVec::with_capacity(run_len + 1);
+        let mut edges: Vec<Plane> = Vec::with_capacity(run_len + 1);
+        let mut vertices: Vec<Vertex> = Vec::with_capacity(run_len + 1);
         // Vertex between the closing plane and the first kept edge.
         vertices.push(self.vertex_on_cut(start, &self.edges[start], &closing, sides));
         for k in 0..run_len {
@@ -413,11 +430,17 @@ impl ConvexPolygon {
                     return Err(format!("vertex {i} is not on its plane {k}"));
                 }
             }
-            for j in 0..n {
-                if j != i
-                    && j != (i + n - 1) % n
-                    && self.vertex_side(i, &self.edges[j]) != Side::Back
-                {
+        }
+        self.check_strictly_inside()
+    }
+
+    /// Every vertex strictly behind every edge plane it is not on: strict
+    /// convexity, no zero-length edge.
+    fn check_strictly_inside(&self) -> Result<(), String> {
+        let n = self.len();
+        for i in 0..n {
+            for (j, edge) in self.edges.iter().enumerate() {
+                if j != i && j != (i + n - 1) % n && self.vertex_side(i, edge) != Side::Back {
                     return Err(format!("vertex {i} is not strictly behind edge {j}"));
                 }
             }

@@ -154,7 +154,7 @@ impl PointFilter {
     /// The filter of `p1 ∩ p2 ∩ p3`; `None` if the planes do not meet in a
     /// single point (decided exactly).
     pub fn new(p1: &Plane, p2: &Plane, p3: &Plane) -> Option<Self> {
-        let (mut coords, magnitudes) = homogeneous_f64(p1.approx(), p2.approx(), p3.approx());
+        let (mut coords, magnitudes) = homogeneous_f64(&p1.approx(), &p2.approx(), &p3.approx());
         let w_sign = if coords[3].abs() > MINOR_BOUND * magnitudes[3] {
             coords[3].signum() as i32
         } else {
@@ -213,7 +213,7 @@ impl PointFilter {
         for j in 0..3 {
             // |x/w - x'/w'| <= (e_x + |x'/w'| e_w) / (w' - e_w), plus rounding.
             let err = (MINOR_BOUND * m[j] + p[j].abs() * ew) / (w - ew) + p[j].abs() * U;
-            if !(err <= 1.0 / (1u64 << 20) as f64) {
+            if !err.is_finite() || err > 1.0 / (1u64 << 20) as f64 {
                 return None;
             }
         }
@@ -232,14 +232,15 @@ pub fn side_of_implicit(filter: &PointFilter, planes: [&Plane; 3], q: &Plane) ->
 }
 
 /// Side of the implicit point `p1 ∩ p2 ∩ p3` with respect to `q`, in exact
-/// 256-bit arithmetic only (counted in [`exact_fallbacks`]). The planes must
-/// meet in one point.
+/// 256-bit arithmetic (counted in [`exact_fallbacks`]) unless `q` is one of
+/// the three planes. The planes must meet in one point.
 #[cold]
 pub fn exact_side_of_implicit(planes: [&Plane; 3], q: &Plane) -> Side {
-    EXACT_FALLBACKS.fetch_add(1, Ordering::Relaxed);
+    // A point lies on its own planes: the commonest zero, decided for free.
     if planes.iter().any(|p| p.is_coincident(q)) {
         return Side::On;
     }
+    EXACT_FALLBACKS.fetch_add(1, Ordering::Relaxed);
     let x = exact_homogeneous(planes[0], planes[1], planes[2]);
     let [a, b, c] = q.normal();
     let s = I256::from(a) * x[0]

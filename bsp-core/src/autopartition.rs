@@ -1,0 +1,166 @@
+//! Autopartition: a BSP tree whose splitting planes are the polygons' own
+//! support planes. Shared by [`SceneBsp`](crate::SceneBsp) and
+//! [`BspSolid`](crate::BspSolid), which differ only in what their leaves mean.
+
+use crate::{ConvexPolygon, Plane, PolygonSide, Split};
+
+/// How the autopartition chooses its splitting planes.
+///
+/// At each node a few candidate polygons, spread evenly over the node's
+/// list, are scored against an evenly spread sample of the list:
+/// `split_weight * (polygons cut) + |front - back|`. The lowest score wins
+/// (the earliest candidate on ties, so builds are deterministic). Sampling
+/// bounds the cost per node, so large inputs build in `O(n log n)`-like time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BuildOptions {
+    /// Candidate splitters scored per node (at least 1).
+    pub candidates: usize,
+    /// Polygons each candidate is scored against.
+    pub sample: usize,
+    /// Cost of one cut polygon relative to one polygon of imbalance.
+    pub split_weight: u32,
+}
+
+impl Default for BuildOptions {
+    fn default() -> Self {
+        Self {
+            candidates: 8,
+            sample: 48,
+            split_weight: 6,
+        }
+    }
+}
+
+/// A child link while building: another node, or an empty region on the
+/// front or back side of its parent's plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Link {
+    Node(u32),
+    EmptyFront,
+    EmptyBack,
+}
+
+/// A node of the tree under construction, with the polygons that lie in its
+/// plane.
+#[derive(Debug)]
+pub(crate) struct BuiltNode {
+    pub plane: Plane,
+    pub polygons: Vec<ConvexPolygon>,
+    pub front: Link,
+    pub back: Link,
+}
+
+/// The built tree: nodes in creation order (parents before children, front
+/// subtrees numbered before back subtrees) and the root link.
+pub(crate) struct Built {
+    pub nodes: Vec<BuiltNode>,
+    pub root: Link,
+}
+
+/// Where a subtree built from a work item hangs.
+#[derive(Clone, Copy)]
+enum Slot {
+    Root,
+    Front(u32),
+    Back(u32),
+}
+
+/// Builds the autopartition with an explicit stack (no recursion, so an
+/// unbalanced tree cannot overflow the call stack). An empty input gives a
+/// root that is an empty front region.
+///
+/// Polygons stay in one arena and work lists hold their indices, so a level
+/// of the tree moves four bytes per polygon, not the polygon. A split puts
+/// its back part in the cut polygon's slot, so the arena ends at the number
+/// of fragments.
+pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Built {
+    let mut arena = polygons;
+    let mut nodes: Vec<BuiltNode> = Vec::new();
+    let mut node_members: Vec<Vec<u32>> = Vec::new();
+    let mut root = Link::EmptyFront;
+    let all: Vec<u32> = (0..arena.len() as u32).collect();
+    let mut stack: Vec<(Slot, Vec<u32>)> = vec![(Slot::Root, all)];
+    while let Some((slot, list)) = stack.pop() {
+        let link = if list.is_empty() {
+            match slot {
+                Slot::Root | Slot::Front(_) => Link::EmptyFront,
+                Slot::Back(_) => Link::EmptyBack,
+            }
+        } else {
+            let plane = *arena[list[choose_splitter(&arena, &list, options)] as usize].support();
+            let (mut coplanar, mut front, mut back) = (Vec::new(), Vec::new(), Vec::new());
+            for index in list {
+                match arena[index as usize].split(&plane) {
+                    Split::Back => back.push(index),
+                    Split::Front => front.push(index),
+                    Split::Both(b, f) => {
+                        arena[index as usize] = b;
+                        back.push(index);
+                        front.push(arena.len() as u32);
+                        arena.push(f);
+                    }
+                    Split::Coplanar(_) => coplanar.push(index),
+                }
+            }
+            let id = nodes.len() as u32;
+            nodes.push(BuiltNode {
+                plane,
+                polygons: Vec::new(),
+                front: Link::EmptyFront,
+                back: Link::EmptyBack,
+            });
+            node_members.push(coplanar);
+            // Popped last-in first-out: the front subtree is built first.
+            stack.push((Slot::Back(id), back));
+            stack.push((Slot::Front(id), front));
+            Link::Node(id)
+        };
+        match slot {
+            Slot::Root => root = link,
+            Slot::Front(parent) => nodes[parent as usize].front = link,
+            Slot::Back(parent) => nodes[parent as usize].back = link,
+        }
+    }
+    // Every arena slot belongs to exactly one node: move the polygons out.
+    let mut slots: Vec<Option<ConvexPolygon>> = arena.into_iter().map(Some).collect();
+    for (node, members) in nodes.iter_mut().zip(node_members) {
+        node.polygons = members
+            .into_iter()
+            .map(|i| {
+                slots[i as usize]
+                    .take()
+                    .expect("each fragment sits at one node")
+            })
+            .collect();
+    }
+    Built { nodes, root }
+}
+
+/// Index of the polygon whose support plane splits `list` best.
+fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions) -> usize {
+    let n = list.len();
+    if n <= 2 {
+        return 0;
+    }
+    let candidates = options.candidates.clamp(1, n);
+    let sample = options.sample.clamp(1, n);
+    let mut best = (u64::MAX, 0);
+    for c in 0..candidates {
+        let index = c * n / candidates;
+        let plane = arena[list[index] as usize].support();
+        let (mut front, mut back, mut cut) = (0_i64, 0_i64, 0_u64);
+        for s in 0..sample {
+            match arena[list[s * n / sample] as usize].classify(plane) {
+                PolygonSide::Front => front += 1,
+                PolygonSide::Back => back += 1,
+                PolygonSide::Both => cut += 1,
+                PolygonSide::Coplanar(_) => {}
+            }
+        }
+        let score = cut * u64::from(options.split_weight) + (front - back).unsigned_abs();
+        if score < best.0 {
+            best = (score, index);
+        }
+    }
+    best.1
+}

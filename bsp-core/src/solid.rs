@@ -1,0 +1,334 @@
+//! BSP solids (Thibault & Naylor 1987): trees whose leaves are inside or
+//! outside a polyhedron.
+
+use crate::autopartition::{self, BuildOptions, Link};
+use crate::predicates::{Side, side_of_point};
+use crate::{ConvexPolygon, Facing, GridPoint, Plane, Split};
+
+/// What a leaf of a solid is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Region {
+    /// Inside the solid.
+    In,
+    /// Outside the solid.
+    Out,
+}
+
+/// A child of a solid's node: a node (by index) or a labelled leaf.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SolidChild {
+    /// An inner node, by index into [`BspSolid::nodes`].
+    Node(u32),
+    /// A leaf cell, in or out.
+    Leaf(Region),
+}
+
+/// An inner node of a solid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SolidNode {
+    /// The splitting plane.
+    pub plane: Plane,
+    /// The subtree in front of `plane`.
+    pub front: SolidChild,
+    /// The subtree behind `plane`.
+    pub back: SolidChild,
+}
+
+/// Where a point lies relative to a solid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum PointClass {
+    /// In the interior.
+    In,
+    /// In the exterior.
+    Out,
+    /// On the boundary.
+    On,
+}
+
+/// Where a piece of a polygon lies relative to a solid.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Containment {
+    /// Inside the solid, both sides.
+    Inside,
+    /// Outside the solid, both sides.
+    Outside,
+    /// On the boundary, the solid behind it: it faces out, like the solid's
+    /// own boundary.
+    BoundarySame,
+    /// On the boundary, the solid in front of it: it faces in.
+    BoundaryOpposite,
+}
+
+impl Containment {
+    /// From the regions on the piece's front and back sides.
+    pub fn from_sides(front: Region, back: Region) -> Self {
+        match (front, back) {
+            (Region::In, Region::In) => Containment::Inside,
+            (Region::Out, Region::Out) => Containment::Outside,
+            (Region::Out, Region::In) => Containment::BoundarySame,
+            (Region::In, Region::Out) => Containment::BoundaryOpposite,
+        }
+    }
+}
+
+/// A polyhedral solid as a BSP tree with in / out leaves.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct BspSolid {
+    nodes: Vec<SolidNode>,
+    root: SolidChild,
+}
+
+impl BspSolid {
+    /// The empty set.
+    pub fn empty() -> Self {
+        Self {
+            nodes: Vec::new(),
+            root: SolidChild::Leaf(Region::Out),
+        }
+    }
+
+    /// All of space.
+    pub fn full() -> Self {
+        Self {
+            nodes: Vec::new(),
+            root: SolidChild::Leaf(Region::In),
+        }
+    }
+
+    /// A solid from nodes and a root; `None` if a link points outside
+    /// `nodes` or the links do not form a tree (a node reached twice, or a
+    /// cycle).
+    pub fn from_nodes(nodes: Vec<SolidNode>, root: SolidChild) -> Option<Self> {
+        let mut seen = vec![false; nodes.len()];
+        let mut stack = vec![root];
+        while let Some(child) = stack.pop() {
+            if let SolidChild::Node(i) = child {
+                let seen_i = seen.get_mut(i as usize)?;
+                if *seen_i {
+                    return None;
+                }
+                *seen_i = true;
+                let n = &nodes[i as usize];
+                stack.push(n.front);
+                stack.push(n.back);
+            }
+        }
+        Some(Self { nodes, root })
+    }
+
+    /// The solid bounded by `boundary`, the faces of a closed polyhedron
+    /// with outward normals (counter-clockwise seen from outside).
+    ///
+    /// An autopartition of the faces: an empty region behind the last plane
+    /// is inside (just behind the splitting face), one in front is outside.
+    /// The result is meaningful only if the faces close up.
+    pub fn from_boundary(boundary: Vec<ConvexPolygon>, options: &BuildOptions) -> Self {
+        let built = autopartition::build(boundary, options);
+        let link = |l: Link| match l {
+            Link::Node(i) => SolidChild::Node(i),
+            Link::EmptyFront => SolidChild::Leaf(Region::Out),
+            Link::EmptyBack => SolidChild::Leaf(Region::In),
+        };
+        Self {
+            root: link(built.root),
+            nodes: built
+                .nodes
+                .iter()
+                .map(|n| SolidNode {
+                    plane: n.plane,
+                    front: link(n.front),
+                    back: link(n.back),
+                })
+                .collect(),
+        }
+    }
+
+    /// The root.
+    pub fn root(&self) -> SolidChild {
+        self.root
+    }
+
+    /// The inner nodes.
+    pub fn nodes(&self) -> &[SolidNode] {
+        &self.nodes
+    }
+
+    /// The complement: every leaf flipped.
+    pub fn complement(&self) -> Self {
+        let flip = |c: SolidChild| match c {
+            SolidChild::Leaf(Region::In) => SolidChild::Leaf(Region::Out),
+            SolidChild::Leaf(Region::Out) => SolidChild::Leaf(Region::In),
+            node => node,
+        };
+        Self {
+            root: flip(self.root),
+            nodes: self
+                .nodes
+                .iter()
+                .map(|n| SolidNode {
+                    plane: n.plane,
+                    front: flip(n.front),
+                    back: flip(n.back),
+                })
+                .collect(),
+        }
+    }
+
+    /// Classifies a grid point exactly: a point on a node's plane is looked
+    /// up on both sides; it is on the boundary when the leaves around it
+    /// disagree.
+    pub fn classify_point(&self, p: GridPoint) -> PointClass {
+        let (mut inside, mut outside) = (false, false);
+        let mut stack = vec![self.root];
+        while let Some(child) = stack.pop() {
+            match child {
+                SolidChild::Leaf(Region::In) => inside = true,
+                SolidChild::Leaf(Region::Out) => outside = true,
+                SolidChild::Node(i) => {
+                    let node = &self.nodes[i as usize];
+                    match side_of_point(&node.plane, p) {
+                        Side::Front => stack.push(node.front),
+                        Side::Back => stack.push(node.back),
+                        Side::On => {
+                            stack.push(node.front);
+                            stack.push(node.back);
+                        }
+                    }
+                }
+            }
+            if inside && outside {
+                return PointClass::On;
+            }
+        }
+        if inside {
+            PointClass::In
+        } else {
+            PointClass::Out
+        }
+    }
+
+    /// Partitions a convex polygon into its pieces inside, outside and on
+    /// the boundary of the solid, exactly. The pieces tile the polygon.
+    ///
+    /// A piece that reaches a node's plane lying in it is filtered down the
+    /// subtree on its front side and then, piece by piece, down the subtree
+    /// on its back side: the two answers say what lies on either side of it.
+    pub fn partition_polygon(&self, polygon: &ConvexPolygon) -> Vec<(ConvexPolygon, Containment)> {
+        let mut out = Vec::new();
+        let mut continuations: Vec<Continuation> = Vec::new();
+        let mut stack: Vec<(SolidChild, ConvexPolygon, Option<u32>)> =
+            vec![(self.root, polygon.clone(), None)];
+        while let Some((child, piece, cont)) = stack.pop() {
+            match child {
+                SolidChild::Leaf(region) => {
+                    self.resolve(
+                        piece,
+                        (region, region),
+                        cont,
+                        &mut continuations,
+                        &mut stack,
+                        &mut out,
+                    );
+                }
+                SolidChild::Node(i) => {
+                    let node = &self.nodes[i as usize];
+                    match piece.split(&node.plane) {
+                        Split::Front => stack.push((node.front, piece, cont)),
+                        Split::Back => stack.push((node.back, piece, cont)),
+                        Split::Both(back, front) => {
+                            stack.push((node.back, back, cont));
+                            stack.push((node.front, front, cont));
+                        }
+                        Split::Coplanar(facing) => {
+                            // The piece's front side looks into `first`.
+                            let (first, second) = match facing {
+                                Facing::Same => (node.front, node.back),
+                                Facing::Opposite => (node.back, node.front),
+                            };
+                            continuations.push(Continuation::First {
+                                second,
+                                parent: cont,
+                            });
+                            let k = continuations.len() as u32 - 1;
+                            stack.push((first, piece, Some(k)));
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// A piece reached a leaf (or finished a coplanar descent) with the
+    /// regions `(front side, back side)`; pass them up the continuations.
+    fn resolve(
+        &self,
+        piece: ConvexPolygon,
+        mut sides: (Region, Region),
+        mut cont: Option<u32>,
+        continuations: &mut Vec<Continuation>,
+        stack: &mut Vec<(SolidChild, ConvexPolygon, Option<u32>)>,
+        out: &mut Vec<(ConvexPolygon, Containment)>,
+    ) {
+        loop {
+            let Some(k) = cont else {
+                out.push((piece, Containment::from_sides(sides.0, sides.1)));
+                return;
+            };
+            match continuations[k as usize] {
+                Continuation::First { second, parent } => {
+                    continuations.push(Continuation::Second {
+                        front_side: sides.0,
+                        parent,
+                    });
+                    let next = continuations.len() as u32 - 1;
+                    stack.push((second, piece, Some(next)));
+                    return;
+                }
+                Continuation::Second { front_side, parent } => {
+                    sides = (front_side, sides.1);
+                    cont = parent;
+                }
+            }
+        }
+    }
+
+    /// Checks that links form a tree over all nodes.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        let mut seen = vec![false; self.nodes.len()];
+        let mut stack = vec![self.root];
+        while let Some(child) = stack.pop() {
+            if let SolidChild::Node(i) = child {
+                let Some(s) = seen.get_mut(i as usize) else {
+                    return Err(format!("link to missing node {i}"));
+                };
+                if *s {
+                    return Err(format!("node {i} reached twice"));
+                }
+                *s = true;
+                let n = &self.nodes[i as usize];
+                stack.push(n.front);
+                stack.push(n.back);
+            }
+        }
+        match seen.iter().position(|s| !s) {
+            Some(i) => Err(format!("node {i} is unreachable")),
+            None => Ok(()),
+        }
+    }
+}
+
+/// What to do with a piece of a coplanar polygon when its descent ends.
+#[derive(Debug, Clone, Copy)]
+enum Continuation {
+    /// The front-side descent is under way; the back side is next.
+    First {
+        second: SolidChild,
+        parent: Option<u32>,
+    },
+    /// The back-side descent is under way; the front side gave this.
+    Second {
+        front_side: Region,
+        parent: Option<u32>,
+    },
+}

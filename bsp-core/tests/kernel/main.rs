@@ -1,0 +1,6 @@
+//! Integration tests of the exact kernel, as one binary.
+
+mod common;
+mod scene_bsp;
+mod solid;
+mod split;
