@@ -441,22 +441,33 @@ pub fn check_split(case: &SplitCase) -> Result<Outcome, String> {
 }
 
 /// A bound on the rounding error of [`ConvexPolygon::area`] that does not
-/// scale with the area: `f64` vertices near the grid limit (`2^24`) carry
-/// absolute errors of about `2^-29`, and the fan of cross products rounds
-/// terms as large as the squared diameter. For a sliver (say `2^25` long and
-/// one unit wide) this dominates `AREA_TOLERANCE * area`; for anything
-/// reasonably shaped it is negligible. `terms` is the number of vertices
-/// whose areas are summed.
+/// scale with the area, for `terms` vertices summed over the polygons
+/// compared. Two sources:
+///
+/// - vertex coordinates: an implicit vertex is converted to `f64` within
+///   `2^-20` grid units (the kernel's guarantee), a grid vertex exactly, and
+///   either carries the rounding of a coordinate as large as `max|x|`; a
+///   vertex error `e` moves the area by at most `e` times the diameter;
+/// - the fan of cross products rounds terms as large as the squared
+///   diameter.
+///
+/// For a polygon of reasonable shape near the origin this is far below
+/// `AREA_TOLERANCE * area`; it dominates for slivers at the grid's scale
+/// and for small polygons far from the origin (both found by fuzzing).
 fn area_rounding_bound(polygon: &ConvexPolygon, terms: usize) -> f64 {
     let v = polygon.vertices_f64();
     let mut diameter2 = 0.0_f64;
+    let mut largest = 0.0_f64;
     for p in &v {
+        largest = p.iter().fold(largest, |m, c| m.max(c.abs()));
         for q in &v {
             let d2 = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>();
             diameter2 = diameter2.max(d2);
         }
     }
-    8.0 * f64::EPSILON * terms as f64 * diameter2
+    let diameter = diameter2.sqrt();
+    let vertex_error = 1.0 / f64::from(1 << 20) + 4.0 * f64::EPSILON * largest;
+    terms as f64 * diameter * (8.0 * f64::EPSILON * diameter + vertex_error)
 }
 
 /// The filtered side of every vertex of `polygon`, against the cutting plane
@@ -625,6 +636,29 @@ mod tests {
                 [-3, 746, 16777216],
                 [-16, 7079331, 16777215],
                 [-3657704, -4, 408],
+            ],
+        };
+        assert_eq!(check_split(&case), Ok(Outcome::Both));
+    }
+
+    /// Found by `cargo fuzz` (crash-e70a7b8d): a pentagon about 100 units
+    /// wide at 1.5e7 from the origin; the `f64` areas of its parts miss the
+    /// whole by 1.06e-9 relative, the rounding of vertex coordinates of that
+    /// size, not an error of the split.
+    #[test]
+    fn small_polygon_far_from_the_origin() {
+        let case = SplitCase {
+            points: vec![
+                [-876, -7142804, -15269983],
+                [-951, -7142851, -15270008],
+                [-954, -7142860, -15270009],
+                [-933, -7142847, -15270002],
+                [-873, -7142803, -15269982],
+            ],
+            plane: [
+                [-932, -7142846, -15270004],
+                [-953, -7142859, -15270011],
+                [4009662, -14, -7317788],
             ],
         };
         assert_eq!(check_split(&case), Ok(Outcome::Both));
