@@ -423,11 +423,13 @@ pub fn check_split(case: &SplitCase) -> Result<Outcome, String> {
                 ));
             }
             let (whole, ab, af) = (polygon.area(), back.area(), front.area());
-            if ab.is_nan() || af.is_nan() || ab <= 0.0 || af <= 0.0 {
+            let rounding = area_rounding_bound(&polygon, back.len() + front.len() + n);
+            // Strict convexity (checked exactly above) already proves both
+            // areas positive; their `f64` values may round to zero.
+            if ab.is_nan() || af.is_nan() || ab < -rounding || af < -rounding {
                 return Err(format!("part areas {ab} and {af}"));
             }
             let error = (ab + af - whole).abs();
-            let rounding = area_rounding_bound(&polygon, back.len() + front.len() + n);
             // NaN fails too.
             if error.is_nan() || error > AREA_TOLERANCE * whole + rounding {
                 return Err(format!(
@@ -659,6 +661,26 @@ mod tests {
                 [-932, -7142846, -15270004],
                 [-953, -7142859, -15270011],
                 [4009662, -14, -7317788],
+            ],
+        };
+        assert_eq!(check_split(&case), Ok(Outcome::Both));
+    }
+
+    /// Found by `cargo fuzz` (crash-c28201bc): a cut 2^24 from the origin
+    /// leaves a part so thin that its `f64` area is 0, though it is
+    /// strictly convex exactly.
+    #[test]
+    fn thin_part_at_the_grid_limit() {
+        let case = SplitCase {
+            points: vec![
+                [16777216, -16777216, -16777199],
+                [16777216, -16, -16777216],
+                [16777216, 8, -16777216],
+            ],
+            plane: [
+                [16777216, 8, 16760193],
+                [-16777216, 16777215, 16776836],
+                [16777215, -16777215, -16777216],
             ],
         };
         assert_eq!(check_split(&case), Ok(Outcome::Both));
