@@ -170,9 +170,7 @@ pub fn quad(rng: &mut Pcg64, size_bits: u32) -> (ConvexPolygon, GridPoint) {
 pub fn plane_through(rng: &mut Pcg64, inside: GridPoint, polygon: &ConvexPolygon) -> Plane {
     loop {
         let p = Plane::through(inside, full_grid_point(rng), full_grid_point(rng));
-        if let Some(p) = p
-            && !p.is_coincident(polygon.support())
-        {
+        if let Some(p) = p.filter(|p| !p.is_coincident(polygon.support())) {
             return p;
         }
     }

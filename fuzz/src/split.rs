@@ -287,9 +287,8 @@ pub fn decode(data: &[u8]) -> Option<SplitCase> {
 /// The body of the `split` fuzz target: decode, check, panic with the case
 /// as Rust code on any violation.
 pub fn run(data: &[u8]) {
-    if let Some(case) = decode(data)
-        && let Err(problem) = check_split(&case)
-    {
+    let Some(case) = decode(data) else { return };
+    if let Err(problem) = check_split(&case) {
         panic!("split invariant violated: {problem}\n{case:?}");
     }
 }
