@@ -1,5 +1,10 @@
 //! Scene generators shared by umbra's criterion benchmarks and the
 //! paper-table harness (`cargo run --release -p umbra-benches --bin paper-tables`).
+//!
+//! [`random`] makes deterministic kernel inputs (grid points, planes,
+//! implicit-point queries, quads, triangle soups); [`scene`] and [`tetra`]
+//! build the scenes of the papers.
 
+pub mod random;
 pub mod scene;
 pub mod tetra;

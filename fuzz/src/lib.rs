@@ -1,0 +1,35 @@
+//! Fuzz targets of umbra, as library code.
+//!
+//! Each module holds one target: a decoder from fuzzer bytes to a case that
+//! prints as Rust code (its `Debug` output), and one checking function that
+//! panics on no input but returns every violated invariant as an error. The
+//! `fuzz_targets/*.rs` binaries are one-line wrappers, so a stable
+//! `cargo test` replays the same code over the committed seed corpus
+//! (`corpus/<target>/`) on every CI run, and a crash found by libFuzzer is
+//! pasted as a case into a named regression test.
+//!
+//! ```text
+//! cargo +nightly fuzz run split -- -max_total_time=60    # fuzz (nightly)
+//! cargo test --manifest-path fuzz/Cargo.toml             # replay the corpus (stable)
+//! ```
+
+pub mod split;
+
+/// Every file of a committed corpus directory (`corpus/<target>/`), sorted
+/// by name, with its contents. Hidden files are skipped.
+pub fn corpus_files(target: &str) -> std::io::Result<Vec<(String, Vec<u8>)>> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("corpus")
+        .join(target);
+    let mut files = Vec::new();
+    for entry in std::fs::read_dir(dir)? {
+        let entry = entry?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if name.starts_with('.') || !entry.file_type()?.is_file() {
+            continue;
+        }
+        files.push((name, std::fs::read(entry.path())?));
+    }
+    files.sort();
+    Ok(files)
+}
