@@ -1,4 +1,6 @@
 //! Scene BSP build on random triangle soups of 10k and 100k triangles.
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
 
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint, SceneBsp, Viewpoint};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};

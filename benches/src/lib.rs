@@ -1,2 +1,5 @@
-//! Shared scene generators for umbra's criterion benchmarks and paper-table
-//! harness.
+//! Scene generators shared by umbra's criterion benchmarks and the
+//! paper-table harness (`cargo run --release -p umbra-benches --bin paper-tables`).
+
+pub mod scene;
+pub mod tetra;

@@ -58,9 +58,11 @@ impl GridPoint {
 
 /// A uniform integer grid laid over an axis-aligned box.
 ///
-/// The box's centre maps to the origin and its largest half-extent to
-/// `GRID_LIMIT - 1`, so every point of the box snaps to a [`GridPoint`] with
-/// at most 24 bits of magnitude. Callers include in the box everything that
+/// The box's centre maps near the origin and its largest half-extent to at
+/// most `GRID_LIMIT - 1`, so every point of the box snaps to a
+/// [`GridPoint`] with at most 24 bits of magnitude. The scale is a power of
+/// two (at most one bit of resolution given up), so binary fractions of
+/// the scene's units snap exactly. Callers include in the box everything that
 /// will seed planes: scene vertices and light vertices (with some margin if
 /// lights may move).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -89,13 +91,24 @@ impl Grid {
         if half_extent <= 0.0 || !half_extent.is_finite() {
             return Err(Error::DegenerateBox);
         }
-        let center = [
-            0.5 * (min[0] + max[0]),
-            0.5 * (min[1] + max[1]),
-            0.5 * (min[2] + max[2]),
-        ];
-        let scale = f64::from(GRID_LIMIT - 1) / half_extent;
-        if !scale.is_finite() {
+        // A power-of-two scale and a centre on the grid keep binary
+        // fractions exact: inputs built on a binary lattice (1/16 steps, say)
+        // snap without rounding, so their coplanar contacts survive.
+        let mut scale = f64::from(GRID_LIMIT - 1) / half_extent;
+        if !scale.is_finite() || scale <= 0.0 {
+            return Err(Error::DegenerateBox);
+        }
+        scale = 2f64.powi(scale.log2().floor() as i32);
+        let center = [0, 1, 2].map(|a| (0.5 * (min[a] + max[a]) * scale).round() / scale);
+        // The centre moved by at most half a step: make sure the box still
+        // fits.
+        if (0..3).any(|a| {
+            ((max[a] - center[a]) * scale).abs() > f64::from(GRID_LIMIT - 1)
+                || ((min[a] - center[a]) * scale).abs() > f64::from(GRID_LIMIT - 1)
+        }) {
+            scale *= 0.5;
+        }
+        if !scale.is_finite() || scale <= 0.0 || !center.iter().all(|c| c.is_finite()) {
             return Err(Error::DegenerateBox);
         }
         Ok(Self { center, scale })
@@ -222,8 +235,14 @@ mod tests {
         let grid = Grid::new([-1.0, 0.0, 2.0], [3.0, 1.0, 2.5]).unwrap();
         let lo = grid.snap([-1.0, 0.0, 2.0]).unwrap();
         let hi = grid.snap([3.0, 1.0, 2.5]).unwrap();
-        assert_eq!(lo.x, -(GRID_LIMIT - 1));
-        assert_eq!(hi.x, GRID_LIMIT - 1);
+        // At least 23 of the 24 bits are used.
+        assert!(hi.x > (GRID_LIMIT - 1) / 2 && hi.x < GRID_LIMIT);
+        assert!(lo.x < -(GRID_LIMIT - 1) / 2 && lo.x > -GRID_LIMIT);
+        // Binary fractions snap exactly.
+        for v in [0.0625, 1.5, -0.75, 2.9375] {
+            let (_, d) = grid.snap_with_distance([v, 0.5, 2.25]).unwrap();
+            assert_eq!(d, 0.0);
+        }
         let w = grid.to_world(hi);
         assert!((w[0] - 3.0).abs() < 1e-12);
         let (_, d) = grid.snap_with_distance([0.123456789, 0.5, 2.2]).unwrap();
@@ -242,6 +261,9 @@ mod tests {
             Err(Error::NonFinite { axis: 0, .. })
         ));
         let grid = Grid::new([0.0; 3], [1.0; 3]).unwrap();
+        for corner in [[0.0; 3], [1.0; 3], [0.0, 1.0, 0.0]] {
+            assert!(grid.snap(corner).is_ok());
+        }
         assert!(matches!(
             grid.snap([0.5, f64::INFINITY, 0.5]),
             Err(Error::NonFinite { axis: 1, .. })

@@ -6,9 +6,6 @@ use crate::predicates::{
 use crate::{Error, GridPoint, Plane};
 use smallvec::SmallVec;
 
-/// Inline capacity of a polygon's plane and vertex lists.
-const INLINE: usize = 4;
-
 /// How a coplanar polygon faces relative to a plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Facing {
@@ -32,6 +29,9 @@ pub enum PolygonSide {
 }
 
 /// The result of [`ConvexPolygon::split`].
+// Results are matched at once and the parts moved on; boxing them would
+// cost two allocations per cut on the hottest path of every tree.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum Split {
     /// The polygon is behind the plane (touching it at most along an edge or
@@ -68,8 +68,8 @@ enum Vertex {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConvexPolygon {
     support: Plane,
-    edges: SmallVec<[Plane; INLINE]>,
-    vertices: SmallVec<[Vertex; INLINE]>,
+    edges: Vec<Plane>,
+    vertices: Vec<Vertex>,
     source: u32,
 }
 
@@ -113,7 +113,7 @@ impl ConvexPolygon {
         let axis = support.dominant_axis();
         let sign = support.normal()[axis].signum();
         let count = pts.len();
-        let mut edges = SmallVec::with_capacity(count);
+        let mut edges = Vec::with_capacity(count);
         for i in 0..count {
             let (p, q) = (pts[i], pts[(i + 1) % count]);
             let d = [
@@ -153,7 +153,7 @@ impl ConvexPolygon {
         if n < 3 {
             return Err(Error::TooFewVertices);
         }
-        let mut vertices = SmallVec::with_capacity(n);
+        let mut vertices = Vec::with_capacity(n);
         for i in 0..n {
             let prev = &edges[(i + n - 1) % n];
             let filter =
@@ -162,18 +162,13 @@ impl ConvexPolygon {
         }
         let polygon = Self {
             support,
-            edges: edges.iter().copied().collect(),
+            edges: edges.to_vec(),
             vertices,
             source,
         };
-        for i in 0..n {
-            for j in 0..n {
-                if j != i && j != (i + n - 1) % n && polygon.vertex_side(i, &edges[j]) != Side::Back
-                {
-                    return Err(Error::NonConvex);
-                }
-            }
-        }
+        polygon
+            .check_strictly_inside()
+            .map_err(|_| Error::NonConvex)?;
         Ok(polygon)
     }
 
@@ -387,8 +382,8 @@ impl ConvexPolygon {
         }
         let last = (start + run_len - 1) % n;
 
-        let mut edges: SmallVec<[Plane; INLINE]> = SmallVec::with_capacity(run_len + 1);
-        let mut vertices: SmallVec<[Vertex; INLINE]> = SmallVec::with_capacity(run_len + 1);
+        let mut edges: Vec<Plane> = Vec::with_capacity(run_len + 1);
+        let mut vertices: Vec<Vertex> = Vec::with_capacity(run_len + 1);
         // Vertex between the closing plane and the first kept edge.
         vertices.push(self.vertex_on_cut(start, &self.edges[start], &closing, sides));
         for k in 0..run_len {
@@ -435,11 +430,17 @@ impl ConvexPolygon {
                     return Err(format!("vertex {i} is not on its plane {k}"));
                 }
             }
-            for j in 0..n {
-                if j != i
-                    && j != (i + n - 1) % n
-                    && self.vertex_side(i, &self.edges[j]) != Side::Back
-                {
+        }
+        self.check_strictly_inside()
+    }
+
+    /// Every vertex strictly behind every edge plane it is not on: strict
+    /// convexity, no zero-length edge.
+    fn check_strictly_inside(&self) -> Result<(), String> {
+        let n = self.len();
+        for i in 0..n {
+            for (j, edge) in self.edges.iter().enumerate() {
+                if j != i && j != (i + n - 1) % n && self.vertex_side(i, edge) != Side::Back {
                     return Err(format!("vertex {i} is not strictly behind edge {j}"));
                 }
             }

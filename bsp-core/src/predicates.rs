@@ -213,7 +213,7 @@ impl PointFilter {
         for j in 0..3 {
             // |x/w - x'/w'| <= (e_x + |x'/w'| e_w) / (w' - e_w), plus rounding.
             let err = (MINOR_BOUND * m[j] + p[j].abs() * ew) / (w - ew) + p[j].abs() * U;
-            if !(err <= 1.0 / (1u64 << 20) as f64) {
+            if !err.is_finite() || err > 1.0 / (1u64 << 20) as f64 {
                 return None;
             }
         }

@@ -1,0 +1,235 @@
+//! Shadows of many point and directional lights, pipelined: the fragments
+//! of one light's pass are the input of the next.
+
+use crate::tree::ShadowVolumeTree;
+use crate::volume::shadow_volume;
+use crate::{Error, Light};
+use bsp_core::predicates::Side;
+use bsp_core::{BuildOptions, ConvexPolygon, SceneBsp};
+
+/// At most this many lights: one bit each in a `u32` mask.
+pub const MAX_LIGHTS: usize = 32;
+
+/// What a piece does besides receiving light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PieceFlags {
+    /// Whether it blocks light (whichever side faces the light).
+    pub casts_shadows: bool,
+    /// Whether its back side receives light too.
+    pub two_sided: bool,
+    /// Whether it belongs to a closed surface (every edge shared by two
+    /// faces). The surface's faces towards the light then cast its whole
+    /// shadow, so a one-sided face turned away needs no filtering at all.
+    pub closed_surface: bool,
+}
+
+impl Default for PieceFlags {
+    fn default() -> Self {
+        Self {
+            casts_shadows: true,
+            two_sided: false,
+            closed_surface: false,
+        }
+    }
+}
+
+/// A piece of an input polygon with what it sees of each light.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fragment {
+    /// The fragment; its `source` is the index of the piece it came from.
+    pub polygon: ConvexPolygon,
+    /// Bit `i`: the fragment sees all of light `i`.
+    pub lit_mask: u32,
+    /// Bit `i`: the fragment sees none of light `i`.
+    pub umbra_mask: u32,
+}
+
+/// Figures of one light's pass (the columns of Chin & Feiner 1989, Table 1).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct LightStats {
+    /// Input pieces whose front faces the light.
+    pub front_facing_polygons: usize,
+    /// Edges of those pieces.
+    pub front_facing_edges: usize,
+    /// Inner nodes of the SVBSP tree at the end of the pass.
+    pub tree_nodes: usize,
+    /// Final fragments that see all of the light.
+    pub lit: usize,
+    /// Final fragments that see none of it.
+    pub umbra: usize,
+    /// Shadow planes left out because they already bound the leaf they
+    /// would go in (edges made by SVBSP splits, edges shared by lit faces):
+    /// the tree would be this many nodes larger without the check.
+    pub planes_skipped: usize,
+    /// Volumes cast with the whole original piece (a fragment edge that no
+    /// exact shadow plane could be built for).
+    pub whole_piece_volumes: usize,
+}
+
+/// The result of [`compute_shadows`].
+#[derive(Debug, Clone)]
+pub struct ShadowOutput {
+    /// Every fragment of every piece, grouped by scene-BSP polygon.
+    pub fragments: Vec<Fragment>,
+    /// One entry per light, in the order of the input.
+    pub lights: Vec<LightStats>,
+    /// Nodes of the scene BSP.
+    pub scene_nodes: usize,
+}
+
+/// Splits every piece into fragments lit or in shadow of each light.
+///
+/// `pieces` are convex polygons with grid-point vertices (as
+/// [`ConvexPolygon::from_grid_points`] makes them); the `source` of each
+/// output fragment is the index of its piece. The scene BSP is built once;
+/// lights run in order of fewest facing pieces first (fragmenting least),
+/// each with its SVBSP tree, front-to-back from the light.
+pub fn compute_shadows(
+    pieces: &[ConvexPolygon],
+    flags: &[PieceFlags],
+    lights: &[Light],
+    options: &BuildOptions,
+) -> Result<ShadowOutput, Error> {
+    if lights.len() > MAX_LIGHTS {
+        return Err(Error::TooManyLights(lights.len()));
+    }
+    if flags.len() != pieces.len() {
+        return Err(Error::FlagsLength {
+            pieces: pieces.len(),
+            flags: flags.len(),
+        });
+    }
+    let originals: Vec<ConvexPolygon> = pieces
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            if (0..p.len()).all(|k| p.vertex_grid_point(k).is_some()) {
+                Ok(p.clone().with_source(i as u32))
+            } else {
+                Err(Error::ImplicitInput(i))
+            }
+        })
+        .collect::<Result<_, _>>()?;
+    let bsp = SceneBsp::build(originals.clone(), options);
+    let mut fragments: Vec<Vec<Fragment>> = bsp
+        .polygons()
+        .iter()
+        .map(|p| {
+            vec![Fragment {
+                polygon: p.clone(),
+                lit_mask: 0,
+                umbra_mask: 0,
+            }]
+        })
+        .collect();
+
+    let mut stats = vec![LightStats::default(); lights.len()];
+    for (i, light) in lights.iter().enumerate() {
+        for piece in &originals {
+            if light.source.side(piece.support()) == Side::Front {
+                stats[i].front_facing_polygons += 1;
+                stats[i].front_facing_edges += piece.len();
+            }
+        }
+    }
+    let mut order: Vec<usize> = (0..lights.len()).collect();
+    order.sort_by_key(|&i| stats[i].front_facing_polygons);
+
+    for &i in &order {
+        let light = &lights[i];
+        let bit = 1_u32 << i;
+        let mut tree = ShadowVolumeTree::new(light.source);
+        let view = light.source.viewpoint();
+        let visit: Vec<u32> = bsp.front_to_back(view).map(|(k, _)| k).collect();
+        for k in visit {
+            let list = std::mem::take(&mut fragments[k as usize]);
+            let mut next = Vec::with_capacity(list.len());
+            for fragment in list {
+                let piece = fragment.polygon.source() as usize;
+                let facing = light.source.side(fragment.polygon.support());
+                let beyond = light.range.is_some()
+                    && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
+                if facing == Side::On || beyond {
+                    // Edge-on to the light or beyond its reach: it neither
+                    // receives nor casts.
+                    next.push(Fragment {
+                        umbra_mask: fragment.umbra_mask | bit,
+                        ..fragment
+                    });
+                    continue;
+                }
+                let receives = facing == Side::Front || flags[piece].two_sided;
+                if !receives && (flags[piece].closed_surface || !flags[piece].casts_shadows) {
+                    // Turned away and casting nothing the rest of its
+                    // closed surface does not: umbra, untouched.
+                    next.push(Fragment {
+                        umbra_mask: fragment.umbra_mask | bit,
+                        ..fragment
+                    });
+                    continue;
+                }
+                let whole = (!receives).then(|| fragment.polygon.clone());
+                let filtered = tree.filter(fragment.polygon);
+                for (polygon, slot) in &filtered.lit {
+                    if flags[piece].casts_shadows {
+                        if let Some(volume) =
+                            shadow_volume(polygon, &originals[piece], light.source)
+                        {
+                            stats[i].whole_piece_volumes += usize::from(volume.whole_piece);
+                            let (_, skipped) =
+                                tree.insert_volume(*slot, &volume.shadow_planes, volume.cap);
+                            stats[i].planes_skipped += skipped;
+                        }
+                    }
+                }
+                if let Some(polygon) = whole {
+                    // It receives none of this light: its pieces were needed
+                    // only to cast, so it stays whole.
+                    next.push(Fragment {
+                        polygon,
+                        lit_mask: fragment.lit_mask,
+                        umbra_mask: fragment.umbra_mask | bit,
+                    });
+                    continue;
+                }
+                for (polygon, _) in filtered.lit {
+                    next.push(Fragment {
+                        polygon,
+                        lit_mask: fragment.lit_mask | bit,
+                        umbra_mask: fragment.umbra_mask,
+                    });
+                }
+                for polygon in filtered.shadowed {
+                    next.push(Fragment {
+                        polygon,
+                        lit_mask: fragment.lit_mask,
+                        umbra_mask: fragment.umbra_mask | bit,
+                    });
+                }
+            }
+            fragments[k as usize] = next;
+        }
+        stats[i].tree_nodes = tree.nodes().len();
+    }
+
+    let mut all = Vec::with_capacity(fragments.iter().map(Vec::len).sum());
+    for list in fragments {
+        all.extend(list);
+    }
+    let fragments = all;
+    for (i, s) in stats.iter_mut().enumerate() {
+        s.lit = fragments
+            .iter()
+            .filter(|f| f.lit_mask & (1 << i) != 0)
+            .count();
+        s.umbra = fragments
+            .iter()
+            .filter(|f| f.umbra_mask & (1 << i) != 0)
+            .count();
+    }
+    Ok(ShadowOutput {
+        fragments,
+        lights: stats,
+        scene_nodes: bsp.nodes().len(),
+    })
+}
