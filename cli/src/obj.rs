@@ -53,7 +53,7 @@ impl ObjMesh {
         let mut positions: Vec<[f64; 3]> = Vec::new();
         // Faces as 0-based position indices, resolved once the file is read
         // so that a face may name a vertex written after it.
-        let mut pending: Vec<(Vec<(usize, usize)>, usize, Option<String>)> = Vec::new();
+        let mut pending: Vec<PendingFace> = Vec::new();
         let mut group: Option<String> = None;
 
         let mut lines = text.lines().enumerate();
@@ -154,7 +154,11 @@ impl ObjMesh {
                             format!("a face needs at least 3 vertices, found {}", refs.len()),
                         ));
                     }
-                    pending.push((refs, number, group.clone()));
+                    pending.push(PendingFace {
+                        refs,
+                        line: number,
+                        group: group.clone(),
+                    });
                 }
                 "o" | "g" => {
                     let name: Vec<&str> = words.collect();
@@ -171,7 +175,7 @@ impl ObjMesh {
         }
 
         let mut faces = Vec::with_capacity(pending.len());
-        for (refs, line, group) in pending {
+        for PendingFace { refs, line, group } in pending {
             let mut vertices = Vec::with_capacity(refs.len());
             for (index, written) in refs {
                 let p = positions.get(index).ok_or_else(|| {
@@ -193,6 +197,13 @@ impl ObjMesh {
         }
         Ok(Self { faces })
     }
+}
+
+/// A face as read: (0-based position index, index as written) per vertex.
+struct PendingFace {
+    refs: Vec<(usize, usize)>,
+    line: usize,
+    group: Option<String>,
 }
 
 #[cfg(test)]
