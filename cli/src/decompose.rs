@@ -8,8 +8,10 @@
 //!   vector area. Every orientation and containment test is on integer grid
 //!   coordinates, so it is exact (no `spade`: a simple polygon needs no
 //!   Delaunay property, and ear clipping on `i64` needs no conversion back
-//!   from floating point). A planar face's triangles tile it exactly; a
-//!   non-planar face's triangles are each planar;
+//!   from floating point). A planar face's triangles are then merged back
+//!   across diagonals while the union stays strictly convex
+//!   (Hertel-Mehlhorn: at most four times the fewest convex parts), and
+//!   tile it exactly; a non-planar face keeps its triangles, each planar;
 //! - a face that is degenerate once snapped (zero area) is dropped and
 //!   listed in [`Pieces::dropped`]; that is not an error.
 //!
@@ -164,14 +166,34 @@ pub fn convex_pieces(points: &[GridPoint]) -> Vec<ConvexPolygon> {
     if pts.len() < 3 {
         return Vec::new();
     }
-    if let Ok(p) = ConvexPolygon::from_grid_points(&pts, 0) {
-        return vec![p];
-    }
-    ear_clip(&pts)
+    let planar = match ConvexPolygon::from_grid_points(&pts, 0) {
+        Ok(p) => return vec![p],
+        // Planarity is checked before convexity: a non-convex polygon is
+        // planar.
+        Err(bsp_core::Error::NonConvex) => true,
+        Err(_) => false,
+    };
+    let Some(projection) = Projection::new(&pts) else {
+        return Vec::new();
+    };
+    let triangles: Vec<Vec<usize>> = ear_clip(&projection).into_iter().map(Vec::from).collect();
+    let parts = if planar && triangles.len() <= MERGE_LIMIT {
+        merge_convex(triangles, &projection)
+    } else {
+        triangles
+    };
+    parts
         .into_iter()
-        .filter_map(|t| ConvexPolygon::from_grid_points(&t, 0).ok())
+        .filter_map(|part| {
+            let corners: Vec<GridPoint> = part.iter().map(|&i| pts[i]).collect();
+            ConvexPolygon::from_grid_points(&corners, 0).ok()
+        })
         .collect()
 }
+
+/// Faces cut into more triangles than this keep their triangles (merging
+/// them back into convex parts is quadratic in their number, or worse).
+const MERGE_LIMIT: usize = 256;
 
 /// Twice the exact vector area `sum p_i x p_(i+1)`.
 fn vector_area(pts: &[GridPoint]) -> [i128; 3] {
@@ -186,32 +208,50 @@ fn vector_area(pts: &[GridPoint]) -> [i128; 3] {
     acc
 }
 
-/// Triangles of a polygon by ear clipping on its projection along the
-/// dominant axis of its vector area, keeping its orientation. Exact: every
-/// test is an integer orientation. Returns nothing for a zero vector area.
-fn ear_clip(pts: &[GridPoint]) -> Vec<[GridPoint; 3]> {
-    let area = vector_area(pts);
-    let k = (0..3).max_by_key(|&k| area[k].unsigned_abs()).unwrap_or(0);
-    if area[k] == 0 {
-        return Vec::new();
-    }
-    let sign: i64 = if area[k] > 0 { 1 } else { -1 };
-    let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-    let flat: Vec<[i64; 2]> = pts
-        .iter()
-        .map(|p| {
-            let a = p.to_i64();
-            [a[u], a[v]]
-        })
-        .collect();
-    // Orientation made positive for the polygon's own turning sense.
-    let orient = |a: usize, b: usize, c: usize| -> i64 {
-        let (a, b, c) = (flat[a], flat[b], flat[c]);
-        sign * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-    };
+/// A polygon projected along the dominant axis of its vector area, with
+/// orientation signs made positive for the polygon's own turning sense.
+struct Projection {
+    flat: Vec<[i64; 2]>,
+    sign: i64,
+}
 
-    let mut ring: Vec<usize> = (0..pts.len()).collect();
-    let mut triangles = Vec::with_capacity(pts.len() - 2);
+impl Projection {
+    /// `None` for a zero vector area (a degenerate or figure-eight face).
+    fn new(pts: &[GridPoint]) -> Option<Self> {
+        let area = vector_area(pts);
+        let k = (0..3).max_by_key(|&k| area[k].unsigned_abs()).unwrap_or(0);
+        if area[k] == 0 {
+            return None;
+        }
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let flat = pts
+            .iter()
+            .map(|p| {
+                let a = p.to_i64();
+                [a[u], a[v]]
+            })
+            .collect();
+        Some(Self {
+            flat,
+            sign: if area[k] > 0 { 1 } else { -1 },
+        })
+    }
+
+    /// Positive for a left (convex) turn `a -> b -> c`; exact (coordinates
+    /// below `2^25`, products below `2^51`).
+    fn orient(&self, a: usize, b: usize, c: usize) -> i64 {
+        let (a, b, c) = (self.flat[a], self.flat[b], self.flat[c]);
+        self.sign * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+    }
+}
+
+/// Triangles (vertex indices) of a polygon by ear clipping its projection,
+/// keeping its orientation. Exact: every test is an integer orientation.
+fn ear_clip(projection: &Projection) -> Vec<[usize; 3]> {
+    let orient = |a, b, c| projection.orient(a, b, c);
+    let flat = &projection.flat;
+    let mut ring: Vec<usize> = (0..flat.len()).collect();
+    let mut triangles = Vec::with_capacity(flat.len().saturating_sub(2));
     while ring.len() > 3 {
         let n = ring.len();
         let corners = |i: usize| (ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
@@ -225,40 +265,68 @@ fn ear_clip(pts: &[GridPoint]) -> Vec<[GridPoint; 3]> {
                 same || orient(a, b, q) < 0 || orient(b, c, q) < 0 || orient(c, a, q) < 0
             })
         };
-        let chosen = (0..n)
+        let turn = |i: usize| {
+            let (a, b, c) = corners(i);
+            orient(a, b, c)
+        };
+        let (i, emit) = (0..n)
             .find(|&i| is_ear(i))
             .map(|i| (i, true))
             // A straight or folded-back vertex adds no area: drop it.
-            .or_else(|| {
-                (0..n)
-                    .find(|&i| {
-                        let (a, b, c) = corners(i);
-                        orient(a, b, c) == 0
-                    })
-                    .map(|i| (i, false))
-            })
+            .or_else(|| (0..n).find(|&i| turn(i) == 0).map(|i| (i, false)))
             // No ear: the projection is not simple (a twisted face). Cut the
             // first convex corner anyway so that the loop ends.
-            .or_else(|| {
-                (0..n)
-                    .find(|&i| {
-                        let (a, b, c) = corners(i);
-                        orient(a, b, c) > 0
-                    })
-                    .map(|i| (i, true))
-            })
+            .or_else(|| (0..n).find(|&i| turn(i) > 0).map(|i| (i, true)))
             .unwrap_or((0, false));
-        let (i, emit) = chosen;
         if emit {
             let (a, b, c) = corners(i);
-            triangles.push([pts[a], pts[b], pts[c]]);
+            triangles.push([a, b, c]);
         }
         ring.remove(i);
     }
     if ring.len() == 3 {
-        triangles.push([pts[ring[0]], pts[ring[1]], pts[ring[2]]]);
+        triangles.push([ring[0], ring[1], ring[2]]);
     }
     triangles
+}
+
+/// Hertel-Mehlhorn: merges parts across shared diagonals while the union
+/// stays strictly convex (every turn to the left, exactly), so a concave
+/// face becomes a few convex parts rather than many triangles. Strictness
+/// keeps every part's corners at polygon vertices of its neighbours: no
+/// part gets a straight corner where another part has a vertex.
+fn merge_convex(mut parts: Vec<Vec<usize>>, projection: &Projection) -> Vec<Vec<usize>> {
+    'again: loop {
+        for i in 0..parts.len() {
+            for j in i + 1..parts.len() {
+                if let Some(merged) = merge_pair(&parts[i], &parts[j], projection) {
+                    parts[i] = merged;
+                    parts.swap_remove(j);
+                    continue 'again;
+                }
+            }
+        }
+        return parts;
+    }
+}
+
+/// The union of two parts sharing the edge `p[k] -> p[k+1]` (run the other
+/// way in `q`), if it is strictly convex.
+fn merge_pair(p: &[usize], q: &[usize], projection: &Projection) -> Option<Vec<usize>> {
+    let (n, m) = (p.len(), q.len());
+    for k in 0..n {
+        let (a, b) = (p[k], p[(k + 1) % n]);
+        let Some(l) = (0..m).find(|&l| q[l] == b && q[(l + 1) % m] == a) else {
+            continue;
+        };
+        let mut merged: Vec<usize> = (1..=n).map(|t| p[(k + t) % n]).collect();
+        merged.extend((2..m).map(|t| q[(l + t) % m]));
+        let c = merged.len();
+        let convex = (0..c)
+            .all(|t| projection.orient(merged[t], merged[(t + 1) % c], merged[(t + 2) % c]) > 0);
+        return convex.then_some(merged);
+    }
+    None
 }
 
 #[cfg(test)]
@@ -309,7 +377,14 @@ mod tests {
                     pts.reverse();
                 }
                 let pieces = convex_pieces(&pts);
-                assert!(pieces.len() >= 2);
+                // Hertel-Mehlhorn: the L in 2 parts; the comb (5 reflex
+                // corners) in at most 2 * 5 + 1.
+                let most = if outline.len() == 6 { 2 } else { 11 };
+                assert!(
+                    pieces.len() >= 2 && pieces.len() <= most,
+                    "{}",
+                    pieces.len()
+                );
                 let total: f64 = pieces.iter().map(|p| p.area()).sum();
                 let want = exact_area(&pts);
                 assert!((total - want).abs() <= 1e-9 * want, "{total} vs {want}");

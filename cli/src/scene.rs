@@ -165,7 +165,7 @@ struct ObjectSpec {
 }
 
 #[derive(Debug, Deserialize)]
-#[serde(untagged)]
+#[serde(untagged, expecting = "expected a number or an array [sx, sy, sz]")]
 enum ScaleSpec {
     Uniform(f64),
     PerAxis([f64; 3]),
