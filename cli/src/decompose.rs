@@ -56,9 +56,11 @@ pub struct Pieces {
 pub enum SnappedLight {
     /// A point light at a grid point.
     Point(GridPoint),
-    /// A light at infinity; the direction it travels, in world units (grids
-    /// scale uniformly, so it is also the direction in grid units).
-    Directional([f64; 3]),
+    /// A light at infinity: the direction it travels as integers (grids
+    /// scale uniformly, so a world direction is a grid direction), scaled so
+    /// that its largest component is `±DIRECTION_SCALE`; see
+    /// [`integer_direction`].
+    Directional([i32; 3]),
     /// An area light: a convex polygon on the grid whose source is the
     /// light's index.
     Area(ConvexPolygon),
@@ -122,7 +124,9 @@ impl Pieces {
                     out.max_snap_distance = out.max_snap_distance.max(moved);
                     SnappedLight::Point(g)
                 }
-                LightKind::Directional { direction } => SnappedLight::Directional(*direction),
+                LightKind::Directional { direction } => {
+                    SnappedLight::Directional(integer_direction(*direction))
+                }
                 LightKind::Area { vertices } => {
                     let (g, moved) = grid.snap_all(vertices).map_err(grid_error)?;
                     out.max_snap_distance = out.max_snap_distance.max(moved);
@@ -149,6 +153,21 @@ impl Pieces {
             .filter(move |(_, i)| **i == input)
             .map(|(p, _)| p)
     }
+}
+
+/// Largest component of an [`integer_direction`], `2^20` (the kernel
+/// accepts directions below `2^24`).
+pub const DIRECTION_SCALE: i32 = 1 << 20;
+
+/// A non-zero finite direction as integers whose largest component is
+/// `±DIRECTION_SCALE`: the only rounding of a directional light, by at most
+/// about `2^-21` radians.
+pub fn integer_direction(d: [f64; 3]) -> [i32; 3] {
+    let largest = d.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+    if largest == 0.0 || !largest.is_finite() {
+        return [0; 3];
+    }
+    d.map(|c| ((c / largest) * f64::from(DIRECTION_SCALE)).round() as i32)
 }
 
 /// Convex planar pieces (with source 0) of one polygon given by grid points,
@@ -340,6 +359,22 @@ mod tests {
     fn exact_area(pts: &[GridPoint]) -> f64 {
         let a = vector_area(pts).map(|c| c as f64);
         0.5 * (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
+    }
+
+    #[test]
+    fn directions_become_integers() {
+        assert_eq!(
+            integer_direction([0.0, -2.0, 0.0]),
+            [0, -DIRECTION_SCALE, 0]
+        );
+        assert_eq!(
+            integer_direction([0.25, -0.5, 1.0]),
+            [DIRECTION_SCALE / 4, -DIRECTION_SCALE / 2, DIRECTION_SCALE]
+        );
+        assert_eq!(
+            integer_direction([1e-310, 0.0, -1e-310]),
+            [DIRECTION_SCALE, 0, -DIRECTION_SCALE]
+        );
     }
 
     #[test]

@@ -32,8 +32,8 @@ const TETRA_CORNERS: [[f64; 3]; 4] = [
 ///
 /// A node at centre `c` with half-size `w` and depth greater than 1 holds
 /// four children at `c + d * w / 2` with half-size `w / 2`, for the corners
-/// `d` of [`TETRA_CORNERS`]; a leaf is the tetrahedron with vertices
-/// `c + w * d`. The root has centre `(0, 0, 0)` and half-size 1. The faces
+/// `d` of the cube `[-1, 1]^3` with `x * y * z = +1`; a leaf is the
+/// tetrahedron with vertices `c + w * d`. The root has centre `(0, 0, 0)` and half-size 1. The faces
 /// opposite the corner `(-1, -1, 1)` of every leaf on the bottom lie in the
 /// plane `x + y - z = 1`.
 ///

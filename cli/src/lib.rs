@@ -56,7 +56,9 @@ mod transform;
 
 pub use atomic::write_atomic;
 pub use bsp_core;
-pub use decompose::{GRID_MARGIN, Pieces, SnappedLight, convex_pieces};
+pub use decompose::{
+    DIRECTION_SCALE, GRID_MARGIN, Pieces, SnappedLight, convex_pieces, integer_direction,
+};
 pub use demo::{DEMOS, DemoFiles, TETRA_DEPTH, tetra_triangles, write_demo};
 pub use error::{Error, Result};
 pub use mesh::{OutputFace, OutputMesh};
