@@ -5,6 +5,7 @@ mod decomposition;
 mod demos;
 mod errors;
 mod ply_files;
+mod properties;
 
 use std::path::Path;
 use std::process::Command;
