@@ -253,6 +253,16 @@ pub fn run(cli: Cli) -> Result<()> {
                 "dropped        {} (zero area once snapped)",
                 pieces.dropped.len()
             );
+            for &input in &pieces.dropped {
+                if let Some((object, polygon)) = scene.input_polygons().nth(input as usize) {
+                    let object = &scene.objects[object];
+                    let at = match (&object.mesh, polygon.line) {
+                        (Some(mesh), Some(line)) => format!("{}:{line}", mesh.display()),
+                        _ => format!("object `{}`", object.name),
+                    };
+                    let _ = writeln!(out, "  dropped input polygon {input} ({at})");
+                }
+            }
             let _ = writeln!(out, "grid cell      {:e}", pieces.grid.cell_size());
             let _ = writeln!(out, "largest snap   {:e}", pieces.max_snap_distance);
             Ok(())

@@ -287,6 +287,9 @@ impl Scene {
         let base = path.parent().unwrap_or(Path::new(""));
 
         check.finite("ambient", &[file.ambient])?;
+        if file.ambient < 0.0 {
+            return Err(check.field("ambient", "must not be negative"));
+        }
 
         let mut objects: Vec<Object> = Vec::with_capacity(file.object.len());
         for (i, spec) in file.object.into_iter().enumerate() {

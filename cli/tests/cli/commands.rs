@@ -112,3 +112,23 @@ fn help_documents_every_option() {
         }
     }
 }
+
+#[test]
+fn check_lists_dropped_faces_with_their_line() {
+    let dir = folder(&[
+        ("scene.toml", "[[object]]\nname = \"m\"\nmesh = \"m.obj\"\n"),
+        (
+            "m.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n",
+        ),
+    ]);
+    let run = umbra(dir.path(), &["check", "scene.toml"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("input polygons 2"), "{}", run.stdout);
+    assert!(run.stdout.contains("dropped        1"), "{}", run.stdout);
+    assert!(
+        run.stdout.contains("dropped input polygon 1 (m.obj:6)"),
+        "{}",
+        run.stdout
+    );
+}
