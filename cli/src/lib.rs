@@ -1,7 +1,70 @@
-//! The `umbra` library: scene files, OBJ input, PLY / OBJ / PNG / JSON output
-//! and the shadow pipeline behind the `umbra` command.
+//! The `umbra` library: scene files and OBJ meshes in; convex planar pieces
+//! on one exact grid for the shadow kernels; PLY, OBJ and JSON out.
 //!
-//! It is not implemented yet: see the project's open issues. The kernel it
-//! will stand on is [`bsp_core`].
+//! - [`Scene`] reads and validates a scene file (FORMATS.md §1) and the OBJ
+//!   meshes it names ([`ObjMesh`]), applying each object's [`Transform`];
+//! - [`Pieces`] snaps every input polygon to one [`bsp_core::Grid`] and cuts
+//!   it into convex planar [`bsp_core::ConvexPolygon`]s, each remembering its
+//!   input polygon (the `source` of the output);
+//! - [`OutputMesh`] is what the writers take: [`save_ply`] (FORMATS.md §2,
+//!   binary or ASCII; [`load_ply`] reads it back), [`save_obj`], and
+//!   [`Stats`] (FORMATS.md §3); every file is written with [`write_atomic`],
+//!   so a failed run leaves no partial file;
+//! - [`write_demo`] writes the built-in scenes; [`tetra_triangles`] is
+//!   Haines' SPD tetrahedra.
+//!
+//! Errors are one [`Error`] type whose messages name the file and the line
+//! or field. Nothing here prints.
+//!
+//! # Example
+//!
+//! ```
+//! use umbra::{Pieces, Scene};
+//!
+//! // An L-shaped floor (concave) under a point light.
+//! let scene = Scene::from_toml_str(
+//!     r#"
+//!     [[object]]
+//!     name = "floor"
+//!     polygons = [[[0, 0, 0], [0, 0, 2], [2, 0, 2], [2, 0, 1], [1, 0, 1], [1, 0, 0]]]
+//!
+//!     [[light]]
+//!     type = "point"
+//!     position = [1, 3, 1]
+//!     "#,
+//!     "floor.toml",
+//! )?;
+//! let pieces = Pieces::from_scene(&scene)?;
+//! assert_eq!(pieces.input_polygons, 1);
+//! assert!(pieces.polygons.len() >= 2);
+//! // Every piece names the one input polygon it came from.
+//! assert!(pieces.input_of.iter().all(|&i| i == 0));
+//! # Ok::<(), umbra::Error>(())
+//! ```
 
+mod atomic;
+mod decompose;
+mod demo;
+mod error;
+mod mesh;
+mod obj;
+mod obj_out;
+mod ply;
+mod scene;
+mod stats;
+mod transform;
+
+pub use atomic::write_atomic;
 pub use bsp_core;
+pub use decompose::{
+    DIRECTION_SCALE, GRID_MARGIN, Pieces, SnappedLight, convex_pieces, integer_direction,
+};
+pub use demo::{DEMOS, DemoFiles, TETRA_DEPTH, tetra_triangles, write_demo};
+pub use error::{Error, Result};
+pub use mesh::{OutputFace, OutputMesh};
+pub use obj::{ObjFace, ObjMesh};
+pub use obj_out::{save_obj, write_obj};
+pub use ply::{PlyEncoding, load_ply, read_ply, save_ply, write_ply};
+pub use scene::{Camera, Falloff, InputPolygon, Light, LightKind, MAX_LIGHTS, Object, Scene};
+pub use stats::{LightStats, Seconds, Stats};
+pub use transform::Transform;

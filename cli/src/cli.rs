@@ -1,0 +1,271 @@
+//! Command-line parsing (clap) and the commands of FORMATS.md §4.
+//!
+//! The only place besides `main.rs` that prints.
+
+use std::io::Write;
+use std::path::PathBuf;
+
+use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
+use umbra::{Error, ObjMesh, Pieces, Result, Scene, write_demo};
+
+/// Exact object-space shadows: splits every receiving polygon into lit,
+/// penumbra and umbra fragments along the exact shadow boundaries.
+#[derive(Debug, Parser)]
+#[command(name = "umbra", version, propagate_version = true)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// The commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Classify and illuminate every receiving polygon for point,
+    /// directional and area lights; write PLY (and OBJ, stats).
+    Shadow(ShadowArgs),
+    /// Render an image from the scene's camera, shadows included.
+    Render(RenderArgs),
+    /// Build discontinuity meshes (DM-trees) of every receiver, illuminated.
+    Dm(DmArgs),
+    /// Move an object step by step, updating the discontinuity meshes
+    /// incrementally; reports update and rebuild times.
+    Update(UpdateArgs),
+    /// BSP set operations on closed OBJ meshes.
+    Csg(CsgArgs),
+    /// Write a built-in scene (scene file and meshes) into a folder.
+    Demo(DemoArgs),
+    /// Load and validate a scene, cut it into convex pieces on the grid and
+    /// print a summary (nothing is written).
+    Check(CheckArgs),
+}
+
+/// Options of `umbra shadow`.
+#[derive(Debug, Args)]
+pub struct ShadowArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// Output PLY file [default: the scene's name with `.ply`].
+    #[arg(short, long, value_name = "OUT.ply")]
+    pub output: Option<PathBuf>,
+    /// Also write the fragments as OBJ.
+    #[arg(long, value_name = "OUT.obj")]
+    pub obj: Option<PathBuf>,
+    /// Write run statistics as JSON.
+    #[arg(long, value_name = "S.json")]
+    pub stats: Option<PathBuf>,
+    /// Gridding of lit and penumbra fragments: N x N cells per fragment.
+    #[arg(long, value_name = "N")]
+    pub grid: Option<u32>,
+    /// Write ASCII PLY instead of binary little-endian.
+    #[arg(long)]
+    pub ascii: bool,
+}
+
+/// What `umbra render` shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum View {
+    /// Illuminated surfaces.
+    Shaded,
+    /// Lit, penumbra and umbra in flat colours.
+    Classes,
+    /// Every fragment in its own colour, with outlines.
+    Fragments,
+}
+
+/// Options of `umbra render`.
+#[derive(Debug, Args)]
+pub struct RenderArgs {
+    /// The scene file (TOML); it needs a `[camera]`.
+    pub scene: PathBuf,
+    /// Output PNG file.
+    #[arg(short, long, value_name = "IMG.png")]
+    pub output: PathBuf,
+    /// What to show.
+    #[arg(long, value_enum, default_value_t = View::Shaded)]
+    pub view: View,
+}
+
+/// Options of `umbra dm`.
+#[derive(Debug, Args)]
+pub struct DmArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// Output PLY file (same layout as `umbra shadow`; one face per cell).
+    #[arg(short, long, value_name = "OUT.ply")]
+    pub output: PathBuf,
+}
+
+/// Options of `umbra update`.
+#[derive(Debug, Args)]
+pub struct UpdateArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// Name of the object to move.
+    #[arg(long = "move", value_name = "NAME")]
+    pub object: String,
+    /// Displacement of each step.
+    #[arg(long, value_name = "DX,DY,DZ", value_parser = parse_vector, allow_hyphen_values = true)]
+    pub by: [f64; 3],
+    /// Number of steps.
+    #[arg(long, value_name = "K", default_value_t = 1)]
+    pub steps: u32,
+    /// Output PLY file (the final state).
+    #[arg(short, long, value_name = "OUT.ply")]
+    pub output: PathBuf,
+}
+
+/// Options of `umbra csg`.
+#[derive(Debug, Args)]
+#[command(group(ArgGroup::new("operation").required(true).args(["union", "intersect", "subtract"])))]
+pub struct CsgArgs {
+    /// First closed mesh (OBJ).
+    pub a: PathBuf,
+    /// A union B.
+    #[arg(long)]
+    pub union: bool,
+    /// A intersect B.
+    #[arg(long)]
+    pub intersect: bool,
+    /// A minus B.
+    #[arg(long)]
+    pub subtract: bool,
+    /// Second closed mesh (OBJ).
+    pub b: PathBuf,
+    /// Output OBJ file.
+    #[arg(short, long, value_name = "OUT.obj")]
+    pub output: PathBuf,
+}
+
+/// Options of `umbra demo`.
+#[derive(Debug, Args)]
+pub struct DemoArgs {
+    /// The scene: `room` or `tetra`.
+    #[arg(default_value = "room")]
+    pub name: String,
+    /// Folder to write into [default: a folder named after the scene].
+    #[arg(short, long, value_name = "DIR")]
+    pub output: Option<PathBuf>,
+}
+
+/// Options of `umbra check`.
+#[derive(Debug, Args)]
+pub struct CheckArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+}
+
+fn parse_vector(text: &str) -> std::result::Result<[f64; 3], String> {
+    let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+    if parts.len() != 3 {
+        return Err(format!("expected DX,DY,DZ, got `{text}`"));
+    }
+    let mut v = [0.0; 3];
+    for (slot, part) in v.iter_mut().zip(&parts) {
+        let x: f64 = part
+            .parse()
+            .map_err(|_| format!("`{part}` is not a number"))?;
+        if !x.is_finite() {
+            return Err(format!("`{part}` is not finite"));
+        }
+        *slot = x;
+    }
+    Ok(v)
+}
+
+const WAITS_FOR_SHADOWS: &str =
+    "the shadow computation (svbsp and area-shadow) is not wired into the command yet";
+
+/// Runs one command.
+pub fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Shadow(args) => {
+            // Validate everything the command will read before saying no, so
+            // that a bad scene is reported as such.
+            Pieces::from_scene(&Scene::load(&args.scene)?)?;
+            Err(Error::NotImplemented {
+                command: "shadow",
+                reason: WAITS_FOR_SHADOWS,
+            })
+        }
+        Command::Render(args) => {
+            Pieces::from_scene(&Scene::load(&args.scene)?)?;
+            Err(Error::NotImplemented {
+                command: "render",
+                reason: WAITS_FOR_SHADOWS,
+            })
+        }
+        Command::Dm(args) => {
+            Pieces::from_scene(&Scene::load(&args.scene)?)?;
+            Err(Error::NotImplemented {
+                command: "dm",
+                reason: "discontinuity meshes (dm-mesh) are not wired into the command yet",
+            })
+        }
+        Command::Update(args) => {
+            let scene = Scene::load(&args.scene)?;
+            if !scene.objects.iter().any(|o| o.name == args.object) {
+                return Err(Error::Field {
+                    path: scene.path.clone(),
+                    field: "object".into(),
+                    message: format!("no object is named `{}` (from --move)", args.object),
+                });
+            }
+            Err(Error::NotImplemented {
+                command: "update",
+                reason: "discontinuity meshes (dm-mesh) are not wired into the command yet",
+            })
+        }
+        Command::Csg(args) => {
+            ObjMesh::load(&args.a)?;
+            ObjMesh::load(&args.b)?;
+            Err(Error::NotImplemented {
+                command: "csg",
+                reason: "BSP set operations (svbsp) are not wired into the command yet",
+            })
+        }
+        Command::Demo(args) => {
+            let dir = args.output.unwrap_or_else(|| PathBuf::from(&args.name));
+            let path = write_demo(&args.name, &dir)?;
+            // Check that what was written loads, as `umbra shadow` would.
+            Pieces::from_scene(&Scene::load(&path)?)?;
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(out, "{}", path.display());
+            let _ = writeln!(
+                out,
+                "wrote the `{}` scene; run it with `umbra shadow {}` once shadows are wired in",
+                args.name,
+                path.display()
+            );
+            Ok(())
+        }
+        Command::Check(args) => {
+            let scene = Scene::load(&args.scene)?;
+            let pieces = Pieces::from_scene(&scene)?;
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(out, "scene          {}", scene.path.display());
+            let _ = writeln!(out, "objects        {}", scene.objects.len());
+            let _ = writeln!(out, "lights         {}", scene.lights.len());
+            let _ = writeln!(out, "input polygons {}", pieces.input_polygons);
+            let _ = writeln!(out, "convex pieces  {}", pieces.polygons.len());
+            let _ = writeln!(
+                out,
+                "dropped        {} (zero area once snapped)",
+                pieces.dropped.len()
+            );
+            for &input in &pieces.dropped {
+                if let Some((object, polygon)) = scene.input_polygons().nth(input as usize) {
+                    let object = &scene.objects[object];
+                    let at = match (&object.mesh, polygon.line) {
+                        (Some(mesh), Some(line)) => format!("{}:{line}", mesh.display()),
+                        _ => format!("object `{}`", object.name),
+                    };
+                    let _ = writeln!(out, "  dropped input polygon {input} ({at})");
+                }
+            }
+            let _ = writeln!(out, "grid cell      {:e}", pieces.grid.cell_size());
+            let _ = writeln!(out, "largest snap   {:e}", pieces.max_snap_distance);
+            Ok(())
+        }
+    }
+}

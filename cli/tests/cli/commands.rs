@@ -1,0 +1,134 @@
+//! The commands: `demo` writes scenes, `check` summarises, the others
+//! validate their input and say honestly that they are not wired yet.
+
+use crate::{TRIANGLE, folder, umbra};
+
+#[test]
+fn demo_writes_the_scene_and_prints_its_path() {
+    let dir = folder(&[]);
+    let run = umbra(dir.path(), &["demo", "tetra", "-o", "out"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(run.stdout.lines().next(), Some("out/tetra.toml"));
+    assert!(dir.path().join("out/tetra.toml").is_file());
+    assert!(dir.path().join("out/meshes/tetra.obj").is_file());
+    let run = umbra(dir.path(), &["check", "out/tetra.toml"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("input polygons 257"), "{}", run.stdout);
+
+    let run = umbra(dir.path(), &["demo"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(dir.path().join("room/room.toml").is_file());
+
+    let run = umbra(dir.path(), &["demo", "nowhere"]);
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr
+            .contains("unknown demo scene `nowhere` (known: room, tetra)")
+    );
+}
+
+#[test]
+fn unwired_commands_say_so_with_exit_2_and_write_nothing() {
+    let dir = folder(&[
+        ("scene.toml", TRIANGLE),
+        ("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ]);
+    let runs: [&[&str]; 5] = [
+        &["shadow", "scene.toml", "-o", "out.ply", "--stats", "s.json"],
+        &["render", "scene.toml", "-o", "out.png", "--view", "classes"],
+        &["dm", "scene.toml", "-o", "out.ply"],
+        &[
+            "update",
+            "scene.toml",
+            "--move",
+            "t",
+            "--by",
+            "-1,0,0.5",
+            "--steps",
+            "3",
+            "-o",
+            "out.ply",
+        ],
+        &["csg", "a.obj", "--union", "a.obj", "-o", "out.obj"],
+    ];
+    for args in runs {
+        let run = umbra(dir.path(), args);
+        assert_eq!(run.code, 2, "{args:?}");
+        assert!(
+            run.stderr.contains("is not implemented yet"),
+            "{}",
+            run.stderr
+        );
+    }
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+    let run = umbra(
+        dir.path(),
+        &[
+            "update",
+            "scene.toml",
+            "--move",
+            "nobody",
+            "--by",
+            "1,0,0",
+            "-o",
+            "o.ply",
+        ],
+    );
+    assert!(
+        run.stderr.contains("no object is named `nobody`"),
+        "{}",
+        run.stderr
+    );
+    let run = umbra(dir.path(), &["csg", "a.obj", "a.obj", "-o", "out.obj"]);
+    assert_eq!(run.code, 2, "an operation is required");
+}
+
+#[test]
+fn help_documents_every_option() {
+    let dir = folder(&[]);
+    let expected: [(&str, &[&str]); 7] = [
+        (
+            "shadow",
+            &["--output", "--obj", "--stats", "--grid", "--ascii"],
+        ),
+        (
+            "render",
+            &["--output", "--view", "shaded", "classes", "fragments"],
+        ),
+        ("dm", &["--output"]),
+        ("update", &["--move", "--by", "--steps", "--output"]),
+        ("csg", &["--union", "--intersect", "--subtract", "--output"]),
+        ("demo", &["--output", "room", "tetra"]),
+        ("check", &["SCENE"]),
+    ];
+    for (command, options) in expected {
+        let run = umbra(dir.path(), &[command, "--help"]);
+        assert_eq!(run.code, 0);
+        for option in options {
+            assert!(
+                run.stdout.contains(option),
+                "{command} --help lacks {option}"
+            );
+        }
+    }
+}
+
+#[test]
+fn check_lists_dropped_faces_with_their_line() {
+    let dir = folder(&[
+        ("scene.toml", "[[object]]\nname = \"m\"\nmesh = \"m.obj\"\n"),
+        (
+            "m.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n",
+        ),
+    ]);
+    let run = umbra(dir.path(), &["check", "scene.toml"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("input polygons 2"), "{}", run.stdout);
+    assert!(run.stdout.contains("dropped        1"), "{}", run.stdout);
+    assert!(
+        run.stdout.contains("dropped input polygon 1 (m.obj:6)"),
+        "{}",
+        run.stdout
+    );
+}

@@ -1,0 +1,78 @@
+//! The built-in scenes load, validate and have the expected shape.
+
+use umbra::{DEMOS, LightKind, Pieces, Scene, tetra_triangles, write_demo};
+
+use crate::folder;
+
+#[test]
+fn every_demo_loads_and_cuts_into_pieces() {
+    for name in DEMOS {
+        let dir = folder(&[]);
+        let path = write_demo(name, dir.path()).unwrap();
+        assert_eq!(path, dir.path().join(format!("{name}.toml")));
+        let scene = Scene::load(&path).unwrap();
+        let pieces = Pieces::from_scene(&scene).unwrap();
+        assert!(pieces.dropped.is_empty(), "{name}: {:?}", pieces.dropped);
+        assert!(scene.camera.is_some() && !scene.lights.is_empty());
+        assert_eq!(pieces.lights.len(), scene.lights.len());
+    }
+}
+
+#[test]
+fn tetra_has_256_triangles_and_the_ground_faces_the_light() {
+    assert_eq!(tetra_triangles(4).len(), 256);
+    assert_eq!(tetra_triangles(5).len(), 1024);
+    let dir = folder(&[]);
+    let scene = Scene::load(write_demo("tetra", dir.path()).unwrap()).unwrap();
+    assert_eq!(scene.objects[0].polygons.len(), 256);
+    let ground = &scene.objects[1].polygons[0].vertices;
+    let f = |p: [f64; 3]| p[0] + p[1] - p[2] - 1.0;
+    assert!(ground.iter().all(|&p| f(p).abs() < 1e-12));
+    let LightKind::Point { position } = scene.lights[0].kind else {
+        panic!("tetra has a point light");
+    };
+    // The light is on the tetrahedra's side of the ground...
+    assert!(f(position) < 0.0 && f([0.0; 3]) < 0.0);
+    // ... and the ground's counter-clockwise normal points to it.
+    let (a, b, c) = (ground[0], ground[1], ground[2]);
+    let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+    let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+    let n = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let to_light = [position[0] - a[0], position[1] - a[1], position[2] - a[2]];
+    assert!(n[0] * to_light[0] + n[1] * to_light[1] + n[2] * to_light[2] > 0.0);
+}
+
+#[test]
+fn room_faces_inward_and_its_window_wall_is_concave() {
+    let dir = folder(&[]);
+    let scene = Scene::load(write_demo("room", dir.path()).unwrap()).unwrap();
+    let pieces = Pieces::from_scene(&scene).unwrap();
+    // Room: 5 quads; window wall: 2 concave faces; two boxes of 6 faces.
+    assert_eq!(pieces.input_polygons, 5 + 2 + 12);
+    let centre = pieces.grid.world_to_grid([0.0, 2.0, 0.0]);
+    for input in 0..7 {
+        for p in pieces.pieces_of(input) {
+            // Every surface of the room faces its centre.
+            let n = p.support().unit_normal_f64();
+            let v = p.vertices_f64()[0];
+            let d: f64 = (0..3).map(|k| n[k] * (centre[k] - v[k])).sum();
+            assert!(d > 0.0, "input {input} faces outward");
+        }
+    }
+    // Each C-shaped wall has two reflex corners: at least three convex
+    // parts, and at most 2 * 2 + 1 after Hertel-Mehlhorn merging.
+    for wall in [5, 6] {
+        let parts = pieces.pieces_of(wall).count();
+        assert!((3..=5).contains(&parts), "{parts}");
+    }
+    let scale2 = pieces.grid.scale().powi(2);
+    let wall: f64 = (5..7)
+        .flat_map(|i| pieces.pieces_of(i))
+        .map(|p| p.area() / scale2)
+        .sum();
+    assert!((wall - (40.0 - 3.0)).abs() < 1e-9, "{wall}");
+}
