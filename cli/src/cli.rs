@@ -6,7 +6,10 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
-use umbra::{Error, ObjMesh, Pieces, Result, Scene, write_demo};
+use umbra::{
+    Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, save_obj, save_ply, shadow_scene,
+    write_demo,
+};
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
 /// penumbra and umbra fragments along the exact shadow boundaries.
@@ -176,18 +179,49 @@ fn parse_vector(text: &str) -> std::result::Result<[f64; 3], String> {
 const WAITS_FOR_SHADOWS: &str =
     "the shadow computation (svbsp and area-shadow) is not wired into the command yet";
 
+/// `umbra shadow`: every output is written to a temporary file and renamed,
+/// and nothing is written unless the whole computation succeeded.
+fn run_shadow(args: &ShadowArgs) -> Result<()> {
+    let scene = Scene::load(&args.scene)?;
+    if args.grid.is_some() {
+        return Err(Error::NotImplemented {
+            command: "shadow --grid",
+            reason: "gridding comes with area lights",
+        });
+    }
+    let result = shadow_scene(&scene)?;
+    let output = args
+        .output
+        .clone()
+        .unwrap_or_else(|| args.scene.with_extension("ply"));
+    let encoding = if args.ascii {
+        PlyEncoding::Ascii
+    } else {
+        PlyEncoding::BinaryLittleEndian
+    };
+    save_ply(&output, &result.mesh, encoding)?;
+    if let Some(obj) = &args.obj {
+        save_obj(obj, &result.mesh)?;
+    }
+    if let Some(stats) = &args.stats {
+        result.stats.save(stats)?;
+    }
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "{}: {} input polygons, {} fragments, {:.3} s",
+        output.display(),
+        result.stats.input_polygons,
+        result.stats.output_fragments,
+        result.stats.seconds.total
+    );
+    Ok(())
+}
+
 /// Runs one command.
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Shadow(args) => {
-            // Validate everything the command will read before saying no, so
-            // that a bad scene is reported as such.
-            Pieces::from_scene(&Scene::load(&args.scene)?)?;
-            Err(Error::NotImplemented {
-                command: "shadow",
-                reason: WAITS_FOR_SHADOWS,
-            })
-        }
+        Command::Shadow(args) => run_shadow(&args),
         Command::Render(args) => {
             Pieces::from_scene(&Scene::load(&args.scene)?)?;
             Err(Error::NotImplemented {
@@ -227,17 +261,18 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Demo(args) => {
             let dir = args.output.unwrap_or_else(|| PathBuf::from(&args.name));
             let path = write_demo(&args.name, &dir)?;
-            // Check that what was written loads, as `umbra shadow` would.
-            Pieces::from_scene(&Scene::load(&path)?)?;
             let mut out = std::io::stdout().lock();
-            let _ = writeln!(out, "{}", path.display());
-            let _ = writeln!(
-                out,
-                "wrote the `{}` scene; run it with `umbra shadow {}` once shadows are wired in",
-                args.name,
-                path.display()
-            );
-            Ok(())
+            let _ = writeln!(out, "wrote the `{}` scene: {}", args.name, path.display());
+            drop(out);
+            // ... and run it, as `umbra shadow` would.
+            run_shadow(&ShadowArgs {
+                scene: path.clone(),
+                output: Some(path.with_extension("ply")),
+                obj: None,
+                stats: Some(path.with_extension("json")),
+                grid: None,
+                ascii: false,
+            })
         }
         Command::Check(args) => {
             let scene = Scene::load(&args.scene)?;

@@ -51,6 +51,7 @@ mod obj;
 mod obj_out;
 mod ply;
 mod scene;
+mod shadow;
 mod stats;
 mod transform;
 
@@ -66,5 +67,6 @@ pub use obj::{ObjFace, ObjMesh};
 pub use obj_out::{save_obj, write_obj};
 pub use ply::{PlyEncoding, load_ply, read_ply, save_ply, write_ply};
 pub use scene::{Camera, Falloff, InputPolygon, Light, LightKind, MAX_LIGHTS, Object, Scene};
+pub use shadow::{ShadowResult, shadow_scene};
 pub use stats::{LightStats, Seconds, Stats};
 pub use transform::Transform;

@@ -6,6 +6,7 @@ use crate::volume::shadow_volume;
 use crate::{Error, Light};
 use bsp_core::predicates::Side;
 use bsp_core::{BuildOptions, ConvexPolygon, SceneBsp};
+use std::time::Instant;
 
 /// At most this many lights: one bit each in a `u32` mask.
 pub const MAX_LIGHTS: usize = 32;
@@ -75,6 +76,10 @@ pub struct ShadowOutput {
     pub lights: Vec<LightStats>,
     /// Nodes of the scene BSP.
     pub scene_nodes: usize,
+    /// Seconds spent building the scene BSP.
+    pub bsp_seconds: f64,
+    /// Seconds spent on the lights' SVBSP passes.
+    pub shadow_seconds: f64,
 }
 
 /// Splits every piece into fragments lit or in shadow of each light.
@@ -110,7 +115,10 @@ pub fn compute_shadows(
             }
         })
         .collect::<Result<_, _>>()?;
+    let started = Instant::now();
     let bsp = SceneBsp::build(originals.clone(), options);
+    let bsp_seconds = started.elapsed().as_secs_f64();
+    let started = Instant::now();
     let mut fragments: Vec<Vec<Fragment>> = bsp
         .polygons()
         .iter()
@@ -231,5 +239,7 @@ pub fn compute_shadows(
         fragments,
         lights: stats,
         scene_nodes: bsp.nodes().len(),
+        bsp_seconds,
+        shadow_seconds: started.elapsed().as_secs_f64(),
     })
 }

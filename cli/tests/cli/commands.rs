@@ -1,5 +1,5 @@
-//! The commands: `demo` writes scenes, `check` summarises, the others
-//! validate their input and say honestly that they are not wired yet.
+//! The commands: `demo` writes scenes and runs them, `check` summarises,
+//! the ones still to come validate their input and say so honestly.
 
 use crate::{TRIANGLE, folder, umbra};
 
@@ -8,8 +8,13 @@ fn demo_writes_the_scene_and_prints_its_path() {
     let dir = folder(&[]);
     let run = umbra(dir.path(), &["demo", "tetra", "-o", "out"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    assert_eq!(run.stdout.lines().next(), Some("out/tetra.toml"));
+    assert_eq!(
+        run.stdout.lines().next(),
+        Some("wrote the `tetra` scene: out/tetra.toml")
+    );
     assert!(dir.path().join("out/tetra.toml").is_file());
+    assert!(dir.path().join("out/tetra.ply").is_file());
+    assert!(dir.path().join("out/tetra.json").is_file());
     assert!(dir.path().join("out/meshes/tetra.obj").is_file());
     let run = umbra(dir.path(), &["check", "out/tetra.toml"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
@@ -33,8 +38,7 @@ fn unwired_commands_say_so_with_exit_2_and_write_nothing() {
         ("scene.toml", TRIANGLE),
         ("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
     ]);
-    let runs: [&[&str]; 5] = [
-        &["shadow", "scene.toml", "-o", "out.ply", "--stats", "s.json"],
+    let runs: [&[&str]; 4] = [
         &["render", "scene.toml", "-o", "out.png", "--view", "classes"],
         &["dm", "scene.toml", "-o", "out.ply"],
         &[

@@ -6,6 +6,7 @@ mod demos;
 mod errors;
 mod ply_files;
 mod properties;
+mod shadow;
 
 use std::path::Path;
 use std::process::Command;

@@ -1,0 +1,169 @@
+//! `umbra shadow` end to end: the PLY it writes partitions every input
+//! polygon, its classes agree with the scene's geometry, and its
+//! irradiance follows FORMATS.md.
+
+use crate::{folder, umbra};
+use umbra::{OutputMesh, load_ply};
+
+/// Area of a face of the mesh (world units).
+fn face_area(mesh: &OutputMesh, face: usize) -> f64 {
+    let v: Vec<[f64; 3]> = mesh.faces[face]
+        .vertices
+        .iter()
+        .map(|&i| mesh.vertices[i as usize].0)
+        .collect();
+    let mut n = [0.0; 3];
+    for i in 1..v.len() - 1 {
+        let a = [v[i][0] - v[0][0], v[i][1] - v[0][1], v[i][2] - v[0][2]];
+        let b = [
+            v[i + 1][0] - v[0][0],
+            v[i + 1][1] - v[0][1],
+            v[i + 1][2] - v[0][2],
+        ];
+        n[0] += a[1] * b[2] - a[2] * b[1];
+        n[1] += a[2] * b[0] - a[0] * b[2];
+        n[2] += a[0] * b[1] - a[1] * b[0];
+    }
+    0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+}
+
+const FLOOR_AND_SQUARE: &str = r#"
+[[object]]
+name = "floor"
+polygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]
+
+[[object]]
+name = "square"
+polygons = [[[-2, 5, 2], [2, 5, 2], [2, 5, -2], [-2, 5, -2]]]
+
+[[light]]
+type = "point"
+position = [0, 10, 0]
+intensity = 100.0
+"#;
+
+#[test]
+fn a_square_casts_its_projection() {
+    let dir = folder(&[("scene.toml", FLOOR_AND_SQUARE)]);
+    let run = umbra(
+        dir.path(),
+        &[
+            "shadow",
+            "scene.toml",
+            "-o",
+            "out.ply",
+            "--stats",
+            "s.json",
+            "--ascii",
+        ],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+    mesh.check().unwrap();
+    // The floor (source 0) partitions into 400 units of area; its umbra is
+    // the square projected from the light: [-4, 4]^2.
+    let area = |source: u32, umbra: bool| -> f64 {
+        (0..mesh.faces.len())
+            .filter(|&f| mesh.faces[f].source == source && (mesh.faces[f].umbra_mask == 1) == umbra)
+            .map(|f| face_area(&mesh, f))
+            .sum()
+    };
+    assert!((area(0, true) + area(0, false) - 400.0).abs() < 1e-9);
+    assert!(
+        (area(0, true) - 64.0).abs() < 1e-9,
+        "umbra area {}",
+        area(0, true)
+    );
+    // The square faces up, towards the light: lit.
+    assert!((area(1, false) - 16.0).abs() < 1e-9);
+    for face in &mesh.faces {
+        assert_eq!(
+            face.lit_mask ^ face.umbra_mask,
+            1,
+            "a point light leaves no penumbra"
+        );
+        for &v in &face.vertices {
+            let (p, e) = mesh.vertices[v as usize];
+            if face.umbra_mask == 1 {
+                assert_eq!(e, 0.0);
+            } else {
+                // intensity * cos / r^2 with the light straight above.
+                let d = [-p[0], 10.0 - p[1], -p[2]];
+                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+                let expected = 100.0 * (d[1] / r2.sqrt()) / r2;
+                assert!(
+                    (f64::from(e) - expected).abs() <= 1e-6 * expected,
+                    "{e} vs {expected}"
+                );
+            }
+        }
+    }
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    assert_eq!(stats["input_polygons"], 2);
+    assert_eq!(
+        stats["output_fragments"].as_u64().unwrap() as usize,
+        mesh.faces.len()
+    );
+    assert_eq!(stats["lights"][0]["front_facing_polygons"], 2);
+    for key in ["bsp", "shadow", "grid", "illum", "total"] {
+        assert!(stats["seconds"][key].is_number(), "{key}");
+    }
+}
+
+#[test]
+fn demo_scenes_partition_every_input_polygon() {
+    let dir = folder(&[]);
+    for name in ["tetra", "room"] {
+        let run = umbra(dir.path(), &["demo", name, "-o", name]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join(format!("{name}/{name}.ply"))).unwrap();
+        mesh.check().unwrap();
+        let scene = umbra::Scene::load(dir.path().join(format!("{name}/{name}.toml"))).unwrap();
+        let lights = scene.lights.len();
+        let mut area = vec![0.0; scene.polygon_count()];
+        for (f, face) in mesh.faces.iter().enumerate() {
+            area[face.source as usize] += face_area(&mesh, f);
+            // Per light: lit or umbra, never both (no area lights here).
+            assert_eq!(face.lit_mask & face.umbra_mask, 0);
+            assert_eq!(
+                (face.lit_mask | face.umbra_mask).count_ones() as usize,
+                lights
+            );
+        }
+        for (i, (_, polygon)) in scene.input_polygons().enumerate() {
+            let v = &polygon.vertices;
+            let mut n = [0.0; 3];
+            for k in 1..v.len() - 1 {
+                let a = [v[k][0] - v[0][0], v[k][1] - v[0][1], v[k][2] - v[0][2]];
+                let b = [
+                    v[k + 1][0] - v[0][0],
+                    v[k + 1][1] - v[0][1],
+                    v[k + 1][2] - v[0][2],
+                ];
+                n[0] += a[1] * b[2] - a[2] * b[1];
+                n[1] += a[2] * b[0] - a[0] * b[2];
+                n[2] += a[0] * b[1] - a[1] * b[0];
+            }
+            let expected = 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            // Snapping moves vertices by less than a grid cell.
+            assert!(
+                (area[i] - expected).abs() <= 1e-5 * expected.max(1.0),
+                "{name} polygon {i}: {} vs {expected}",
+                area[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn area_lights_are_refused_clearly_for_now() {
+    let dir = folder(&[(
+        "scene.toml",
+        "[[object]]\nname = \"t\"\npolygons = [[[0,0,0],[1,0,0],[0,1,0]]]\n[[light]]\ntype = \"area\"\nvertices = [[0,5,0],[0,5,1],[1,5,1],[1,5,0]]\n",
+    )]);
+    let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "out.ply"]);
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("light[0].type"), "{}", run.stderr);
+    assert!(!dir.path().join("out.ply").exists());
+}
