@@ -355,10 +355,26 @@ impl ConvexPolygon {
             sides.push(s);
         }
         match (back, front) {
-            (true, true) => Split::Both(
-                self.part(&sides, Side::Back, *plane),
-                self.part(&sides, Side::Front, plane.flipped()),
-            ),
+            (true, true) => {
+                // Each crossing vertex is made once and shared by both parts
+                // (a plane and its flip give the same filter data).
+                let crossings: SmallVec<[(usize, Vertex); 2]> = (0..n)
+                    .filter(|&e| matches!(
+                        (sides[e], sides[(e + 1) % n]),
+                        (Side::Back, Side::Front) | (Side::Front, Side::Back)
+                    ))
+                    .map(|e| {
+                        let filter = PointFilter::new(&self.support, &self.edges[e], plane).expect(
+                            "an edge whose ends lie strictly on both sides meets the plane in a point",
+                        );
+                        (e, Vertex::Implicit(filter))
+                    })
+                    .collect();
+                Split::Both(
+                    self.part(&sides, &crossings, Side::Back, *plane),
+                    self.part(&sides, &crossings, Side::Front, plane.flipped()),
+                )
+            }
             (true, false) => Split::Back,
             (false, true) => Split::Front,
             (false, false) => Split::Coplanar(self.facing(plane)),
@@ -367,7 +383,13 @@ impl ConvexPolygon {
 
     /// The part on side `keep` of a plane that cuts the polygon; `closing`
     /// is the plane oriented with that part behind it.
-    fn part(&self, sides: &[Side], keep: Side, closing: Plane) -> ConvexPolygon {
+    fn part(
+        &self,
+        sides: &[Side],
+        crossings: &[(usize, Vertex)],
+        keep: Side,
+        closing: Plane,
+    ) -> ConvexPolygon {
         let n = self.len();
         // The kept boundary enters the `keep` side along one edge (its start
         // vertex elsewhere, its end vertex strictly on `keep`), runs over the
@@ -385,7 +407,7 @@ impl ConvexPolygon {
         let mut edges: Vec<Plane> = Vec::with_capacity(run_len + 1);
         let mut vertices: Vec<Vertex> = Vec::with_capacity(run_len + 1);
         // Vertex between the closing plane and the first kept edge.
-        vertices.push(self.vertex_on_cut(start, &self.edges[start], &closing, sides));
+        vertices.push(self.vertex_on_cut(start, start, sides, crossings));
         for k in 0..run_len {
             let e = (start + k) % n;
             edges.push(self.edges[e]);
@@ -395,7 +417,7 @@ impl ConvexPolygon {
         }
         // Vertex between the last kept edge and the closing plane.
         let after = (last + 1) % n;
-        vertices.push(self.vertex_on_cut(after, &self.edges[last], &closing, sides));
+        vertices.push(self.vertex_on_cut(after, last, sides, crossings));
         edges.push(closing);
         ConvexPolygon {
             support: self.support,
@@ -405,15 +427,24 @@ impl ConvexPolygon {
         }
     }
 
-    /// The vertex where `edge` meets the cut: old vertex `old` if it lies on
-    /// the cutting plane, else a new implicit vertex.
-    fn vertex_on_cut(&self, old: usize, edge: &Plane, closing: &Plane, sides: &[Side]) -> Vertex {
+    /// The vertex where edge `edge` meets the cut: old vertex `old` (one of
+    /// the edge's ends) if it lies on the cutting plane, else the edge's
+    /// crossing vertex.
+    fn vertex_on_cut(
+        &self,
+        old: usize,
+        edge: usize,
+        sides: &[Side],
+        crossings: &[(usize, Vertex)],
+    ) -> Vertex {
         if sides[old] == Side::On {
             return self.vertices[old];
         }
-        let filter = PointFilter::new(&self.support, edge, closing)
-            .expect("an edge whose ends lie strictly on both sides meets the plane in a point");
-        Vertex::Implicit(filter)
+        crossings
+            .iter()
+            .find(|(e, _)| *e == edge)
+            .map(|(_, v)| *v)
+            .expect("an edge entering or leaving the kept side strictly crosses the plane")
     }
 
     /// Checks the representation: at least three vertices; each vertex on
