@@ -1,8 +1,9 @@
 //! Autopartition: a BSP tree whose splitting planes are the polygons' own
-//! support planes. Shared by [`SceneBsp`](crate::SceneBsp) and
+//! support planes (and, where they cannot balance the tree, axis-aligned
+//! planes). Shared by [`SceneBsp`](crate::SceneBsp) and
 //! [`BspSolid`](crate::BspSolid), which differ only in what their leaves mean.
 
-use crate::{ConvexPolygon, Plane, PolygonSide, Split};
+use crate::{ConvexPolygon, GRID_LIMIT, GridPoint, Plane, PolygonSide, Split};
 
 /// How the autopartition chooses its splitting planes.
 ///
@@ -11,6 +12,12 @@ use crate::{ConvexPolygon, Plane, PolygonSide, Split};
 /// `split_weight * (polygons cut) + |front - back|`. The lowest score wins
 /// (the earliest candidate on ties, so builds are deterministic). Sampling
 /// bounds the cost per node, so large inputs build in `O(n log n)`-like time.
+///
+/// The faces of a convex object all lie behind each other's planes, so an
+/// autopartition of them is a chain as deep as the object has faces, and
+/// building it costs `O(n^2)`. With `axis_planes`, an axis-aligned plane
+/// through the sample's median is scored too and wins where it balances
+/// better.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BuildOptions {
     /// Candidate splitters scored per node (at least 1).
@@ -19,6 +26,11 @@ pub struct BuildOptions {
     pub sample: usize,
     /// Cost of one cut polygon relative to one polygon of imbalance.
     pub split_weight: u32,
+    /// Whether an axis-aligned plane (holding no polygon) may split a node.
+    /// BSP solids built from a boundary need every splitter to be a face
+    /// (their leaves are labelled by the side of the last one) and ignore
+    /// this.
+    pub axis_planes: bool,
 }
 
 impl Default for BuildOptions {
@@ -27,6 +39,7 @@ impl Default for BuildOptions {
             candidates: 8,
             sample: 48,
             split_weight: 6,
+            axis_planes: true,
         }
     }
 }
@@ -87,7 +100,7 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
                 Slot::Back(_) => Link::EmptyBack,
             }
         } else {
-            let plane = *arena[list[choose_splitter(&arena, &list, options)] as usize].support();
+            let plane = choose_splitter(&arena, &list, options);
             let (mut coplanar, mut front, mut back) = (Vec::new(), Vec::new(), Vec::new());
             for index in list {
                 match arena[index as usize].split(&plane) {
@@ -136,18 +149,17 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
     Built { nodes, root }
 }
 
-/// Index of the polygon whose support plane splits `list` best.
-fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions) -> usize {
+/// The plane that splits `list` best: a candidate polygon's support plane,
+/// or an axis-aligned plane through the sample's median.
+fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions) -> Plane {
     let n = list.len();
+    let first = *arena[list[0] as usize].support();
     if n <= 2 {
-        return 0;
+        return first;
     }
     let candidates = options.candidates.clamp(1, n);
     let sample = options.sample.clamp(1, n);
-    let mut best = (u64::MAX, 0);
-    for c in 0..candidates {
-        let index = c * n / candidates;
-        let plane = arena[list[index] as usize].support();
+    let score = |plane: &Plane| {
         let (mut front, mut back, mut cut) = (0_i64, 0_i64, 0_u64);
         for s in 0..sample {
             match arena[list[s * n / sample] as usize].classify(plane) {
@@ -157,10 +169,58 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
                 PolygonSide::Coplanar(_) => {}
             }
         }
-        let score = cut * u64::from(options.split_weight) + (front - back).unsigned_abs();
-        if score < best.0 {
-            best = (score, index);
+        (
+            cut * u64::from(options.split_weight) + (front - back).unsigned_abs(),
+            front,
+            back,
+            cut,
+        )
+    };
+    let mut best = (u64::MAX, first);
+    for c in 0..candidates {
+        let plane = *arena[list[c * n / candidates] as usize].support();
+        let (s, ..) = score(&plane);
+        if s < best.0 {
+            best = (s, plane);
+        }
+    }
+    if options.axis_planes && n >= 16 {
+        if let Some(plane) = median_axis_plane(arena, list, sample) {
+            let (s, front, back, cut) = score(&plane);
+            // It must separate the sample (so each side shrinks) and cut
+            // few, and beat every face on the same score.
+            if s < best.0 && front > 0 && back > 0 && 2 * cut < sample as u64 {
+                best = (s, plane);
+            }
         }
     }
     best.1
+}
+
+/// The plane perpendicular to the axis along which the sample's first
+/// vertices spread most, through their median (a grid coordinate).
+fn median_axis_plane(arena: &[ConvexPolygon], list: &[u32], sample: usize) -> Option<Plane> {
+    let n = list.len();
+    let points: Vec<[f64; 3]> = (0..sample)
+        .map(|s| arena[list[s * n / sample] as usize].vertex_f64(0))
+        .collect();
+    let spread = |a: usize| {
+        let (lo, hi) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p[a]), hi.max(p[a]))
+            });
+        hi - lo
+    };
+    let axis = (0..3).max_by(|&a, &b| spread(a).total_cmp(&spread(b)))?;
+    let mut values: Vec<f64> = points.iter().map(|p| p[axis]).collect();
+    values.sort_by(f64::total_cmp);
+    let median = values[values.len() / 2]
+        .round()
+        .clamp(-f64::from(GRID_LIMIT), f64::from(GRID_LIMIT)) as i64;
+    let mut at = [0_i64; 3];
+    at[axis] = median;
+    let mut normal = [0_i64; 3];
+    normal[axis] = 1;
+    Plane::with_normal_through(normal, GridPoint::new(at[0], at[1], at[2]).ok()?)
 }

@@ -123,7 +123,13 @@ impl BspSolid {
     /// is inside (just behind the splitting face), one in front is outside.
     /// The result is meaningful only if the faces close up.
     pub fn from_boundary(boundary: Vec<ConvexPolygon>, options: &BuildOptions) -> Self {
-        let built = autopartition::build(boundary, options);
+        // Leaves are labelled by the side of the last face plane: every
+        // splitter must be a face.
+        let options = BuildOptions {
+            axis_planes: false,
+            ..*options
+        };
+        let built = autopartition::build(boundary, &options);
         let link = |l: Link| match l {
             Link::Node(i) => SolidChild::Node(i),
             Link::EmptyFront => SolidChild::Leaf(Region::Out),

@@ -164,6 +164,7 @@ fn a_long_chain_builds_and_traverses_without_recursion() {
             candidates: 1,
             sample: 1,
             split_weight: 1,
+            axis_planes: false,
         };
         let squares: Vec<ConvexPolygon> = (0..3_000)
             .map(|z| {
