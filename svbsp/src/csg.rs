@@ -77,9 +77,39 @@ impl IndexedMesh {
     }
 
     /// Edges that break closedness: `(from, to, uses of from -> to, uses of
-    /// to -> from)` for every directed edge not used exactly once in each
-    /// direction. Empty for a closed, consistently oriented mesh.
+    /// to -> from)` for every directed edge used a different number of
+    /// times in the two directions. Empty for a closed, consistently
+    /// oriented mesh.
     pub fn open_edges(&self) -> Vec<(u32, u32, u32, u32)> {
+        let count = self.edge_uses();
+        let mut bad: Vec<(u32, u32, u32, u32)> = count
+            .iter()
+            .filter_map(|(&(a, b), &n)| {
+                let back = count.get(&(b, a)).copied().unwrap_or(0);
+                (n != back).then_some((a, b, n, back))
+            })
+            .collect();
+        bad.sort_unstable();
+        bad
+    }
+
+    /// Whether every edge is used as often in one direction as in the
+    /// other: the mesh bounds a volume.
+    pub fn is_closed(&self) -> bool {
+        self.open_edges().is_empty()
+    }
+
+    /// Whether every edge is used exactly once in each direction: closed
+    /// and two-manifold along edges. Solids that touch along an edge give a
+    /// closed result with edges used twice in each direction.
+    pub fn is_closed_manifold(&self) -> bool {
+        let count = self.edge_uses();
+        count
+            .iter()
+            .all(|(&(a, b), &n)| n == 1 && count.get(&(b, a)) == Some(&1))
+    }
+
+    fn edge_uses(&self) -> HashMap<(u32, u32), u32> {
         let mut count: HashMap<(u32, u32), u32> = HashMap::new();
         for face in &self.faces {
             for k in 0..face.len() {
@@ -87,20 +117,7 @@ impl IndexedMesh {
                 *count.entry(e).or_default() += 1;
             }
         }
-        let mut bad: Vec<(u32, u32, u32, u32)> = count
-            .iter()
-            .filter_map(|(&(a, b), &n)| {
-                let back = count.get(&(b, a)).copied().unwrap_or(0);
-                (n != 1 || back != 1).then_some((a, b, n, back))
-            })
-            .collect();
-        bad.sort_unstable();
-        bad
-    }
-
-    /// Whether every edge is used exactly once in each direction.
-    pub fn is_closed(&self) -> bool {
-        self.open_edges().is_empty()
+        count
     }
 
     /// Writes the mesh in Wavefront OBJ form (1-based indices).
