@@ -147,13 +147,20 @@ pub fn boundary_pieces(
 ) -> Vec<ConvexPolygon> {
     let mut out = Vec::new();
     for (i, face) in a_faces.iter().enumerate() {
-        for (piece, class) in b.partition_polygon(face) {
-            let keep = match (op, class) {
-                (SetOp::Union, Containment::Outside | Containment::BoundarySame) => true,
-                (SetOp::Intersection, Containment::Inside | Containment::BoundarySame) => true,
-                (SetOp::Difference, Containment::Outside | Containment::BoundaryOpposite) => true,
-                _ => false,
-            };
+        for (piece, class) in pieces_of(b, face) {
+            let keep = matches!(
+                (op, class),
+                (
+                    SetOp::Union,
+                    Containment::Outside | Containment::BoundarySame
+                ) | (
+                    SetOp::Intersection,
+                    Containment::Inside | Containment::BoundarySame
+                ) | (
+                    SetOp::Difference,
+                    Containment::Outside | Containment::BoundaryOpposite
+                )
+            );
             if keep {
                 out.push(piece.with_source(i as u32));
             }
@@ -161,7 +168,7 @@ pub fn boundary_pieces(
     }
     let offset = a_faces.len() as u32;
     for (j, face) in b_faces.iter().enumerate() {
-        for (piece, class) in a.partition_polygon(face) {
+        for (piece, class) in pieces_of(a, face) {
             let piece = match (op, class) {
                 (SetOp::Union, Containment::Outside) => piece,
                 (SetOp::Intersection, Containment::Inside) => piece,
@@ -172,6 +179,20 @@ pub fn boundary_pieces(
         }
     }
     out
+}
+
+/// `face` partitioned by `solid`, or `face` whole when every piece has the
+/// same containment: a tree's cuts that do not separate inside from outside
+/// (planes of faces elsewhere, axis-aligned splits) would only fragment the
+/// output.
+fn pieces_of(solid: &BspSolid, face: &ConvexPolygon) -> Vec<(ConvexPolygon, Containment)> {
+    let mut pieces = solid.partition_polygon(face);
+    if pieces.len() > 1 && pieces.iter().all(|(_, c)| *c == pieces[0].1) {
+        let class = pieces[0].1;
+        pieces.clear();
+        pieces.push((face.clone(), class));
+    }
+    pieces
 }
 
 /// The boundary of `A op B`: exact pieces ([`boundary_pieces`]) and the

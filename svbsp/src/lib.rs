@@ -35,6 +35,7 @@
 //! Still to come here: Thibault-Naylor union and Naylor-Amanatides-Thibault
 //! merging, and Bergeron's general shadow volumes.
 
+mod balanced;
 mod csg;
 mod error;
 mod light;
@@ -45,6 +46,7 @@ mod tree;
 mod union;
 mod volume;
 
+pub use balanced::{BalancedOptions, balanced_solid};
 pub use bsp_core;
 pub use csg::{CsgBoundary, IndexedMesh, boundary, boundary_pieces, weld};
 pub use error::Error;
