@@ -54,7 +54,7 @@ pub use light::{Light, LightSource};
 pub use merge::{SetOp, merge};
 pub use pipeline::{Fragment, LightStats, MAX_LIGHTS, PieceFlags, ShadowOutput, compute_shadows};
 pub use polyhedron::{
-    CellSplit, ConvexPolyhedron, SECTION_SOURCE, plane_in_box, plane_parallelogram,
+    CellParts, CellSplit, ConvexPolyhedron, SECTION_SOURCE, plane_in_box, plane_parallelogram,
 };
 pub use tree::{Filtered, ShadowVolumeTree, Slot, VolumeChild, VolumeNode};
 pub use union::union_with_convex;

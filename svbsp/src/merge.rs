@@ -30,7 +30,7 @@
 //! stacks (trees can be thousands of nodes deep); subtrees are moved, never
 //! copied, and a final pass drops nodes whose children are the same leaf.
 
-use crate::polyhedron::{CellSplit, ConvexPolyhedron};
+use crate::polyhedron::{CellParts, ConvexPolyhedron};
 use bsp_core::{BspSolid, ConvexPolygon, Plane, PolygonSide, Region, SolidChild, SolidNode, Split};
 
 /// A Boolean set operation.
@@ -105,10 +105,10 @@ pub(crate) fn annotate(solid: &BspSolid, arena: &mut Vec<WorkNode>) -> SolidChil
                 SolidChild::Node(i) => i,
             };
             let node = &solid.nodes()[i as usize];
-            match cell.split(&node.plane) {
-                CellSplit::Back => child = node.back,
-                CellSplit::Front => child = node.front,
-                CellSplit::Both {
+            match cell.into_split(&node.plane) {
+                CellParts::Back(whole) => (child, cell) = (node.back, whole),
+                CellParts::Front(whole) => (child, cell) = (node.front, whole),
+                CellParts::Both {
                     back,
                     front,
                     section,

@@ -144,6 +144,45 @@ impl ConvexPolyhedron {
     /// [`plane_parallelogram`]) clipped by the planes of the facets that
     /// touch the plane; facets strictly on one side cannot bound it.
     pub fn split(&self, plane: &Plane) -> CellSplit {
+        match self.facet_sides(plane) {
+            Err(Side::Front) => CellSplit::Front,
+            Err(_) => CellSplit::Back,
+            Ok((sides, touching)) => {
+                let section = self.section(plane, &touching);
+                let (back, front) =
+                    cut(self.facets.iter().cloned(), plane, &sides, section.clone());
+                CellSplit::Both {
+                    back,
+                    front,
+                    section,
+                }
+            }
+        }
+    }
+
+    /// [`split`](Self::split), consuming the polyhedron: facets move into
+    /// the parts instead of being copied, and a polyhedron on one side comes
+    /// back whole.
+    pub fn into_split(self, plane: &Plane) -> CellParts {
+        match self.facet_sides(plane) {
+            Err(Side::Front) => CellParts::Front(self),
+            Err(_) => CellParts::Back(self),
+            Ok((sides, touching)) => {
+                let section = self.section(plane, &touching);
+                let (back, front) = cut(self.facets.into_iter(), plane, &sides, section.clone());
+                CellParts::Both {
+                    back,
+                    front,
+                    section,
+                }
+            }
+        }
+    }
+
+    /// Per facet, whether it has vertices strictly behind and strictly in
+    /// front of `plane`, and which facets touch or cross it; or `Err(side)`
+    /// if the whole polyhedron lies on one side (`Back` or `Front`).
+    fn facet_sides(&self, plane: &Plane) -> Result<FacetSides, Side> {
         let n = self.facets.len();
         let mut sides: SmallVec<[(bool, bool); 24]> = SmallVec::with_capacity(n);
         let mut touching: SmallVec<[usize; 16]> = SmallVec::new();
@@ -151,10 +190,10 @@ impl ConvexPolyhedron {
         for (k, f) in self.facets.iter().enumerate() {
             // A facet in the plane: the whole polyhedron is on one side.
             if f.support() == plane {
-                return CellSplit::Back;
+                return Err(Side::Back);
             }
             if f.support().is_opposite(plane) {
-                return CellSplit::Front;
+                return Err(Side::Front);
             }
             let (mut back, mut front, mut on) = (false, false, false);
             for i in 0..f.len() {
@@ -172,45 +211,80 @@ impl ConvexPolyhedron {
             sides.push((back, front));
         }
         if !any_front {
-            return CellSplit::Back;
+            return Err(Side::Back);
         }
         if !any_back {
-            return CellSplit::Front;
+            return Err(Side::Front);
         }
-        // Vertices strictly on both sides: the plane cuts the interior, and
-        // the section has area.
+        Ok((sides, touching))
+    }
+
+    /// The section by a plane through the interior (vertices strictly on
+    /// both sides, so it has area), clipped by the touching facets' planes.
+    fn section(&self, plane: &Plane, touching: &[usize]) -> ConvexPolygon {
         let mut section = plane_parallelogram(plane);
-        for &k in &touching {
+        for &k in touching {
             match section.split(self.facets[k].support()) {
                 Split::Back | Split::Coplanar(_) => {}
                 Split::Both(back, _) => section = back,
                 Split::Front => unreachable!("a plane through a cell's interior meets its facets"),
             }
         }
-        let mut back = Vec::with_capacity(n + 1);
-        let mut front = Vec::with_capacity(n + 1);
-        for (f, &(b, fr)) in self.facets.iter().zip(&sides) {
-            match (b, fr) {
-                (true, true) => match f.split(plane) {
-                    Split::Both(bp, fp) => {
-                        back.push(bp);
-                        front.push(fp);
-                    }
-                    _ => unreachable!("a facet with vertices on both sides is cut"),
-                },
-                (true, false) => back.push(f.clone()),
-                _ => front.push(f.clone()),
-            }
-        }
-        let section = section.with_source(SECTION_SOURCE);
-        back.push(section.clone());
-        front.push(section.flipped());
-        CellSplit::Both {
-            back: Self { facets: back },
-            front: Self { facets: front },
-            section,
+        section.with_source(SECTION_SOURCE)
+    }
+}
+
+/// Per-facet sides and the touching facets, from `facet_sides`.
+type FacetSides = (SmallVec<[(bool, bool); 24]>, SmallVec<[usize; 16]>);
+
+/// The two parts of a polyhedron cut by `plane` through its interior.
+fn cut(
+    facets: impl Iterator<Item = ConvexPolygon>,
+    plane: &Plane,
+    sides: &[(bool, bool)],
+    section: ConvexPolygon,
+) -> (ConvexPolyhedron, ConvexPolyhedron) {
+    let n = sides.len();
+    let mut back = Vec::with_capacity(n + 1);
+    let mut front = Vec::with_capacity(n + 1);
+    for (f, &(b, fr)) in facets.zip(sides) {
+        match (b, fr) {
+            (true, true) => match f.split(plane) {
+                Split::Both(bp, fp) => {
+                    back.push(bp);
+                    front.push(fp);
+                }
+                _ => unreachable!("a facet with vertices on both sides is cut"),
+            },
+            (true, false) => back.push(f),
+            _ => front.push(f),
         }
     }
+    front.push(section.flipped());
+    back.push(section);
+    (
+        ConvexPolyhedron { facets: back },
+        ConvexPolyhedron { facets: front },
+    )
+}
+
+/// The result of [`ConvexPolyhedron::into_split`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum CellParts {
+    /// The polyhedron, wholly behind the plane.
+    Back(ConvexPolyhedron),
+    /// The polyhedron, wholly in front of the plane.
+    Front(ConvexPolyhedron),
+    /// The plane cuts the polyhedron's interior.
+    Both {
+        /// The part behind the plane.
+        back: ConvexPolyhedron,
+        /// The part in front of the plane.
+        front: ConvexPolyhedron,
+        /// The plane restricted to the polyhedron, with the plane's
+        /// orientation.
+        section: ConvexPolygon,
+    },
 }
 
 /// The part of `plane` over the box's square in the two axes other than

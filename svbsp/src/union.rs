@@ -21,7 +21,7 @@
 //! The tree keeps every existing node; inserted chains are appended to the
 //! arena. The traversal uses an explicit stack.
 
-use crate::polyhedron::{CellSplit, ConvexPolyhedron};
+use crate::polyhedron::{CellParts, ConvexPolyhedron};
 use bsp_core::{BspSolid, Region, SolidChild, SolidNode};
 
 /// `solid ∪ polyhedron`.
@@ -63,10 +63,14 @@ pub fn union_with_convex(solid: &BspSolid, polyhedron: &ConvexPolyhedron) -> Bsp
                 SolidChild::Node(i) => i,
             };
             let node = nodes[i as usize];
-            match part.split(&node.plane) {
-                CellSplit::Back => (child, slot) = (node.back, Some((i, false))),
-                CellSplit::Front => (child, slot) = (node.front, Some((i, true))),
-                CellSplit::Both { back, front, .. } => {
+            match part.into_split(&node.plane) {
+                CellParts::Back(whole) => {
+                    (child, part, slot) = (node.back, whole, Some((i, false)))
+                }
+                CellParts::Front(whole) => {
+                    (child, part, slot) = (node.front, whole, Some((i, true)))
+                }
+                CellParts::Both { back, front, .. } => {
                     stack.push((node.back, back, Some((i, false))));
                     (child, part, slot) = (node.front, front, Some((i, true)));
                 }
