@@ -48,7 +48,17 @@ pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> B
     let mut nodes: Vec<SolidNode> = Vec::new();
     let mut root = SolidChild::Leaf(Region::Out);
     // (faces of the cell, where its subtree hangs).
-    let mut stack: Vec<(Vec<ConvexPolygon>, Hang)> = vec![(faces, None)];
+    // Each face travels with the centroid of its input face: fragments
+    // inherit it, which is good enough to place medians and saves
+    // converting implicit vertices at every level.
+    let faces: Vec<(ConvexPolygon, [f64; 3])> = faces
+        .into_iter()
+        .map(|f| {
+            let c = centroid(&f);
+            (f, c)
+        })
+        .collect();
+    let mut stack: Vec<(Vec<(ConvexPolygon, [f64; 3])>, Hang)> = vec![(faces, None)];
     while let Some((list, slot)) = stack.pop() {
         let link = match axis_split(&list, options.leaf_faces) {
             Some((plane, back, front)) => {
@@ -62,10 +72,13 @@ pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> B
                 stack.push((front, Some((id, true))));
                 SolidChild::Node(id)
             }
-            None => graft(
-                &mut nodes,
-                BspSolid::from_boundary(list, &options.autopartition),
-            ),
+            None => {
+                let list = list.into_iter().map(|(f, _)| f).collect();
+                graft(
+                    &mut nodes,
+                    BspSolid::from_boundary(list, &options.autopartition),
+                )
+            }
         };
         match slot {
             None => root = link,
@@ -82,24 +95,11 @@ type Hang = Option<(u32, bool)>;
 
 /// The axis-aligned split of `list`, or `None` if the list is small or no
 /// good split exists.
-fn axis_split(
-    list: &[ConvexPolygon],
-    leaf_faces: usize,
-) -> Option<(Plane, Vec<ConvexPolygon>, Vec<ConvexPolygon>)> {
+fn axis_split(list: &[(ConvexPolygon, [f64; 3])], leaf_faces: usize) -> Option<AxisSplit> {
     if list.len() <= leaf_faces.max(1) {
         return None;
     }
-    let centroids: Vec<[f64; 3]> = list
-        .iter()
-        .map(|p| {
-            let v = p.vertices_f64();
-            let n = v.len() as f64;
-            let s = v
-                .iter()
-                .fold([0.0; 3], |a, q| [a[0] + q[0], a[1] + q[1], a[2] + q[2]]);
-            s.map(|c| c / n)
-        })
-        .collect();
+    let centroids: Vec<[f64; 3]> = list.iter().map(|(_, c)| *c).collect();
     let extent = |k: usize| {
         let (lo, hi) = centroids
             .iter()
@@ -131,13 +131,13 @@ fn axis_split(
         },
     )?;
     let (mut back, mut front) = (Vec::new(), Vec::new());
-    for polygon in list {
+    for (polygon, c) in list {
         match polygon.split(&plane) {
-            Split::Back => back.push(polygon.clone()),
-            Split::Front => front.push(polygon.clone()),
+            Split::Back => back.push((polygon.clone(), *c)),
+            Split::Front => front.push((polygon.clone(), *c)),
             Split::Both(b, f) => {
-                back.push(b);
-                front.push(f);
+                back.push((b, *c));
+                front.push((f, *c));
             }
             Split::Coplanar(_) => return None,
         }
@@ -148,6 +148,23 @@ fn axis_split(
     }
     Some((plane, back, front))
 }
+
+/// Mean of a polygon's vertices.
+fn centroid(polygon: &ConvexPolygon) -> [f64; 3] {
+    let v = polygon.vertices_f64();
+    let n = v.len() as f64;
+    let s = v
+        .iter()
+        .fold([0.0; 3], |a, q| [a[0] + q[0], a[1] + q[1], a[2] + q[2]]);
+    s.map(|c| c / n)
+}
+
+/// A splitting plane and the faces behind and in front of it.
+type AxisSplit = (
+    Plane,
+    Vec<(ConvexPolygon, [f64; 3])>,
+    Vec<(ConvexPolygon, [f64; 3])>,
+);
 
 /// Appends `sub`'s nodes to `nodes` and returns the link to its root.
 fn graft(nodes: &mut Vec<SolidNode>, sub: BspSolid) -> SolidChild {
