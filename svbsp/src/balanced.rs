@@ -51,14 +51,14 @@ pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> B
     // Each face travels with the centroid of its input face: fragments
     // inherit it, which is good enough to place medians and saves
     // converting implicit vertices at every level.
-    let faces: Vec<(ConvexPolygon, [f64; 3])> = faces
+    let faces: Faces = faces
         .into_iter()
         .map(|f| {
             let c = centroid(&f);
             (f, c)
         })
         .collect();
-    let mut stack: Vec<(Vec<(ConvexPolygon, [f64; 3])>, Hang)> = vec![(faces, None)];
+    let mut stack: Vec<(Faces, Hang)> = vec![(faces, None)];
     while let Some((list, slot)) = stack.pop() {
         let link = match axis_split(&list, options.leaf_faces) {
             Some((plane, back, front)) => {
@@ -159,12 +159,11 @@ fn centroid(polygon: &ConvexPolygon) -> [f64; 3] {
     s.map(|c| c / n)
 }
 
+/// Faces (or fragments) with the centroids of their input faces.
+type Faces = Vec<(ConvexPolygon, [f64; 3])>;
+
 /// A splitting plane and the faces behind and in front of it.
-type AxisSplit = (
-    Plane,
-    Vec<(ConvexPolygon, [f64; 3])>,
-    Vec<(ConvexPolygon, [f64; 3])>,
-);
+type AxisSplit = (Plane, Faces, Faces);
 
 /// Appends `sub`'s nodes to `nodes` and returns the link to its root.
 fn graft(nodes: &mut Vec<SolidNode>, sub: BspSolid) -> SolidChild {
