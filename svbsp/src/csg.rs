@@ -358,3 +358,35 @@ fn lies_inside_edge(
         && q.vertex_side(j, &edges[(e + n - 1) % n]) == Side::Back
         && q.vertex_side(j, &edges[(e + 1) % n]) == Side::Back
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bsp_core::GridPoint;
+
+    fn square(x0: i32, y0: i32, x1: i32, y1: i32) -> ConvexPolygon {
+        let g = |x, y| GridPoint { x, y, z: 0 };
+        ConvexPolygon::from_grid_points(&[g(x0, y0), g(x1, y0), g(x1, y1), g(x0, y1)], 0).unwrap()
+    }
+
+    #[test]
+    fn vertices_on_edges_are_inserted() {
+        // A 2x2 square beside two 1x1 squares: the point (2, 1) is a vertex
+        // of both small squares and lies inside the big square's right edge.
+        let polygons = [square(0, 0, 2, 2), square(2, 0, 3, 1), square(2, 1, 3, 2)];
+        let mesh = weld(&polygons);
+        assert_eq!(mesh.vertices.len(), 8);
+        assert_eq!(mesh.faces[0].len(), 5);
+        assert_eq!(mesh.faces[1].len(), 4);
+        assert!(mesh.faces[0].contains(&mesh.faces[1][3]));
+        // Split pieces share their implicit cut vertices exactly.
+        let x = bsp_core::Plane::with_normal_through([1, 0, 0], GridPoint { x: 1, y: 0, z: 0 })
+            .unwrap();
+        let bsp_core::Split::Both(back, front) = square(0, 0, 2, 2).split(&x) else {
+            panic!("x = 1 cuts the square");
+        };
+        let mesh = weld(&[back, front]);
+        assert_eq!(mesh.vertices.len(), 6);
+        assert_eq!(mesh.faces.iter().map(Vec::len).sum::<usize>(), 8);
+    }
+}

@@ -73,3 +73,33 @@ fn cells_inside_the_polyhedron_become_in() {
         assert_eq!(all.classify_point(p), bsp_core::PointClass::In);
     }
 }
+
+#[test]
+fn unbounded_polyhedra_are_closed_by_the_box() {
+    // The wedge x < 0, y < x: unbounded, so closed by the grid's box.
+    let g = |x, y, z| gp(x, y, z);
+    let planes = [
+        bsp_core::Plane::with_normal_through([1, 0, 0], g(0, 0, 0)).unwrap(),
+        bsp_core::Plane::with_normal_through([-1, 1, 0], g(0, 0, 0)).unwrap(),
+    ];
+    let wedge = svbsp::ConvexPolyhedron::from_planes(&planes).unwrap();
+    assert_eq!(wedge.input_planes().len(), 2);
+    let a = Solid::from_faces(box_faces([-5, -5, -5], [5, 5, 5]));
+    let u = union_with_convex(&a.tree, &wedge);
+    let far = 1 << 23;
+    for (p, inside) in [
+        (g(-far, -far - 7, far), true),
+        (g(-3, -1, 0), true),
+        (g(3, 4, 0), true),
+        (g(6, 0, 0), false),
+        (g(-far, 0, 0), false),
+        (g(-3, -4, -far), true),
+    ] {
+        let want = if inside {
+            bsp_core::PointClass::In
+        } else {
+            bsp_core::PointClass::Out
+        };
+        assert_eq!(u.classify_point(p), want, "at {p:?}");
+    }
+}
