@@ -26,9 +26,14 @@
 //!   side of `H` it lies on is the side of `s_v` (its face on `H_v`), so it
 //!   stays whole under a copy of `v` on that side of `H`.
 //!
+//! `B` is annotated with its sub-hyperplanes up front (partitioning needs
+//! them wherever it goes); `A` is walked with its cells, so that its
+//! sub-hyperplanes are computed only where `B` still has structure.
+//!
 //! Every decision is an exact kernel predicate. All traversals use explicit
-//! stacks (trees can be thousands of nodes deep); subtrees are moved, never
-//! copied, and a final pass drops nodes whose children are the same leaf.
+//! stacks (trees can be thousands of nodes deep); `B`'s subtrees are moved,
+//! never copied, and a final pass drops nodes whose children are the same
+//! leaf.
 
 use crate::polyhedron::{CellParts, ConvexPolyhedron};
 use bsp_core::{BspSolid, ConvexPolygon, Plane, PolygonSide, Region, SolidChild, SolidNode, Split};
@@ -57,12 +62,13 @@ impl SetOp {
 }
 
 /// A node of a tree under merging: its plane, its sub-hyperplane (the plane
-/// restricted to the node's cell, oriented like the plane) and its
-/// children, as links into the same arena.
+/// restricted to the node's cell, oriented like the plane; `None` in nodes
+/// of the result that will not be partitioned again) and its children, as
+/// links into the same arena.
 #[derive(Debug, Clone)]
 pub(crate) struct WorkNode {
     pub plane: Plane,
-    pub section: ConvexPolygon,
+    pub section: Option<ConvexPolygon>,
     pub front: SolidChild,
     pub back: SolidChild,
 }
@@ -116,7 +122,7 @@ pub(crate) fn annotate(solid: &BspSolid, arena: &mut Vec<WorkNode>) -> SolidChil
                     let id = arena.len() as u32;
                     arena.push(WorkNode {
                         plane: node.plane,
-                        section,
+                        section: Some(section),
                         front: SolidChild::Leaf(Region::Out),
                         back: SolidChild::Leaf(Region::Out),
                     });
@@ -169,15 +175,15 @@ pub(crate) fn partition(
                     // `s_H` crosses the cell's interior on both sides of
                     // `H_v`, so `H` crosses `s_v`.
                     let Split::Both(v_section_back, v_section_front) =
-                        arena[i as usize].section.split(plane)
+                        section_of(arena, i).split(plane)
                     else {
                         unreachable!("sub-hyperplanes that cross each other cut each other");
                     };
-                    arena[i as usize].section = v_section_back;
+                    arena[i as usize].section = Some(v_section_back);
                     let j = arena.len() as u32;
                     arena.push(WorkNode {
                         plane: v_plane,
-                        section: v_section_front,
+                        section: Some(v_section_front),
                         front: SolidChild::Leaf(Region::Out),
                         back: SolidChild::Leaf(Region::Out),
                     });
@@ -189,7 +195,7 @@ pub(crate) fn partition(
                 Split::Front => {
                     // `s_H` is in front of `H_v`: `v.back` does not meet `H`
                     // and lies on the side of `H` where `s_v` is.
-                    if section_behind(&arena[i as usize].section, plane) {
+                    if section_behind(section_of(arena, i), plane) {
                         set(arena, &mut registers, to_back, SolidChild::Node(i));
                         to_back = Slot::Front(i);
                     } else {
@@ -199,7 +205,7 @@ pub(crate) fn partition(
                     t = v_front;
                 }
                 Split::Back => {
-                    if section_behind(&arena[i as usize].section, plane) {
+                    if section_behind(section_of(arena, i), plane) {
                         set(arena, &mut registers, to_back, SolidChild::Node(i));
                         to_back = Slot::Back(i);
                     } else {
@@ -213,6 +219,14 @@ pub(crate) fn partition(
         }
     }
     (registers[0], registers[1])
+}
+
+/// The sub-hyperplane of a node of an annotated tree.
+fn section_of(arena: &[WorkNode], i: u32) -> &ConvexPolygon {
+    arena[i as usize]
+        .section
+        .as_ref()
+        .expect("nodes under partition carry their sub-hyperplanes")
 }
 
 /// Whether a sub-hyperplane that `plane` does not cut lies behind it.
@@ -256,43 +270,101 @@ pub fn merge(a: &BspSolid, b: &BspSolid, op: SetOp) -> BspSolid {
         _ => (b.clone(), op),
     };
     let mut arena: Vec<WorkNode> = Vec::with_capacity(2 * (a.nodes().len() + b.nodes().len()));
-    let root_a = annotate(a, &mut arena);
     let root_b = annotate(&b, &mut arena);
-    let root = merge_annotated(&mut arena, root_a, root_b, op);
+    let root = merge_into(&mut arena, a, root_b, op);
     compact(&arena, root)
 }
 
-/// Merges two annotated trees in `arena` (sharing the cell of their roots)
-/// with `Union` or `Intersection`; returns the root of the result.
-pub(crate) fn merge_annotated(
+/// Merges `a` with the annotated tree `root_b` in `arena` by `Union` or
+/// `Intersection`; returns the root of the result in `arena`.
+///
+/// `a` is walked with its cells (split on the way down), so that its
+/// sub-hyperplanes are computed only where `b` has structure left to
+/// partition; where `b` is a leaf, `a`'s subtree is copied as it is.
+fn merge_into(
     arena: &mut Vec<WorkNode>,
-    root_a: SolidChild,
+    a: &BspSolid,
     root_b: SolidChild,
     op: SetOp,
 ) -> SolidChild {
     debug_assert!(op != SetOp::Difference);
     let mut registers = [SolidChild::Leaf(Region::Out)];
-    let mut stack = vec![(Slot::Register(0), root_a, root_b)];
-    while let Some((slot, ta, tb)) = stack.pop() {
-        let link = match (ta, tb, op) {
-            (SolidChild::Leaf(Region::In), _, SetOp::Union)
-            | (_, SolidChild::Leaf(Region::In), SetOp::Union) => SolidChild::Leaf(Region::In),
-            (SolidChild::Leaf(Region::Out), other, SetOp::Union)
-            | (other, SolidChild::Leaf(Region::Out), SetOp::Union) => other,
-            (SolidChild::Leaf(Region::Out), _, _) | (_, SolidChild::Leaf(Region::Out), _) => {
-                SolidChild::Leaf(Region::Out)
-            }
-            (SolidChild::Leaf(Region::In), other, _) | (other, SolidChild::Leaf(Region::In), _) => {
-                other
-            }
-            (SolidChild::Node(i), _, _) => {
-                let node = &arena[i as usize];
-                let (plane, section) = (node.plane, node.section.clone());
-                let (b_back, b_front) = partition(arena, tb, &plane, section);
-                let node = &arena[i as usize];
-                stack.push((Slot::Back(i), node.back, b_back));
-                stack.push((Slot::Front(i), node.front, b_front));
-                SolidChild::Node(i)
+    let mut stack = vec![(
+        Slot::Register(0),
+        a.root(),
+        ConvexPolyhedron::bounding_box(),
+        root_b,
+    )];
+    while let Some((slot, mut ta, mut cell, tb)) = stack.pop() {
+        let link = loop {
+            break match (ta, tb, op) {
+                (SolidChild::Leaf(Region::In), _, SetOp::Union)
+                | (_, SolidChild::Leaf(Region::In), SetOp::Union) => SolidChild::Leaf(Region::In),
+                (SolidChild::Leaf(Region::Out), _, SetOp::Union) => tb,
+                (_, SolidChild::Leaf(Region::Out), SetOp::Union) => copy_subtree(arena, a, ta),
+                (SolidChild::Leaf(Region::Out), _, _) | (_, SolidChild::Leaf(Region::Out), _) => {
+                    SolidChild::Leaf(Region::Out)
+                }
+                (SolidChild::Leaf(Region::In), _, _) => tb,
+                (_, SolidChild::Leaf(Region::In), _) => copy_subtree(arena, a, ta),
+                (SolidChild::Node(i), _, _) => {
+                    let node = a.nodes()[i as usize];
+                    match cell.into_split(&node.plane) {
+                        // The plane misses the cell: only one child matters.
+                        CellParts::Back(whole) => {
+                            (ta, cell) = (node.back, whole);
+                            continue;
+                        }
+                        CellParts::Front(whole) => {
+                            (ta, cell) = (node.front, whole);
+                            continue;
+                        }
+                        CellParts::Both {
+                            back,
+                            front,
+                            section,
+                        } => {
+                            let (b_back, b_front) = partition(arena, tb, &node.plane, section);
+                            let id = arena.len() as u32;
+                            arena.push(WorkNode {
+                                plane: node.plane,
+                                section: None,
+                                front: SolidChild::Leaf(Region::Out),
+                                back: SolidChild::Leaf(Region::Out),
+                            });
+                            stack.push((Slot::Back(id), node.back, back, b_back));
+                            stack.push((Slot::Front(id), node.front, front, b_front));
+                            SolidChild::Node(id)
+                        }
+                    }
+                }
+            };
+        };
+        set(arena, &mut registers, slot, link);
+    }
+    registers[0]
+}
+
+/// Copies the subtree of `solid` under `root` into `arena` (without
+/// sub-hyperplanes: it is final) and returns its link.
+fn copy_subtree(arena: &mut Vec<WorkNode>, solid: &BspSolid, root: SolidChild) -> SolidChild {
+    let mut registers = [SolidChild::Leaf(Region::Out)];
+    let mut stack = vec![(root, Slot::Register(0))];
+    while let Some((child, slot)) = stack.pop() {
+        let link = match child {
+            SolidChild::Leaf(_) => child,
+            SolidChild::Node(i) => {
+                let node = &solid.nodes()[i as usize];
+                let id = arena.len() as u32;
+                arena.push(WorkNode {
+                    plane: node.plane,
+                    section: None,
+                    front: SolidChild::Leaf(Region::Out),
+                    back: SolidChild::Leaf(Region::Out),
+                });
+                stack.push((node.back, Slot::Back(id)));
+                stack.push((node.front, Slot::Front(id)));
+                SolidChild::Node(id)
             }
         };
         set(arena, &mut registers, slot, link);
