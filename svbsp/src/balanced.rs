@@ -35,7 +35,7 @@ pub struct BalancedOptions {
 impl Default for BalancedOptions {
     fn default() -> Self {
         Self {
-            leaf_faces: 12,
+            leaf_faces: 24,
             autopartition: BuildOptions::default(),
         }
     }
