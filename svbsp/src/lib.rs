@@ -35,15 +35,27 @@
 //! Still to come here: Thibault-Naylor union and Naylor-Amanatides-Thibault
 //! merging, and Bergeron's general shadow volumes.
 
+mod balanced;
+mod csg;
 mod error;
 mod light;
+mod merge;
 mod pipeline;
+mod polyhedron;
 mod tree;
+mod union;
 mod volume;
 
+pub use balanced::{BalancedOptions, balanced_solid};
 pub use bsp_core;
+pub use csg::{CsgBoundary, IndexedMesh, boundary, boundary_pieces, weld};
 pub use error::Error;
 pub use light::{Light, LightSource};
+pub use merge::{SetOp, merge};
 pub use pipeline::{Fragment, LightStats, MAX_LIGHTS, PieceFlags, ShadowOutput, compute_shadows};
+pub use polyhedron::{
+    CellParts, CellSplit, ConvexPolyhedron, SECTION_SOURCE, plane_in_box, plane_parallelogram,
+};
 pub use tree::{Filtered, ShadowVolumeTree, Slot, VolumeChild, VolumeNode};
+pub use union::union_with_convex;
 pub use volume::{ShadowVolume, shadow_volume};

@@ -1,0 +1,181 @@
+//! Balanced BSP solids from closed boundaries: axis-aligned splits at the
+//! top, Thibault-Naylor autopartitions at the bottom.
+//!
+//! [`BspSolid::from_boundary`] is an autopartition: every splitting plane is
+//! a face's plane. For a convex or star-shaped surface nearly every face has
+//! all others behind it, so the tree is a chain as deep as the mesh is
+//! large, and filtering a polygon down it costs time linear in the mesh.
+//! Here the faces are first divided by axis-aligned planes through grid
+//! points (`x = c`, at the median of the face centroids along the widest
+//! axis, in the spirit of the octree-embedded BSPs of Nehring-Wirxel,
+//! Trettner & Kobbelt 2021) until a cell holds few faces; the faces of each
+//! cell are then autopartitioned as usual.
+//!
+//! The leaves keep the autopartition's labels (an empty region in front of
+//! its last plane is outside, one behind is inside). That stays right in a
+//! cell holding part of the surface: an empty region of the cell's
+//! autopartition is convex, holds no surface, and touches the face whose
+//! plane bounds it. An axis split is used only if it leaves faces on both
+//! sides (so no cell is empty of surface, where no face could tell its
+//! label) and lies in no face's plane.
+
+use bsp_core::{
+    BspSolid, BuildOptions, ConvexPolygon, Plane, Region, SolidChild, SolidNode, Split,
+};
+
+/// How [`balanced_solid`] divides the faces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct BalancedOptions {
+    /// A cell with at most this many faces is autopartitioned.
+    pub leaf_faces: usize,
+    /// Options of the autopartitions of the cells.
+    pub autopartition: BuildOptions,
+}
+
+impl Default for BalancedOptions {
+    fn default() -> Self {
+        Self {
+            leaf_faces: 24,
+            autopartition: BuildOptions::default(),
+        }
+    }
+}
+
+/// The solid bounded by `faces` (a closed polyhedron's faces, outward), as a
+/// balanced tree. Meaningful only if the faces close up, like
+/// [`BspSolid::from_boundary`].
+pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> BspSolid {
+    let mut nodes: Vec<SolidNode> = Vec::new();
+    let mut root = SolidChild::Leaf(Region::Out);
+    // (faces of the cell, where its subtree hangs).
+    // Each face travels with the centroid of its input face: fragments
+    // inherit it, which is good enough to place medians and saves
+    // converting implicit vertices at every level.
+    let faces: Faces = faces
+        .into_iter()
+        .map(|f| {
+            let c = centroid(&f);
+            (f, c)
+        })
+        .collect();
+    let mut stack: Vec<(Faces, Hang)> = vec![(faces, None)];
+    while let Some((list, slot)) = stack.pop() {
+        let link = match axis_split(&list, options.leaf_faces) {
+            Some((plane, back, front)) => {
+                let id = nodes.len() as u32;
+                nodes.push(SolidNode {
+                    plane,
+                    front: SolidChild::Leaf(Region::Out),
+                    back: SolidChild::Leaf(Region::Out),
+                });
+                stack.push((back, Some((id, false))));
+                stack.push((front, Some((id, true))));
+                SolidChild::Node(id)
+            }
+            None => {
+                let list = list.into_iter().map(|(f, _)| f).collect();
+                graft(
+                    &mut nodes,
+                    BspSolid::from_boundary(list, &options.autopartition),
+                )
+            }
+        };
+        match slot {
+            None => root = link,
+            Some((parent, true)) => nodes[parent as usize].front = link,
+            Some((parent, false)) => nodes[parent as usize].back = link,
+        }
+    }
+    BspSolid::from_nodes(nodes, root).expect("the builder makes a tree")
+}
+
+/// Where a subtree hangs: `None` for the root, else `(parent, is front
+/// child)`.
+type Hang = Option<(u32, bool)>;
+
+/// The axis-aligned split of `list`, or `None` if the list is small or no
+/// good split exists.
+fn axis_split(list: &[(ConvexPolygon, [f64; 3])], leaf_faces: usize) -> Option<AxisSplit> {
+    if list.len() <= leaf_faces.max(1) {
+        return None;
+    }
+    let centroids: Vec<[f64; 3]> = list.iter().map(|(_, c)| *c).collect();
+    let extent = |k: usize| {
+        let (lo, hi) = centroids
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                (lo.min(c[k]), hi.max(c[k]))
+            });
+        hi - lo
+    };
+    let axis = (0..3)
+        .max_by(|&a, &b| extent(a).total_cmp(&extent(b)))
+        .expect("three axes");
+    let mut coords: Vec<f64> = centroids.iter().map(|c| c[axis]).collect();
+    let mid = coords.len() / 2;
+    let (_, median, _) = coords.select_nth_unstable_by(mid, f64::total_cmp);
+    let value = median.round().clamp(
+        -f64::from(bsp_core::GRID_LIMIT),
+        f64::from(bsp_core::GRID_LIMIT),
+    ) as i32;
+    let mut normal = [0_i64; 3];
+    normal[axis] = 1;
+    let mut point = [0_i32; 3];
+    point[axis] = value;
+    let plane = Plane::with_normal_through(
+        normal,
+        bsp_core::GridPoint {
+            x: point[0],
+            y: point[1],
+            z: point[2],
+        },
+    )?;
+    let (mut back, mut front) = (Vec::new(), Vec::new());
+    for (polygon, c) in list {
+        match polygon.split(&plane) {
+            Split::Back => back.push((polygon.clone(), *c)),
+            Split::Front => front.push((polygon.clone(), *c)),
+            Split::Both(b, f) => {
+                back.push((b, *c));
+                front.push((f, *c));
+            }
+            Split::Coplanar(_) => return None,
+        }
+    }
+    // Splits that barely divide would only add depth.
+    if back.is_empty() || front.is_empty() || back.len().max(front.len()) > list.len() * 7 / 8 {
+        return None;
+    }
+    Some((plane, back, front))
+}
+
+/// Mean of a polygon's vertices.
+fn centroid(polygon: &ConvexPolygon) -> [f64; 3] {
+    let v = polygon.vertices_f64();
+    let n = v.len() as f64;
+    let s = v
+        .iter()
+        .fold([0.0; 3], |a, q| [a[0] + q[0], a[1] + q[1], a[2] + q[2]]);
+    s.map(|c| c / n)
+}
+
+/// Faces (or fragments) with the centroids of their input faces.
+type Faces = Vec<(ConvexPolygon, [f64; 3])>;
+
+/// A splitting plane and the faces behind and in front of it.
+type AxisSplit = (Plane, Faces, Faces);
+
+/// Appends `sub`'s nodes to `nodes` and returns the link to its root.
+fn graft(nodes: &mut Vec<SolidNode>, sub: BspSolid) -> SolidChild {
+    let offset = nodes.len() as u32;
+    let shift = |c: SolidChild| match c {
+        SolidChild::Node(i) => SolidChild::Node(i + offset),
+        leaf => leaf,
+    };
+    nodes.extend(sub.nodes().iter().map(|n| SolidNode {
+        plane: n.plane,
+        front: shift(n.front),
+        back: shift(n.back),
+    }));
+    shift(sub.root())
+}
