@@ -6,9 +6,10 @@ use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
+use svbsp::SetOp;
 use umbra::{
-    Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, save_obj, save_ply, shadow_scene,
-    write_demo,
+    Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, csg, save_csg_obj, save_obj, save_ply,
+    shadow_scene, write_demo,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -251,12 +252,26 @@ pub fn run(cli: Cli) -> Result<()> {
             })
         }
         Command::Csg(args) => {
-            ObjMesh::load(&args.a)?;
-            ObjMesh::load(&args.b)?;
-            Err(Error::NotImplemented {
-                command: "csg",
-                reason: "BSP set operations (svbsp) are not wired into the command yet",
-            })
+            let a = ObjMesh::load(&args.a)?;
+            let b = ObjMesh::load(&args.b)?;
+            let op = if args.union {
+                SetOp::Union
+            } else if args.intersect {
+                SetOp::Intersection
+            } else {
+                SetOp::Difference
+            };
+            let mesh = csg(&a, &args.a, &b, &args.b, op)?;
+            save_csg_obj(&args.output, &mesh)?;
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(
+                out,
+                "{}: {} vertices, {} faces",
+                args.output.display(),
+                mesh.vertices.len(),
+                mesh.faces.len()
+            );
+            Ok(())
         }
         Command::Demo(args) => {
             let dir = args.output.unwrap_or_else(|| PathBuf::from(&args.name));

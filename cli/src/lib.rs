@@ -43,6 +43,7 @@
 //! ```
 
 mod atomic;
+mod csg;
 mod decompose;
 mod demo;
 mod error;
@@ -57,6 +58,7 @@ mod transform;
 
 pub use atomic::write_atomic;
 pub use bsp_core;
+pub use csg::{CsgMesh, csg, save_csg_obj};
 pub use decompose::{
     DIRECTION_SCALE, GRID_MARGIN, Pieces, SnappedLight, convex_pieces, integer_direction,
 };

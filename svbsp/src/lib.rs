@@ -32,8 +32,12 @@
 //! assert!((shadow - 64.0).abs() < 1e-9);
 //! ```
 //!
-//! Still to come here: Thibault-Naylor union and Naylor-Amanatides-Thibault
-//! merging, and Bergeron's general shadow volumes.
+//! The crate also holds BSP set operations on [`bsp_core::BspSolid`]s:
+//! Naylor-Amanatides-Thibault merging ([`merge`] with a [`SetOp`]), the
+//! general Thibault-Naylor union with a [`ConvexPolyhedron`]
+//! ([`union_with_convex`]), balanced solids from closed meshes
+//! ([`balanced_solid`]) and closed, T-junction-free CSG boundaries
+//! ([`boundary`]). Still to come: Bergeron's general shadow volumes.
 
 mod balanced;
 mod csg;

@@ -1,6 +1,7 @@
 //! Integration tests of the `umbra` library and command, as one binary.
 
 mod commands;
+mod csg;
 mod decomposition;
 mod demos;
 mod errors;

@@ -1,0 +1,109 @@
+//! `umbra csg`: BSP set operations on closed OBJ meshes.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use bsp_core::{ConvexPolygon, Grid, GridPoint};
+use svbsp::{BalancedOptions, SetOp, balanced_solid, boundary};
+
+use crate::decompose::{GRID_MARGIN, convex_pieces};
+use crate::error::{Error, Result};
+use crate::obj::ObjMesh;
+
+/// The boundary of `A op B` in world coordinates: shared vertices and
+/// counter-clockwise faces (seen from outside), closed, with no T-junction.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CsgMesh {
+    /// Vertex positions.
+    pub vertices: Vec<[f64; 3]>,
+    /// Faces as vertex index lists.
+    pub faces: Vec<Vec<u32>>,
+}
+
+/// Computes `A op B` for two closed meshes read from `a_path` and
+/// `b_path` (named in errors).
+pub fn csg(a: &ObjMesh, a_path: &Path, b: &ObjMesh, b_path: &Path, op: SetOp) -> Result<CsgMesh> {
+    let points = a
+        .faces
+        .iter()
+        .chain(&b.faces)
+        .flat_map(|f| f.vertices.iter());
+    let grid = Grid::enclosing(points, GRID_MARGIN).map_err(|source| Error::Grid {
+        path: a_path.to_path_buf(),
+        source,
+    })?;
+    let a_faces = closed_pieces(a, a_path, &grid)?;
+    let b_faces = closed_pieces(b, b_path, &grid)?;
+    let options = BalancedOptions::default();
+    let a_solid = balanced_solid(a_faces.clone(), &options);
+    let b_solid = balanced_solid(b_faces.clone(), &options);
+    let result = boundary(&a_solid, &a_faces, &b_solid, &b_faces, op);
+    Ok(CsgMesh {
+        vertices: result
+            .mesh
+            .vertices
+            .iter()
+            .map(|&v| grid.grid_to_world(v))
+            .collect(),
+        faces: result.mesh.faces,
+    })
+}
+
+/// The mesh's faces as convex pieces on the grid; an error unless they
+/// close up (every directed edge matched by its reverse).
+fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexPolygon>> {
+    let mut pieces = Vec::new();
+    for face in &mesh.faces {
+        let (snapped, _) = grid
+            .snap_all(&face.vertices)
+            .map_err(|source| Error::Grid {
+                path: path.to_path_buf(),
+                source,
+            })?;
+        for piece in convex_pieces(&snapped) {
+            let k = pieces.len() as u32;
+            pieces.push(piece.with_source(k));
+        }
+    }
+    let mut edges: HashMap<(GridPoint, GridPoint), i64> = HashMap::new();
+    for piece in &pieces {
+        let n = piece.len();
+        for i in 0..n {
+            if let (Some(p), Some(q)) = (
+                piece.vertex_grid_point(i),
+                piece.vertex_grid_point((i + 1) % n),
+            ) {
+                *edges.entry((p, q)).or_insert(0) += 1;
+                *edges.entry((q, p)).or_insert(0) -= 1;
+            }
+        }
+    }
+    let open = edges.values().filter(|&&c| c != 0).count() / 2;
+    if pieces.is_empty() || open > 0 {
+        return Err(Error::Field {
+            path: path.to_path_buf(),
+            field: "faces".into(),
+            message: format!(
+                "the mesh is not closed ({open} edges without a matching opposite edge); set operations need closed meshes"
+            ),
+        });
+    }
+    Ok(pieces)
+}
+
+/// Writes the mesh as OBJ (atomically).
+pub fn save_csg_obj(path: &Path, mesh: &CsgMesh) -> Result<()> {
+    crate::atomic::write_atomic(path, |w| {
+        for v in &mesh.vertices {
+            writeln!(w, "v {} {} {}", v[0], v[1], v[2])?;
+        }
+        for face in &mesh.faces {
+            write!(w, "f")?;
+            for i in face {
+                write!(w, " {}", i + 1)?;
+            }
+            writeln!(w)?;
+        }
+        Ok(())
+    })
+}

@@ -1,0 +1,105 @@
+//! `umbra csg` end to end: closed outputs whose volumes satisfy
+//! inclusion-exclusion, and a clear error for an open mesh.
+
+use crate::{folder, umbra};
+
+/// An axis-aligned cube as OBJ, faces outward.
+fn cube(lo: [f64; 3], hi: [f64; 3]) -> String {
+    let mut s = String::new();
+    for i in 0..8 {
+        let x = if i & 1 == 0 { lo[0] } else { hi[0] };
+        let y = if i & 2 == 0 { lo[1] } else { hi[1] };
+        let z = if i & 4 == 0 { lo[2] } else { hi[2] };
+        s += &format!("v {x} {y} {z}\n");
+    }
+    // Corner index = x + 2y + 4z, 1-based in OBJ.
+    for f in [
+        [1, 3, 4, 2],
+        [5, 6, 8, 7],
+        [1, 2, 6, 5],
+        [3, 7, 8, 4],
+        [1, 5, 7, 3],
+        [2, 4, 8, 6],
+    ] {
+        s += &format!("f {} {} {} {}\n", f[0], f[1], f[2], f[3]);
+    }
+    s
+}
+
+/// Volume and closedness of an OBJ written by `umbra csg`.
+fn read(path: &std::path::Path) -> (f64, bool) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut v: Vec<[f64; 3]> = Vec::new();
+    let mut faces: Vec<Vec<usize>> = Vec::new();
+    for line in text.lines() {
+        let mut it = line.split_whitespace();
+        match it.next() {
+            Some("v") => v.push([0, 1, 2].map(|_| it.next().unwrap().parse().unwrap())),
+            Some("f") => faces.push(it.map(|i| i.parse::<usize>().unwrap() - 1).collect()),
+            _ => {}
+        }
+    }
+    let mut volume = 0.0;
+    let mut edges = std::collections::HashMap::new();
+    for f in &faces {
+        for k in 1..f.len() - 1 {
+            let (a, b, c) = (v[f[0]], v[f[k]], v[f[k + 1]]);
+            volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0;
+        }
+        for k in 0..f.len() {
+            *edges.entry((f[k], f[(k + 1) % f.len()])).or_insert(0_i32) += 1;
+        }
+    }
+    let closed = edges
+        .iter()
+        .all(|(&(a, b), &n)| edges.get(&(b, a)) == Some(&n));
+    (volume, closed)
+}
+
+#[test]
+fn cube_operations_satisfy_inclusion_exclusion() {
+    let dir = folder(&[
+        ("a.obj", &cube([0.0; 3], [2.0; 3])),
+        ("b.obj", &cube([1.0, 0.5, 1.5], [3.0, 1.5, 2.5])),
+    ]);
+    let mut volume = std::collections::HashMap::new();
+    for (op, name) in [("--union", "u"), ("--intersect", "i"), ("--subtract", "d")] {
+        let out = format!("{name}.obj");
+        let run = umbra(dir.path(), &["csg", "a.obj", op, "b.obj", "-o", &out]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let (v, closed) = read(&dir.path().join(&out));
+        assert!(closed, "{op} output is not closed");
+        volume.insert(name, v);
+    }
+    let (a, b) = (8.0, 2.0);
+    assert!(
+        (volume["u"] + volume["i"] - (a + b)).abs() < 1e-9 * (a + b),
+        "{volume:?}"
+    );
+    assert!(
+        (volume["d"] + volume["i"] - a).abs() < 1e-9 * a,
+        "{volume:?}"
+    );
+    assert!((volume["i"] - 0.5).abs() < 1e-9, "{volume:?}");
+}
+
+#[test]
+fn an_open_mesh_is_refused() {
+    let dir = folder(&[
+        ("a.obj", &cube([0.0; 3], [2.0; 3])),
+        ("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    ]);
+    let run = umbra(
+        dir.path(),
+        &["csg", "a.obj", "--union", "open.obj", "-o", "out.obj"],
+    );
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr.contains("open.obj") && run.stderr.contains("not closed"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.path().join("out.obj").exists());
+}
