@@ -13,6 +13,7 @@
 //! cargo test --manifest-path fuzz/Cargo.toml             # replay the corpus (stable)
 //! ```
 
+pub mod merge;
 pub mod split;
 
 /// Every file of a committed corpus directory (`corpus/<target>/`), sorted
