@@ -180,10 +180,48 @@ fn parse_vector(text: &str) -> std::result::Result<[f64; 3], String> {
 const WAITS_FOR_SHADOWS: &str =
     "the shadow computation (svbsp and area-shadow) is not wired into the command yet";
 
+/// A spinner with the current phase on a terminal (stderr); nothing when
+/// stderr is not a terminal, so scripts and logs stay quiet.
+struct Progress(Option<indicatif::ProgressBar>);
+
+impl Progress {
+    fn start(phase: &str) -> Self {
+        use std::io::IsTerminal;
+        if !std::io::stderr().is_terminal() {
+            return Self(None);
+        }
+        let bar = indicatif::ProgressBar::new_spinner();
+        bar.enable_steady_tick(std::time::Duration::from_millis(120));
+        bar.set_message(phase.to_string());
+        Self(Some(bar))
+    }
+
+    fn say(&self, phase: &str) {
+        if let Some(bar) = &self.0 {
+            bar.set_message(phase.to_string());
+        }
+    }
+
+    fn finish(&self) {
+        if let Some(bar) = &self.0 {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+impl Drop for Progress {
+    fn drop(&mut self) {
+        // An error leaves no spinner behind its message.
+        self.finish();
+    }
+}
+
 /// `umbra shadow`: every output is written to a temporary file and renamed,
 /// and nothing is written unless the whole computation succeeded.
 fn run_shadow(args: &ShadowArgs) -> Result<()> {
+    let progress = Progress::start("loading the scene");
     let scene = Scene::load(&args.scene)?;
+    progress.say("computing shadows");
     if args.grid.is_some() {
         return Err(Error::NotImplemented {
             command: "shadow --grid",
@@ -191,6 +229,7 @@ fn run_shadow(args: &ShadowArgs) -> Result<()> {
         });
     }
     let result = shadow_scene(&scene)?;
+    progress.say("writing");
     let output = args
         .output
         .clone()
@@ -207,6 +246,7 @@ fn run_shadow(args: &ShadowArgs) -> Result<()> {
     if let Some(stats) = &args.stats {
         result.stats.save(stats)?;
     }
+    progress.finish();
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
