@@ -1,55 +1,13 @@
 //! Haines' SPD `tetra` scene: recursive tetrahedra over a ground plane, the
 //! scene of Chin & Feiner 1989's Table 1.
 
-/// Cube corners with `x * y * z = +1`: a regular tetrahedron's vertices.
-const CORNERS: [[f64; 3]; 4] = [
-    [1.0, 1.0, 1.0],
-    [1.0, -1.0, -1.0],
-    [-1.0, 1.0, -1.0],
-    [-1.0, -1.0, 1.0],
-];
-
 /// The SPD light position.
 pub const LIGHT: [f64; 3] = [2.0, -18.0, -5.0];
 
 /// The triangles of the recursive tetrahedron of the given depth (depth 4:
-/// 256 triangles, depth 5: 1024), each wound counter-clockwise seen from
-/// outside its tetrahedron. Centre (0, 0, 0), half-size 1; a node of
-/// depth > 1 recurses into four children at `c + d w / 2` with half-size
-/// `w / 2`; a leaf is the tetrahedron `c + w d`.
-pub fn tetra_triangles(depth: u32) -> Vec<[[f64; 3]; 3]> {
-    let mut out = Vec::new();
-    let mut stack = vec![([0.0; 3], 1.0, depth.max(1))];
-    while let Some((c, w, d)) = stack.pop() {
-        if d > 1 {
-            for k in CORNERS.iter().rev() {
-                stack.push((
-                    [
-                        c[0] + k[0] * w / 2.0,
-                        c[1] + k[1] * w / 2.0,
-                        c[2] + k[2] * w / 2.0,
-                    ],
-                    w / 2.0,
-                    d - 1,
-                ));
-            }
-            continue;
-        }
-        let v = CORNERS.map(|k| [c[0] + w * k[0], c[1] + w * k[1], c[2] + w * k[2]]);
-        for skip in 0..4 {
-            let face: Vec<[f64; 3]> = (0..4).filter(|&i| i != skip).map(|i| v[i]).collect();
-            let (a, b, e) = (face[0], face[1], face[2]);
-            // Outward: the skipped vertex lies behind the face.
-            let n = cross(sub(b, a), sub(e, a));
-            if dot(n, sub(v[skip], a)) > 0.0 {
-                out.push([a, e, b]);
-            } else {
-                out.push([a, b, e]);
-            }
-        }
-    }
-    out
-}
+/// 256 triangles, depth 5: 1024), wound outward: the generator of
+/// `umbra demo tetra`.
+pub use umbra::tetra_triangles;
 
 /// The ground: two triangles in the plane `x + y - z = offset`, facing the
 /// light (normal along `(-1, -1, 1)`). With `offset = 1` the tetrahedra's
@@ -64,25 +22,25 @@ pub fn ground(offset: f64, half_size: f64) -> Vec<[[f64; 3]; 3]> {
     vec![[c0, c1, c2], [c0, c2, c3]]
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+    }
+
+    fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    }
+
+    fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+        a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+    }
 
     #[test]
     fn counts_and_contact() {
@@ -92,7 +50,7 @@ mod tests {
         // faces of depth 4 lie in x + y - z = 1, on the ground.
         let bottom = tetra_triangles(4)
             .iter()
-            .filter(|t| t.iter().all(|v| v[0] + v[1] - v[2] == 1.0))
+            .filter(|t| t.iter().all(|v: &[f64; 3]| v[0] + v[1] - v[2] == 1.0))
             .count();
         assert_eq!(bottom, 27);
         for t in ground(1.0, 8.0) {

@@ -4,25 +4,22 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use bsp_core::{ConvexPolygon, Grid, GridPoint};
-use svbsp::{BalancedOptions, SetOp, balanced_solid, boundary};
+use svbsp::{BalancedOptions, IndexedMesh, SetOp, balanced_solid, boundary};
 
 use crate::decompose::{GRID_MARGIN, convex_pieces};
 use crate::error::{Error, Result};
 use crate::obj::ObjMesh;
 
-/// The boundary of `A op B` in world coordinates: shared vertices and
-/// counter-clockwise faces (seen from outside), closed, with no T-junction.
-#[derive(Debug, Clone, PartialEq)]
-pub struct CsgMesh {
-    /// Vertex positions.
-    pub vertices: Vec<[f64; 3]>,
-    /// Faces as vertex index lists.
-    pub faces: Vec<Vec<u32>>,
-}
-
 /// Computes `A op B` for two closed meshes read from `a_path` and
-/// `b_path` (named in errors).
-pub fn csg(a: &ObjMesh, a_path: &Path, b: &ObjMesh, b_path: &Path, op: SetOp) -> Result<CsgMesh> {
+/// `b_path` (named in errors): the closed, T-junction-free boundary, with
+/// its vertices in world coordinates.
+pub fn csg(
+    a: &ObjMesh,
+    a_path: &Path,
+    b: &ObjMesh,
+    b_path: &Path,
+    op: SetOp,
+) -> Result<IndexedMesh> {
     let points = a
         .faces
         .iter()
@@ -37,16 +34,11 @@ pub fn csg(a: &ObjMesh, a_path: &Path, b: &ObjMesh, b_path: &Path, op: SetOp) ->
     let options = BalancedOptions::default();
     let a_solid = balanced_solid(a_faces.clone(), &options);
     let b_solid = balanced_solid(b_faces.clone(), &options);
-    let result = boundary(&a_solid, &a_faces, &b_solid, &b_faces, op);
-    Ok(CsgMesh {
-        vertices: result
-            .mesh
-            .vertices
-            .iter()
-            .map(|&v| grid.grid_to_world(v))
-            .collect(),
-        faces: result.mesh.faces,
-    })
+    let mut mesh = boundary(&a_solid, &a_faces, &b_solid, &b_faces, op).mesh;
+    for v in &mut mesh.vertices {
+        *v = grid.grid_to_world(*v);
+    }
+    Ok(mesh)
 }
 
 /// The mesh's faces as convex pieces on the grid; an error unless they
@@ -92,18 +84,9 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
 }
 
 /// Writes the mesh as OBJ (atomically).
-pub fn save_csg_obj(path: &Path, mesh: &CsgMesh) -> Result<()> {
-    crate::atomic::write_atomic(path, |w| {
-        for v in &mesh.vertices {
-            writeln!(w, "v {} {} {}", v[0], v[1], v[2])?;
-        }
-        for face in &mesh.faces {
-            write!(w, "f")?;
-            for i in face {
-                write!(w, " {}", i + 1)?;
-            }
-            writeln!(w)?;
-        }
-        Ok(())
-    })
+pub fn save_csg_obj(path: &Path, mesh: &IndexedMesh) -> Result<()> {
+    let mut text = String::new();
+    mesh.write_obj(&mut text)
+        .expect("writing to a String cannot fail");
+    crate::atomic::write_atomic(path, |w| w.write_all(text.as_bytes()))
 }

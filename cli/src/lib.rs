@@ -58,7 +58,7 @@ mod transform;
 
 pub use atomic::write_atomic;
 pub use bsp_core;
-pub use csg::{CsgMesh, csg, save_csg_obj};
+pub use csg::{csg, save_csg_obj};
 pub use decompose::{
     DIRECTION_SCALE, GRID_MARGIN, Pieces, SnappedLight, convex_pieces, integer_direction,
 };

@@ -34,3 +34,18 @@ pub fn corpus_files(target: &str) -> std::io::Result<Vec<(String, Vec<u8>)>> {
     files.sort();
     Ok(files)
 }
+
+/// Deterministic pseudo-random bytes (splitmix64), for tests that feed a
+/// target many inputs without a fuzzer.
+pub fn pseudo_random_bytes(seed: u64, len: usize) -> Vec<u8> {
+    let mut state = seed;
+    (0..len)
+        .map(|_| {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            (z ^ (z >> 31)) as u8
+        })
+        .collect()
+}

@@ -155,18 +155,7 @@ pub fn check_merge(case: &MergeCase) -> Result<(), String> {
 mod tests {
     use super::*;
 
-    fn bytes(seed: u64, len: usize) -> Vec<u8> {
-        let mut state = seed;
-        (0..len)
-            .map(|_| {
-                state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
-                let mut z = state;
-                z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-                z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-                (z ^ (z >> 31)) as u8
-            })
-            .collect()
-    }
+    use crate::pseudo_random_bytes as bytes;
 
     #[test]
     fn seed_corpus_replays() {
