@@ -167,3 +167,130 @@ fn area_lights_are_refused_clearly_for_now() {
     assert!(run.stderr.contains("light[0].type"), "{}", run.stderr);
     assert!(!dir.path().join("out.ply").exists());
 }
+
+/// A random scene with the degenerate features real scenes have: boxes
+/// standing on the floor (coplanar contact), boxes touching each other,
+/// coplanar overlapping quads, two-sided and non-casting objects, lights on
+/// a polygon's plane or at a vertex, directional lights parallel to walls,
+/// lights with a range.
+fn degenerate_scene(seed: u64) -> String {
+    let mut state = seed;
+    let mut next = |m: i64| {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((state >> 33) as i64).rem_euclid(m)
+    };
+    let mut s = String::from("ambient = 0.1\n");
+    s += "[[object]]\nname = \"floor\"\npolygons = [[[-8,0,8],[8,0,8],[8,0,-8],[-8,0,-8]]]\n";
+    let boxes = 1 + next(3);
+    for b in 0..boxes {
+        let (x, z) = (next(8) - 4, next(8) - 4);
+        let (w, h, d) = (1 + next(3), 1 + next(3), 1 + next(3));
+        let y = if next(2) == 0 { 0 } else { next(3) };
+        let (x1, y1, z1) = (x + w, y + h, z + d);
+        let two_sided = next(4) == 0;
+        let casts = next(5) != 0;
+        s += &format!(
+            "[[object]]\nname = \"box{b}\"\ntwo_sided = {two_sided}\ncasts_shadows = {casts}\npolygons = [\n\
+             [[{x},{y},{z}],[{x},{y1},{z}],[{x1},{y1},{z}],[{x1},{y},{z}]],\n\
+             [[{x},{y},{z1}],[{x1},{y},{z1}],[{x1},{y1},{z1}],[{x},{y1},{z1}]],\n\
+             [[{x},{y},{z}],[{x1},{y},{z}],[{x1},{y},{z1}],[{x},{y},{z1}]],\n\
+             [[{x},{y1},{z}],[{x},{y1},{z1}],[{x1},{y1},{z1}],[{x1},{y1},{z}]],\n\
+             [[{x},{y},{z}],[{x},{y},{z1}],[{x},{y1},{z1}],[{x},{y1},{z}]],\n\
+             [[{x1},{y},{z}],[{x1},{y1},{z}],[{x1},{y1},{z1}],[{x1},{y},{z1}]]]\n"
+        );
+    }
+    // Two coplanar overlapping quads floating above the floor.
+    let h = 3 + next(3);
+    s += &format!(
+        "[[object]]\nname = \"sheets\"\npolygons = [[[-2,{h},-2],[2,{h},-2],[2,{h},2],[-2,{h},2]], [[0,{h},0],[3,{h},0],[3,{h},3],[0,{h},3]]]\n"
+    );
+    let lights = 1 + next(3);
+    for _ in 0..lights {
+        match next(4) {
+            // On the sheets' plane, or at one of their vertices.
+            0 => {
+                s += &format!(
+                    "[[light]]\ntype = \"point\"\nposition = [{}, {h}, {}]\n",
+                    next(9) - 4,
+                    next(9) - 4
+                )
+            }
+            1 => {
+                s += &format!(
+                    "[[light]]\ntype = \"point\"\nposition = [2, {h}, 2]\nrange = {}\n",
+                    3 + next(8)
+                )
+            }
+            // Parallel to the box walls.
+            2 => s += "[[light]]\ntype = \"directional\"\ndirection = [0, -1, 0]\n",
+            _ => {
+                s += &format!(
+                    "[[light]]\ntype = \"point\"\nposition = [{}, {}, {}]\n",
+                    next(13) - 6,
+                    6 + next(6),
+                    next(13) - 6
+                )
+            }
+        }
+    }
+    s
+}
+
+#[test]
+fn degenerate_scenes_partition_and_classify_consistently() {
+    for seed in 0..40 {
+        let text = degenerate_scene(seed);
+        let dir = folder(&[("scene.toml", &text)]);
+        let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "seed {seed}: {}\n{text}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        mesh.check().unwrap();
+        let scene = umbra::Scene::load(dir.path().join("scene.toml")).unwrap();
+        let all = (1_u32 << scene.lights.len()) - 1;
+        let mut area = vec![0.0; scene.polygon_count()];
+        for (f, face) in mesh.faces.iter().enumerate() {
+            area[face.source as usize] += face_area(&mesh, f);
+            assert_eq!(face.lit_mask & face.umbra_mask, 0, "seed {seed}");
+            assert_eq!(
+                face.lit_mask | face.umbra_mask,
+                all,
+                "seed {seed}: a point light leaves no penumbra"
+            );
+            for &v in &face.vertices {
+                let (p, e) = mesh.vertices[v as usize];
+                assert!(
+                    p.iter().all(|c| c.is_finite()) && e.is_finite() && e >= 0.0,
+                    "seed {seed}"
+                );
+                if face.lit_mask == 0 {
+                    assert_eq!(e, 0.0, "seed {seed}: irradiance in umbra");
+                }
+            }
+        }
+        for (i, (_, polygon)) in scene.input_polygons().enumerate() {
+            let v = &polygon.vertices;
+            let mut n = [0.0; 3];
+            for k in 1..v.len() - 1 {
+                let a = [v[k][0] - v[0][0], v[k][1] - v[0][1], v[k][2] - v[0][2]];
+                let b = [
+                    v[k + 1][0] - v[0][0],
+                    v[k + 1][1] - v[0][1],
+                    v[k + 1][2] - v[0][2],
+                ];
+                n[0] += a[1] * b[2] - a[2] * b[1];
+                n[1] += a[2] * b[0] - a[0] * b[2];
+                n[2] += a[0] * b[1] - a[1] * b[0];
+            }
+            let expected = 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            // Integer input snaps exactly (power-of-two grid): areas agree to
+            // rounding.
+            assert!(
+                (area[i] - expected).abs() <= 1e-9 * expected,
+                "seed {seed} polygon {i}: {} vs {expected}",
+                area[i]
+            );
+        }
+    }
+}
