@@ -1,6 +1,12 @@
 //! The shadow volume of a lit piece: one plane per edge through the light,
 //! and the piece's own plane as a cap.
 //!
+//! The 1989 paper needs no cap: in front-to-back order nothing filtered
+//! later lies between the light and a piece inside its pyramid. Overlapping
+//! coplanar polygons break that (each lies in the other's pyramid, in its
+//! plane, and neither hides the other), so umbra caps every volume; the
+//! cap also sends pieces lying in it to the light's side.
+//!
 //! Every plane must pass through grid points (DESIGN.md), so a shadow
 //! plane is built only from an edge the kernel can name exactly: an edge of
 //! the original input piece (two grid points), or an edge that lies on a
