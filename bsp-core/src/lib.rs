@@ -43,6 +43,7 @@
 mod autopartition;
 mod error;
 mod grid;
+mod line2d;
 mod plane;
 mod polygon;
 pub mod predicates;
@@ -52,6 +53,7 @@ mod solid;
 pub use autopartition::BuildOptions;
 pub use error::Error;
 pub use grid::{GRID_BITS, GRID_LIMIT, Grid, GridPoint};
+pub use line2d::{LineMeeting, ReceiverLine};
 pub use plane::{NORMAL_LIMIT, OFFSET_LIMIT, Plane};
 pub use polygon::{ConvexPolygon, Facing, PolygonSide, Split};
 pub use predicates::{ImplicitPoint, Side};
