@@ -21,10 +21,10 @@ pub struct ReceiverLine {
 }
 
 /// How two lines on one receiver meet.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum LineMeeting {
     /// In exactly one point.
-    Point(ImplicitPoint),
+    Point(Box<ImplicitPoint>),
     /// Parallel and distinct: never.
     Parallel,
     /// The same line (in either direction).
@@ -110,10 +110,10 @@ impl ReceiverLine {
     /// How this line meets `other` (on the same receiver), exactly.
     pub fn meet(&self, other: &ReceiverLine) -> LineMeeting {
         match PointFilter::new(&self.receiver, &self.plane, &other.plane) {
-            Some(_) => LineMeeting::Point(
+            Some(_) => LineMeeting::Point(Box::new(
                 ImplicitPoint::new(self.receiver, self.plane, other.plane)
                     .expect("the filter found a single point"),
-            ),
+            )),
             None => {
                 // No single point: the three planes share a line (every 3x3
                 // minor vanishes) or the lines are parallel.
