@@ -49,6 +49,7 @@ mod polygon;
 pub mod predicates;
 mod scene_bsp;
 mod solid;
+mod winged_edge;
 
 pub use autopartition::BuildOptions;
 pub use error::Error;
@@ -59,3 +60,6 @@ pub use polygon::{ConvexPolygon, Facing, PolygonSide, Split};
 pub use predicates::{ImplicitPoint, Side};
 pub use scene_bsp::{Location, SceneBsp, SceneChild, SceneNode, Traversal, Viewpoint};
 pub use solid::{BspSolid, Containment, PointClass, Region, SolidChild, SolidNode};
+pub use winged_edge::{
+    Edge, EdgeKey, Face, FaceKey, FaceSplit, Vertex, VertexKey, VertexPosition, WingedMesh,
+};

@@ -4,3 +4,4 @@ mod common;
 mod scene_bsp;
 mod solid;
 mod split;
+mod winged_edge;

@@ -1,0 +1,194 @@
+//! Winged-edge meshes: every invariant after random sequences of face
+//! splits, edge splits, merges and vertex removals, with the area kept.
+
+use crate::common::{convex_polygon, gp, plane};
+use bsp_core::{
+    ConvexPolygon, FaceKey, FaceSplit, ImplicitPoint, Plane, Side, VertexPosition, WingedMesh,
+};
+use proptest::prelude::*;
+
+#[derive(Debug, Clone)]
+enum Op {
+    SplitFace(usize, Plane),
+    SplitEdge(usize, Plane),
+    Merge(usize),
+    RemoveVertex(usize),
+}
+
+fn op() -> impl Strategy<Value = Op> {
+    prop_oneof![
+        3 => (0_usize..64, plane(1500)).prop_map(|(i, p)| Op::SplitFace(i, p)),
+        1 => (0_usize..64, plane(1500)).prop_map(|(i, p)| Op::SplitEdge(i, p)),
+        2 => (0_usize..64).prop_map(Op::Merge),
+        1 => (0_usize..64).prop_map(Op::RemoveVertex),
+    ]
+}
+
+fn total_area(mesh: &WingedMesh) -> f64 {
+    mesh.faces()
+        .map(|(f, _)| mesh.face_polygon(f, 0).unwrap().area())
+        .sum()
+}
+
+fn nth_face(mesh: &WingedMesh, i: usize) -> FaceKey {
+    let keys: Vec<FaceKey> = mesh.faces().map(|(k, _)| k).collect();
+    keys[i % keys.len()]
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(200))]
+
+    #[test]
+    fn random_operations_keep_every_invariant(polygon in convex_polygon(4000), ops in prop::collection::vec(op(), 1..30)) {
+        let mut mesh: WingedMesh = WingedMesh::from_polygon(&polygon, (), ());
+        mesh.check_invariants().map_err(TestCaseError::fail)?;
+        let area = polygon.area();
+        for op in ops {
+            match op {
+                Op::SplitFace(i, p) => {
+                    let f = nth_face(&mesh, i);
+                    let before = mesh.counts().2;
+                    match mesh.split_face(f, &p) {
+                        FaceSplit::Split { back, front, edge } => {
+                            prop_assert_eq!(mesh.counts().2, before + 1);
+                            let b = mesh.face_polygon(back, 0).unwrap();
+                            let fr = mesh.face_polygon(front, 0).unwrap();
+                            for i in 0..b.len() {
+                                prop_assert_ne!(b.vertex_side(i, &p), Side::Front);
+                            }
+                            for i in 0..fr.len() {
+                                prop_assert_ne!(fr.vertex_side(i, &p), Side::Back);
+                            }
+                            prop_assert!(mesh.edge(edge).unwrap().line.is_coincident(&p));
+                        }
+                        FaceSplit::NotSplit(side) => {
+                            prop_assert_ne!(side, Side::On);
+                            prop_assert_eq!(mesh.counts().2, before);
+                        }
+                    }
+                }
+                Op::SplitEdge(i, p) => {
+                    let edges: Vec<_> = mesh.edges().map(|(k, e)| (k, e.line, e.left.or(e.right).unwrap())).collect();
+                    let (e, line, face) = edges[i % edges.len()];
+                    let support = mesh.face(face).unwrap().support;
+                    if let Ok(point) = ImplicitPoint::new(support, line, p) {
+                        // Inside the edge or not, the mesh decides exactly.
+                        let (v, e) = match mesh.split_edge(e, VertexPosition::Implicit(point)) {
+                            Ok(split) => split,
+                            Err(_) => continue,
+                        };
+                        prop_assert!(mesh.vertex(v).unwrap().position.same_point(&VertexPosition::Implicit(point)));
+                        prop_assert!(mesh.edge(e).is_some());
+                    }
+                }
+                Op::Merge(i) => {
+                    let edges: Vec<_> = mesh.edges().map(|(k, _)| k).collect();
+                    let e = edges[i % edges.len()];
+                    let faces = mesh.counts().2;
+                    if mesh.merge_faces(e).is_ok() {
+                        prop_assert_eq!(mesh.counts().2, faces - 1);
+                    }
+                }
+                Op::RemoveVertex(i) => {
+                    let vertices: Vec<_> = mesh.faces().flat_map(|(f, _)| mesh.face_vertices(f)).collect();
+                    let v = vertices[i % vertices.len()];
+                    mesh.remove_vertex_if_collinear(v);
+                }
+            }
+            mesh.check_invariants().map_err(TestCaseError::fail)?;
+            let now = total_area(&mesh);
+            prop_assert!((now - area).abs() <= 1e-9 * area, "area {now} vs {area}");
+        }
+    }
+
+    #[test]
+    fn merging_undoes_a_split(polygon in convex_polygon(4000), p in plane(1500)) {
+        let mut mesh: WingedMesh<u8, u8> = WingedMesh::from_polygon(&polygon, 7, 1);
+        let original = mesh.counts();
+        let face = mesh.faces().next().unwrap().0;
+        if let FaceSplit::Split { back, front, edge } = mesh.split_face(face, &p) {
+            prop_assert_eq!(mesh.face(front).unwrap().data, 7);
+            let (start, end) = { let e = mesh.edge(edge).unwrap(); (e.start, e.end) };
+            prop_assert_eq!(mesh.merge_faces(edge).unwrap(), front);
+            prop_assert!(mesh.face(back).is_none());
+            // The cut's ends are straight vertices now, unless they were
+            // vertices of the polygon.
+            mesh.remove_vertex_if_collinear(start);
+            mesh.remove_vertex_if_collinear(end);
+            mesh.check_invariants().map_err(TestCaseError::fail)?;
+            prop_assert_eq!(mesh.counts(), original);
+            let f = mesh.faces().next().unwrap().0;
+            let rebuilt = mesh.face_polygon(f, 0).unwrap();
+            prop_assert!((rebuilt.area() - polygon.area()).abs() <= 1e-9 * polygon.area());
+        }
+    }
+}
+
+#[test]
+fn walks_around_faces_and_vertices() {
+    let square =
+        ConvexPolygon::from_grid_points(&[gp(0, 0, 0), gp(8, 0, 0), gp(8, 8, 0), gp(0, 8, 0)], 0)
+            .unwrap();
+    let mut mesh: WingedMesh<char, ()> = WingedMesh::from_polygon(&square, 'a', ());
+    let f = mesh.faces().next().unwrap().0;
+    assert_eq!(mesh.face_vertices(f).len(), 4);
+    // Cut along x = 4, then along y = 4 in the back half.
+    let x4 = Plane::with_normal_through([1, 0, 0], gp(4, 0, 0)).unwrap();
+    let FaceSplit::Split { back, front, .. } = mesh.split_face(f, &x4) else {
+        panic!("x = 4 cuts")
+    };
+    assert_eq!(mesh.face_outline(back).len(), 4);
+    assert_eq!(mesh.face_outline(front).len(), 4);
+    let y4 = Plane::with_normal_through([0, 1, 0], gp(0, 4, 0)).unwrap();
+    let FaceSplit::Split { edge: y_edge, .. } = mesh.split_face(back, &y4) else {
+        panic!("y = 4 cuts")
+    };
+    mesh.check_invariants().unwrap();
+    assert_eq!(mesh.counts(), (8, 10, 3));
+    // The vertex (4, 4) now has three edges and three faces.
+    let centre = mesh
+        .faces()
+        .flat_map(|(f, _)| mesh.face_vertices(f))
+        .find(|&v| mesh.vertex(v).unwrap().position.to_f64() == [4.0, 4.0, 0.0])
+        .unwrap();
+    assert_eq!(mesh.vertex_edges(centre).len(), 3);
+    let faces = mesh.vertex_faces(centre);
+    assert_eq!(faces.len(), 3);
+    assert!(faces.iter().all(Option::is_some));
+    // A plane through a vertex and along an edge touches without cutting.
+    assert_eq!(
+        mesh.split_face(front, &x4),
+        FaceSplit::NotSplit(Side::Front)
+    );
+    // The outside: a corner of the square has two edges, faces None and one.
+    let corner = mesh
+        .faces()
+        .flat_map(|(f, _)| mesh.face_vertices(f))
+        .find(|&v| mesh.vertex(v).unwrap().position.to_f64() == [8.0, 8.0, 0.0])
+        .unwrap();
+    let around = mesh.vertex_faces(corner);
+    assert_eq!(around.len(), 2);
+    assert!(around.contains(&None));
+    // Merging across the boundary is refused.
+    let boundary = mesh.edges().find(|(_, e)| e.right.is_none()).unwrap().0;
+    assert!(mesh.merge_faces(boundary).is_err());
+    // Undo the y = 4 cut, then x = 4: the chain of two collinear edges along
+    // x = 4 (split at (4, 4)) is joined before the merge.
+    mesh.merge_faces(y_edge).unwrap();
+    mesh.check_invariants().unwrap();
+    let x_edge = mesh
+        .edges()
+        .find(|(_, e)| e.left.is_some() && e.right.is_some())
+        .unwrap()
+        .0;
+    mesh.merge_faces(x_edge).unwrap();
+    mesh.check_invariants().unwrap();
+    let f = mesh.faces().next().unwrap().0;
+    assert_eq!(mesh.face_polygon(f, 0).unwrap().area(), 64.0);
+    // Straight vertices left on the outline can be removed.
+    for v in mesh.face_vertices(f) {
+        mesh.remove_vertex_if_collinear(v);
+    }
+    mesh.check_invariants().unwrap();
+    assert_eq!(mesh.counts(), (4, 4, 1));
+}
