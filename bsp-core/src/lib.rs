@@ -12,8 +12,9 @@
 //!
 //! On top of the predicates: [`ConvexPolygon`] splitting, the scene BSP
 //! ([`SceneBsp`], an autopartition with front-to-back traversal from a point
-//! or a direction) and BSP solids ([`BspSolid`], Thibault-Naylor in / out
-//! trees).
+//! or a direction), BSP solids ([`BspSolid`], Thibault-Naylor in / out
+//! trees), winged-edge meshes with exact vertices ([`WingedMesh`]) and lines
+//! on a receiver plane ([`ReceiverLine`]) for 2D subdivisions.
 //!
 //! # Example
 //!

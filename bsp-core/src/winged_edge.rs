@@ -98,6 +98,10 @@ pub struct Edge<E> {
     right_next: EdgeKey,
     /// The plane through the edge's line, the left face behind it.
     pub line: Plane,
+    /// Whether the right face lies in front of `line` (always so between
+    /// faces of one plane; between faces of two planes the line plane need
+    /// not separate them).
+    right_in_front: bool,
     /// The user's payload.
     pub data: E,
 }
@@ -181,6 +185,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                     right_prev: EdgeKey::default(),
                     right_next: EdgeKey::default(),
                     line: polygon.edges()[i],
+                    right_in_front: true,
                     data: edge_data.clone(),
                 })
             })
@@ -197,6 +202,128 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         }
         mesh.faces[face].edge = edges[0];
         mesh
+    }
+
+    /// A mesh glued from polygons with grid-point vertices: equal grid
+    /// points are one vertex, and an edge used by two polygons (once in
+    /// each direction) is one edge between their faces. Every polygon
+    /// carries `face_data` and every edge `edge_data`.
+    ///
+    /// Errors: a vertex that is not a grid point, an edge used twice in
+    /// the same direction or by more than two polygons (inconsistent
+    /// orientation or a non-manifold edge), or a vertex where the boundary
+    /// passes more than once.
+    pub fn from_polygons(
+        polygons: &[ConvexPolygon],
+        face_data: F,
+        edge_data: E,
+    ) -> Result<Self, Error> {
+        use std::collections::HashMap;
+        let mut mesh = Self {
+            vertices: SlotMap::with_key(),
+            edges: SlotMap::with_key(),
+            faces: SlotMap::with_key(),
+        };
+        let mut vertex_of: HashMap<GridPoint, VertexKey> = HashMap::new();
+        let mut edge_of: HashMap<(VertexKey, VertexKey), EdgeKey> = HashMap::new();
+        let mut loops: Vec<(FaceKey, Vec<EdgeKey>)> = Vec::new();
+        let mut polygon_of: HashMap<FaceKey, usize> = HashMap::new();
+        for (index, polygon) in polygons.iter().enumerate() {
+            let n = polygon.len();
+            let mut keys = Vec::with_capacity(n);
+            for i in 0..n {
+                let p = polygon.vertex_grid_point(i).ok_or(Error::NonPlanar)?;
+                let key = *vertex_of.entry(p).or_insert_with(|| {
+                    mesh.vertices.insert(Vertex {
+                        position: VertexPosition::Grid(p),
+                        edge: EdgeKey::default(),
+                    })
+                });
+                keys.push(key);
+            }
+            let face = mesh.faces.insert(Face {
+                support: *polygon.support(),
+                edge: EdgeKey::default(),
+                data: face_data.clone(),
+            });
+            polygon_of.insert(face, index);
+            let mut walk = Vec::with_capacity(n);
+            for i in 0..n {
+                let (a, b) = (keys[i], keys[(i + 1) % n]);
+                if edge_of.contains_key(&(a, b)) {
+                    return Err(Error::NonConvex);
+                }
+                let e = match edge_of.get(&(b, a)) {
+                    Some(&e) if mesh.edges[e].right.is_none() => {
+                        mesh.edges[e].right = Some(face);
+                        // The left polygon's edge plane may be this face's
+                        // support (a cube's neighbours): then pick another
+                        // plane through the edge. Either way, record which
+                        // side of it this face is on.
+                        let left = mesh.edges[e].left.expect("glued edges have a left face");
+                        let left_polygon = &polygons[polygon_of[&left]];
+                        if mesh.edges[e].line.is_coincident(polygon.support()) {
+                            let (Some(p), Some(q)) = (
+                                polygon.vertex_grid_point(i),
+                                polygon.vertex_grid_point((i + 1) % n),
+                            ) else {
+                                return Err(Error::NonPlanar);
+                            };
+                            mesh.edges[e].line = line_between(p, q, left_polygon, polygon)
+                                .ok_or(Error::NonConvex)?;
+                        }
+                        let line = mesh.edges[e].line;
+                        mesh.edges[e].right_in_front = (0..n)
+                            .filter_map(|k| polygon.vertex_grid_point(k))
+                            .map(|v| predicates::side_of_point(&line, v))
+                            .any(|side| side == Side::Front);
+                        e
+                    }
+                    Some(_) => return Err(Error::NonConvex),
+                    None => mesh.edges.insert(Edge {
+                        start: a,
+                        end: b,
+                        left: Some(face),
+                        right: None,
+                        left_prev: EdgeKey::default(),
+                        left_next: EdgeKey::default(),
+                        right_prev: EdgeKey::default(),
+                        right_next: EdgeKey::default(),
+                        line: polygon.edges()[i],
+                        right_in_front: true,
+                        data: edge_data.clone(),
+                    }),
+                };
+                edge_of.insert((a, b), e);
+                mesh.vertices[a].edge = e;
+                walk.push(e);
+            }
+            mesh.faces[face].edge = walk[0];
+            loops.push((face, walk));
+        }
+        for (face, walk) in &loops {
+            let n = walk.len();
+            for i in 0..n {
+                mesh.set_next(walk[i], Some(*face), walk[(i + 1) % n]);
+                mesh.set_prev(walk[(i + 1) % n], Some(*face), walk[i]);
+            }
+        }
+        // The outside walks each boundary edge end -> start; at its start it
+        // continues along the boundary edge that ends there.
+        let mut boundary_ending_at: HashMap<VertexKey, EdgeKey> = HashMap::new();
+        for (k, e) in &mesh.edges {
+            if e.right.is_none() && boundary_ending_at.insert(e.end, k).is_some() {
+                return Err(Error::NonConvex);
+            }
+        }
+        let boundary: Vec<EdgeKey> = boundary_ending_at.values().copied().collect();
+        for e in boundary {
+            let start = mesh.edges[e].start;
+            let next = *boundary_ending_at.get(&start).ok_or(Error::NonConvex)?;
+            mesh.edges[e].right_next = next;
+            mesh.edges[next].right_prev = e;
+        }
+        Ok(mesh)
     }
 
     /// Number of vertices, edges and faces.
@@ -338,17 +465,22 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             .collect()
     }
 
+    /// The plane of edge `e` oriented with `side` (one of its faces) behind.
+    fn edge_plane_for(&self, e: EdgeKey, side: Option<FaceKey>) -> Plane {
+        let edge = &self.edges[e];
+        if edge.left == side || !edge.right_in_front {
+            edge.line
+        } else {
+            edge.line.flipped()
+        }
+    }
+
     /// The face's edge planes, counter-clockwise, each with the face behind
     /// it; a plane repeated by collinear edges appears once.
     fn face_planes(&self, f: FaceKey) -> Vec<Plane> {
         let mut planes: Vec<Plane> = Vec::new();
         for e in self.face_edges(f) {
-            let edge = &self.edges[e];
-            let plane = if edge.left == Some(f) {
-                edge.line
-            } else {
-                edge.line.flipped()
-            };
+            let plane = self.edge_plane_for(e, Some(f));
             if planes.last() != Some(&plane) {
                 planes.push(plane);
             }
@@ -413,6 +545,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             right_prev: old.right_prev,
             right_next: e,
             line: old.line,
+            right_in_front: old.right_in_front,
             data: old.data.clone(),
         });
         // The walk around the left face: e, second, old successor.
@@ -527,6 +660,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             right_prev: in_b,
             right_next: out_a,
             line: plane.flipped(),
+            right_in_front: true,
             data,
         });
         for &e in &front_edges {
@@ -546,7 +680,8 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
 
     /// Merges the two faces on either side of `e` by deleting it; the left
     /// face keeps its key and payload. Errors: `e` borders the outside or
-    /// the same face twice, or the union would not be convex.
+    /// the same face twice, the faces lie in different planes, or the union
+    /// would not be convex.
     pub fn merge_faces(&mut self, e: EdgeKey) -> Result<FaceKey, Error> {
         let edge = self.edges.get(e).ok_or(Error::NoIntersection)?.clone();
         let (Some(keep), Some(gone)) = (edge.left, edge.right) else {
@@ -554,6 +689,9 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         };
         if keep == gone {
             return Err(Error::TooFewVertices);
+        }
+        if self.faces[keep].support != self.faces[gone].support {
+            return Err(Error::NonPlanar);
         }
         // The two faces may share a straight chain of edges (a vertex of
         // degree two between them): join it into one edge first, so that
@@ -573,14 +711,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         let (a, d) = (edge.left_prev, edge.right_next);
         let (c, b) = (edge.right_prev, edge.left_next);
         for (arriving, from, leaving, to) in [(a, keep, d, gone), (c, gone, b, keep)] {
-            let plane = {
-                let x = &self.edges[arriving];
-                if x.left == Some(from) {
-                    x.line
-                } else {
-                    x.line.flipped()
-                }
-            };
+            let plane = self.edge_plane_for(arriving, Some(from));
             let y = &self.edges[leaving];
             let far = if y.left == Some(to) { y.end } else { y.start };
             if self.vertices[far].position.side(&plane) == Side::Front {
@@ -662,7 +793,10 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         std::mem::swap(&mut edge.left, &mut edge.right);
         std::mem::swap(&mut edge.left_prev, &mut edge.right_prev);
         std::mem::swap(&mut edge.left_next, &mut edge.right_next);
-        edge.line = edge.line.flipped();
+        // The new left face (the old right) must be behind the line.
+        if edge.right_in_front {
+            edge.line = edge.line.flipped();
+        }
     }
 
     /// Checks every invariant exactly: wings consistent and walks closed,
@@ -732,11 +866,56 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             }
             self.face_polygon(k, 0).map_err(|e| format!("{k:?}: {e}"))?;
         }
+        // Euler: each component is a disk (one outside walk, V - E + F = 1)
+        // or closed (none, V - E + F = 2); here only genus 0 is built, so
+        // V - E + F + (outside walks) = 2 (components).
+        let mut outside_walks = 0_i64;
+        let mut seen = std::collections::HashSet::new();
+        for (k, e) in &self.edges {
+            for side in [e.left, e.right] {
+                if side.is_none() && seen.insert(k) {
+                    outside_walks += 1;
+                    for g in self.walk(k, None) {
+                        seen.insert(g);
+                    }
+                }
+            }
+        }
         let euler = self.vertices.len() as i64 - self.edges.len() as i64 + self.faces.len() as i64;
-        if euler != 1 {
-            return Err(format!("V - E + F = {euler}, not 1"));
+        let components = self.components() as i64;
+        if euler + outside_walks != 2 * components {
+            return Err(format!(
+                "V - E + F = {euler} with {outside_walks} boundaries and {components} components"
+            ));
         }
         Ok(())
+    }
+
+    /// Connected components (through edges).
+    fn components(&self) -> usize {
+        let mut seen = std::collections::HashSet::new();
+        let mut count = 0;
+        for start in self.vertices.keys() {
+            if !seen.insert(start) {
+                continue;
+            }
+            count += 1;
+            let mut stack = vec![start];
+            while let Some(v) = stack.pop() {
+                for e in self.vertex_edges(v) {
+                    let edge = &self.edges[e];
+                    let other = if edge.start == v {
+                        edge.end
+                    } else {
+                        edge.start
+                    };
+                    if seen.insert(other) {
+                        stack.push(other);
+                    }
+                }
+            }
+        }
+        count
     }
 
     fn prev_in(&self, e: EdgeKey, side: Option<FaceKey>) -> EdgeKey {
@@ -747,6 +926,57 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             edge.right_prev
         }
     }
+}
+
+/// A plane through the segment `pq`, an edge shared by two polygons in
+/// different planes, that is neither polygon's support plane, oriented with
+/// `left` behind it. Small integer directions keep the coefficients within
+/// the kernel's bounds.
+fn line_between(
+    p: GridPoint,
+    q: GridPoint,
+    left: &ConvexPolygon,
+    right: &ConvexPolygon,
+) -> Option<Plane> {
+    const DIRECTIONS: [[i64; 3]; 7] = [
+        [1, 0, 0],
+        [0, 1, 0],
+        [0, 0, 1],
+        [1, 1, 0],
+        [1, 0, 1],
+        [0, 1, 1],
+        [1, 1, 1],
+    ];
+    let e = [
+        i64::from(q.x) - i64::from(p.x),
+        i64::from(q.y) - i64::from(p.y),
+        i64::from(q.z) - i64::from(p.z),
+    ];
+    for d in DIRECTIONS {
+        let normal = [
+            e[1] * d[2] - e[2] * d[1],
+            e[2] * d[0] - e[0] * d[2],
+            e[0] * d[1] - e[1] * d[0],
+        ];
+        let Some(plane) = Plane::with_normal_through(normal, p) else {
+            continue;
+        };
+        if plane.is_coincident(left.support()) || plane.is_coincident(right.support()) {
+            continue;
+        }
+        // The left polygon has a vertex off the plane (it is not the
+        // polygon's support): it decides the orientation.
+        let side = (0..left.len())
+            .filter_map(|k| left.vertex_grid_point(k))
+            .map(|v| predicates::side_of_point(&plane, v))
+            .find(|&s| s != Side::On)?;
+        return Some(if side == Side::Back {
+            plane
+        } else {
+            plane.flipped()
+        });
+    }
+    None
 }
 
 /// Whether `x`, on the line through `a` and `b`, lies strictly between

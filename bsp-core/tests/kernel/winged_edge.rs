@@ -192,3 +192,79 @@ fn walks_around_faces_and_vertices() {
     mesh.check_invariants().unwrap();
     assert_eq!(mesh.counts(), (4, 4, 1));
 }
+
+fn cube_faces(s: i64) -> Vec<ConvexPolygon> {
+    let c = |x: bool, y: bool, z: bool| {
+        gp(
+            if x { s } else { 0 },
+            if y { s } else { 0 },
+            if z { s } else { 0 },
+        )
+    };
+    let (f, t) = (false, true);
+    [
+        [c(f, f, f), c(f, t, f), c(t, t, f), c(t, f, f)],
+        [c(f, f, t), c(t, f, t), c(t, t, t), c(f, t, t)],
+        [c(f, f, f), c(t, f, f), c(t, f, t), c(f, f, t)],
+        [c(f, t, f), c(f, t, t), c(t, t, t), c(t, t, f)],
+        [c(f, f, f), c(f, f, t), c(f, t, t), c(f, t, f)],
+        [c(t, f, f), c(t, t, f), c(t, t, t), c(t, f, t)],
+    ]
+    .iter()
+    .map(|q| ConvexPolygon::from_grid_points(q, 0).unwrap())
+    .collect()
+}
+
+#[test]
+fn glued_polygons_share_vertices_and_edges() {
+    // A 2 x 2 grid of squares in z = 0: a disk.
+    let square = |x: i64, y: i64| {
+        ConvexPolygon::from_grid_points(
+            &[
+                gp(x, y, 0),
+                gp(x + 4, y, 0),
+                gp(x + 4, y + 4, 0),
+                gp(x, y + 4, 0),
+            ],
+            0,
+        )
+        .unwrap()
+    };
+    let grid = [square(0, 0), square(4, 0), square(0, 4), square(4, 4)];
+    let mesh: WingedMesh = WingedMesh::from_polygons(&grid, (), ()).unwrap();
+    mesh.check_invariants().unwrap();
+    assert_eq!(mesh.counts(), (9, 12, 4));
+    // The cube: a closed surface, every edge between two faces.
+    let cube: WingedMesh = WingedMesh::from_polygons(&cube_faces(6), (), ()).unwrap();
+    cube.check_invariants().unwrap();
+    assert_eq!(cube.counts(), (8, 12, 6));
+    assert!(
+        cube.edges()
+            .all(|(_, e)| e.left.is_some() && e.right.is_some())
+    );
+    // The same square twice is an inconsistent surface.
+    assert!(WingedMesh::<(), ()>::from_polygons(&[square(0, 0), square(0, 0)], (), ()).is_err());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(100))]
+
+    #[test]
+    fn a_closed_cube_survives_random_cuts_and_merges(cuts in prop::collection::vec((0_usize..64, plane(12)), 1..12), merges in prop::collection::vec(0_usize..64, 0..8)) {
+        let faces = cube_faces(6);
+        let mut mesh: WingedMesh = WingedMesh::from_polygons(&faces, (), ()).unwrap();
+        let area: f64 = faces.iter().map(ConvexPolygon::area).sum();
+        for (i, p) in cuts {
+            let f = nth_face(&mesh, i);
+            mesh.split_face(f, &p);
+            mesh.check_invariants().map_err(TestCaseError::fail)?;
+        }
+        for i in merges {
+            let edges: Vec<_> = mesh.edges().map(|(k, _)| k).collect();
+            let _ = mesh.merge_faces(edges[i % edges.len()]);
+            mesh.check_invariants().map_err(TestCaseError::fail)?;
+        }
+        let now = total_area(&mesh);
+        prop_assert!((now - area).abs() <= 1e-9 * area);
+    }
+}
