@@ -141,7 +141,10 @@ mod tests {
     #[test]
     fn behind_or_on_the_plane_is_zero() {
         let sq = square(1.0, 1.0);
-        assert_eq!(contour_integral(&sq, [0.0, 0.0, 2.0], [0.0, 0.0, -1.0]), 0.0);
+        assert_eq!(
+            contour_integral(&sq, [0.0, 0.0, 2.0], [0.0, 0.0, -1.0]),
+            0.0
+        );
         assert_eq!(contour_integral(&sq, [5.0, 0.0, 1.0], [0.0, 0.0, 1.0]), 0.0);
         assert_eq!(contour_integral(&sq, [0.3, 0.2, 1.0], [0.0, 0.0, 1.0]), 0.0);
     }

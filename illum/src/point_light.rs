@@ -252,7 +252,10 @@ mod tests {
         // r = 10: factor (20 - 10) / 15.
         let e = l.irradiance([0.0; 3], up, Sidedness::OneSided);
         assert!((e - 100.0 / 100.0 * (10.0 / 15.0)).abs() < 1e-15);
-        assert_eq!(l.irradiance([0.0, -10.0, 0.0], up, Sidedness::OneSided), 0.0);
+        assert_eq!(
+            l.irradiance([0.0, -10.0, 0.0], up, Sidedness::OneSided),
+            0.0
+        );
     }
 
     #[test]

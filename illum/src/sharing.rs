@@ -106,7 +106,10 @@ mod tests {
     fn rules() {
         assert_eq!(vertex_plan([Lit, Lit]), Ok(VertexPlan::Unoccluded));
         assert_eq!(vertex_plan([Umbra]), Ok(VertexPlan::Zero));
-        assert_eq!(vertex_plan([Penumbra, Penumbra]), Ok(VertexPlan::VisiblePart));
+        assert_eq!(
+            vertex_plan([Penumbra, Penumbra]),
+            Ok(VertexPlan::VisiblePart)
+        );
         assert_eq!(vertex_plan([Penumbra, Lit]), Ok(VertexPlan::Unoccluded));
         assert_eq!(vertex_plan([Umbra, Penumbra]), Ok(VertexPlan::VisiblePart));
         assert_eq!(vertex_plan([Lit, Umbra]), Ok(VertexPlan::Split));
@@ -124,6 +127,9 @@ mod tests {
         assert!(!p.needs_visibility());
         assert!(VertexPlan::VisiblePart.needs_visibility());
         // Penumbra next to umbra is evaluated, not promoted to umbra.
-        assert_eq!(VertexPlan::VisiblePart.value_for(Umbra), VertexValue::VisiblePart);
+        assert_eq!(
+            VertexPlan::VisiblePart.value_for(Umbra),
+            VertexValue::VisiblePart
+        );
     }
 }

@@ -153,12 +153,7 @@ impl VisiblePart {
             self.next_pieces.clear();
             for r in &self.pieces {
                 let piece = &self.verts[r.start as usize..r.end as usize];
-                subtract(
-                    piece,
-                    &planes,
-                    &mut self.next_verts,
-                    &mut self.next_pieces,
-                );
+                subtract(piece, &planes, &mut self.next_verts, &mut self.next_pieces);
             }
             std::mem::swap(&mut self.verts, &mut self.next_verts);
             std::mem::swap(&mut self.pieces, &mut self.next_pieces);
@@ -268,7 +263,12 @@ mod tests {
 
     fn light() -> AreaLight {
         AreaLight::new(
-            &[[-1.0, -1.0, 2.0], [-1.0, 1.0, 2.0], [1.0, 1.0, 2.0], [1.0, -1.0, 2.0]],
+            &[
+                [-1.0, -1.0, 2.0],
+                [-1.0, 1.0, 2.0],
+                [1.0, 1.0, 2.0],
+                [1.0, -1.0, 2.0],
+            ],
             1.0,
         )
         .unwrap()
@@ -285,7 +285,12 @@ mod tests {
     #[test]
     fn big_occluder_hides_everything_either_orientation() {
         let mut vp = VisiblePart::new();
-        let ccw = [[-5.0, -5.0, 1.0], [5.0, -5.0, 1.0], [5.0, 5.0, 1.0], [-5.0, 5.0, 1.0]];
+        let ccw = [
+            [-5.0, -5.0, 1.0],
+            [5.0, -5.0, 1.0],
+            [5.0, 5.0, 1.0],
+            [-5.0, 5.0, 1.0],
+        ];
         let mut cw = ccw;
         cw.reverse();
         for occ in [ccw, cw] {
@@ -297,8 +302,18 @@ mod tests {
     #[test]
     fn occluder_beyond_light_or_behind_point_blocks_nothing() {
         let mut vp = VisiblePart::new();
-        let far = [[-5.0, -5.0, 3.0], [5.0, -5.0, 3.0], [5.0, 5.0, 3.0], [-5.0, 5.0, 3.0]];
-        let behind = [[-5.0, -5.0, -1.0], [5.0, -5.0, -1.0], [5.0, 5.0, -1.0], [-5.0, 5.0, -1.0]];
+        let far = [
+            [-5.0, -5.0, 3.0],
+            [5.0, -5.0, 3.0],
+            [5.0, 5.0, 3.0],
+            [-5.0, 5.0, 3.0],
+        ];
+        let behind = [
+            [-5.0, -5.0, -1.0],
+            [5.0, -5.0, -1.0],
+            [5.0, 5.0, -1.0],
+            [-5.0, 5.0, -1.0],
+        ];
         vp.compute(&light(), &[far, behind], [0.0; 3]);
         assert!((vp.area() - 4.0).abs() < 1e-12);
     }
@@ -306,7 +321,12 @@ mod tests {
     #[test]
     fn half_occluder_hides_half() {
         // Occluder at height 1 covering x < 0 as seen from the origin.
-        let occ = [[-5.0, -5.0, 1.0], [0.0, -5.0, 1.0], [0.0, 5.0, 1.0], [-5.0, 5.0, 1.0]];
+        let occ = [
+            [-5.0, -5.0, 1.0],
+            [0.0, -5.0, 1.0],
+            [0.0, 5.0, 1.0],
+            [-5.0, 5.0, 1.0],
+        ];
         let mut vp = VisiblePart::new();
         vp.compute(&light(), &[occ], [0.0; 3]);
         assert!((vp.area() - 2.0).abs() < 1e-12, "{}", vp.area());
@@ -317,7 +337,12 @@ mod tests {
 
     #[test]
     fn small_occluder_leaves_a_hole_as_pieces() {
-        let occ = [[-0.1, -0.1, 1.0], [0.1, -0.1, 1.0], [0.1, 0.1, 1.0], [-0.1, 0.1, 1.0]];
+        let occ = [
+            [-0.1, -0.1, 1.0],
+            [0.1, -0.1, 1.0],
+            [0.1, 0.1, 1.0],
+            [-0.1, 0.1, 1.0],
+        ];
         let mut vp = VisiblePart::new();
         vp.compute(&light(), &[occ], [0.0; 3]);
         assert_eq!(vp.len(), 4);
