@@ -50,7 +50,7 @@ impl AreaLight {
             .fold(0.0_f64, f64::max);
         let twice_area = area_normal(vertices);
         let len = norm(twice_area);
-        if !(len > 1e-12 * size * size) || size == 0.0 {
+        if size == 0.0 || len <= 1e-12 * size * size {
             return Err(IllumError::Degenerate);
         }
         let normal = scale(twice_area, 1.0 / len);

@@ -58,3 +58,7 @@ pub use point_light::{DirectionalLight, Falloff, PointLight, Sidedness};
 pub use sharing::{FragmentClass, VertexPlan, VertexValue, vertex_plan};
 pub use vec3::Vec3;
 pub use visibility::{VisiblePart, visible_irradiance};
+
+/// The rayon the batch functions run on: call them inside
+/// `rayon::ThreadPool::install` to choose the number of threads.
+pub use rayon;

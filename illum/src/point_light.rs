@@ -177,7 +177,7 @@ impl DirectionalLight {
     pub fn new(direction: Vec3, irradiance: f64) -> Result<Self, IllumError> {
         let direction = check_vec(direction)?;
         let len = norm(direction);
-        if !(len > 0.0) || !len.is_finite() {
+        if len == 0.0 || !len.is_finite() {
             return Err(IllumError::BadVector { value: direction });
         }
         Ok(Self {

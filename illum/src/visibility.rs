@@ -48,13 +48,15 @@ enum Split {
     Outside,
     /// Wholly inside.
     Inside,
-    /// On both sides: the inside part and the outside part.
-    Both(Buf, Buf),
+    /// On both sides: the inside and outside parts were written out.
+    Both,
 }
 
 type Buf = SmallVec<[Vec3; 16]>;
 
-fn split(poly: &[Vec3], h: HalfSpace) -> Split {
+/// Splits convex `poly` by `h`; on [`Split::Both`], `inside` and `outside`
+/// hold the two parts.
+fn split(poly: &[Vec3], h: HalfSpace, inside: &mut Buf, outside: &mut Buf) -> Split {
     let mut pos = false;
     let mut neg = false;
     for v in poly {
@@ -66,8 +68,8 @@ fn split(poly: &[Vec3], h: HalfSpace) -> Split {
         (false, _) => Split::Outside,
         (true, false) => Split::Inside,
         (true, true) => {
-            let mut inside = Buf::new();
-            let mut outside = Buf::new();
+            inside.clear();
+            outside.clear();
             let mut prev = poly[poly.len() - 1];
             let mut sp = dot(h.m, sub(prev, h.q));
             for &v in poly {
@@ -86,7 +88,7 @@ fn split(poly: &[Vec3], h: HalfSpace) -> Split {
                 prev = v;
                 sp = sv;
             }
-            Split::Both(inside, outside)
+            Split::Both
         }
     }
 }
@@ -216,16 +218,18 @@ fn subtract(
         }
     };
     let mut cur = Buf::from_slice(piece);
+    let mut inside = Buf::new();
+    let mut outside = Buf::new();
     for &h in planes {
-        match split(&cur, h) {
+        match split(&cur, h, &mut inside, &mut outside) {
             Split::Outside => {
                 push(&cur);
                 return;
             }
             Split::Inside => {}
-            Split::Both(inside, outside) => {
+            Split::Both => {
                 push(&outside);
-                cur = inside;
+                std::mem::swap(&mut cur, &mut inside);
             }
         }
     }
