@@ -42,6 +42,7 @@
 //! ```
 
 mod area_light;
+mod atan;
 mod batch;
 mod contour_integral;
 mod error;

@@ -151,6 +151,17 @@ impl VisiblePart {
             if !blocked_region(occ.as_ref(), p, &mut planes) {
                 continue;
             }
+            // The pieces lie in the light: an occluder whose blocked region
+            // misses the whole light leaves them as they are.
+            let misses = planes.iter().any(|h| {
+                light
+                    .vertices()
+                    .iter()
+                    .all(|v| dot(h.m, sub(*v, h.q)) <= 0.0)
+            });
+            if misses {
+                continue;
+            }
             self.next_verts.clear();
             self.next_pieces.clear();
             for r in &self.pieces {
