@@ -3,6 +3,10 @@
 //! odd polynomial of degree 23), about 1 ulp like the libm call it replaces,
 //! but cheap enough to interleave across the edges of a polygon.
 
+// The constants are fdlibm's, digit for digit as published (its
+// atan(1) = pi/4 entry included), so that they can be checked against it.
+#![allow(clippy::excessive_precision, clippy::approx_constant)]
+
 const ATAN_HI: [f64; 4] = [
     4.636_476_090_008_060_935_15e-01,
     7.853_981_633_974_482_789_99e-01,
