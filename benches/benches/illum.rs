@@ -1,0 +1,144 @@
+//! Throughput of direct illumination: unoccluded quad-light irradiance
+//! (Lambert's contour integral with the horizon clip), the same through the
+//! visible part past 10 occluders, and the batch on 1 and 2 threads.
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use illum::{
+    AreaLight, Receiver, Sidedness::OneSided, Vec3, VisiblePart, area_irradiance_batch,
+    visible_irradiance,
+};
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+use std::hint::black_box;
+
+/// Receivers per measured batch.
+const BATCH: usize = 4096;
+
+fn light() -> AreaLight {
+    // Cornell-box-like light at y = 10, emitting -y.
+    AreaLight::new(
+        &[
+            [-1.0, 10.0, -1.0],
+            [1.0, 10.0, -1.0],
+            [1.0, 10.0, 1.0],
+            [-1.0, 10.0, 1.0],
+        ],
+        1.0,
+    )
+    .unwrap()
+}
+
+fn receivers(n: usize, seed: u64) -> Vec<Receiver> {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    (0..n)
+        .map(|_| {
+            let d: [f64; 3] = [
+                rng.random_range(-0.8..0.8),
+                1.0,
+                rng.random_range(-0.8..0.8),
+            ];
+            let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            Receiver {
+                position: [
+                    rng.random_range(-4.0..4.0),
+                    rng.random_range(0.0..1.0),
+                    rng.random_range(-4.0..4.0),
+                ],
+                normal: [d[0] / l, d[1] / l, d[2] / l],
+            }
+        })
+        .collect()
+}
+
+/// Ten triangles between the receivers and the light.
+fn occluders(seed: u64) -> Vec<[Vec3; 3]> {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    (0..10)
+        .map(|_| {
+            let c = [
+                rng.random_range(-2.0..2.0),
+                rng.random_range(3.0..8.0),
+                rng.random_range(-2.0..2.0),
+            ];
+            std::array::from_fn(|_| {
+                [
+                    c[0] + rng.random_range(-1.0..1.0),
+                    c[1] + rng.random_range(-0.3..0.3),
+                    c[2] + rng.random_range(-1.0..1.0),
+                ]
+            })
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let light = light();
+    let rs = receivers(BATCH, 5);
+    let occ = occluders(6);
+
+    let mut g = c.benchmark_group("illum");
+    g.throughput(Throughput::Elements(BATCH as u64));
+    g.bench_function("unoccluded quad light", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for r in &rs {
+                acc += light.irradiance(black_box(r.position), r.normal, OneSided);
+            }
+            acc
+        })
+    });
+    let mut scratch = VisiblePart::new();
+    g.bench_function("visible part, 10 occluders", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for r in &rs {
+                acc += visible_irradiance(
+                    &light,
+                    &occ,
+                    black_box(r.position),
+                    r.normal,
+                    OneSided,
+                    &mut scratch,
+                );
+            }
+            acc
+        })
+    });
+    let big = receivers(16 * BATCH, 7);
+    let mut out = vec![0.0; big.len()];
+    g.throughput(Throughput::Elements(big.len() as u64));
+    for threads in [1, 2] {
+        let pool = illum::rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        g.bench_function(format!("batch, 10 occluders, {threads} threads"), |b| {
+            b.iter(|| {
+                pool.install(|| area_irradiance_batch(&light, &occ, &big, OneSided, &mut out))
+                    .unwrap();
+                black_box(out[0])
+            })
+        });
+    }
+    g.finish();
+
+    // How much of the light the occluders hide on average (context for the
+    // occluded figure).
+    let full: f64 = rs
+        .iter()
+        .map(|r| light.irradiance(r.position, r.normal, OneSided))
+        .sum();
+    let vis: f64 = rs
+        .iter()
+        .map(|r| visible_irradiance(&light, &occ, r.position, r.normal, OneSided, &mut scratch))
+        .sum();
+    println!(
+        "visible fraction of the irradiance over the batch: {:.3}",
+        vis / full
+    );
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
