@@ -10,14 +10,13 @@
 //! ```
 //!
 //! which is the irradiance itself (not divided by pi). Each term is computed
-//! as `(n . c) * atan2(|c|, a . b) / |c|` (an inlined fdlibm `atan2`) with `c = (v_{i+1} - v_i) x a`:
+//! as `(n . c) * atan2(|c|, a . b) / |c|` with `c = (v_{i+1} - v_i) x a`:
 //! the edge vector is taken from the vertices (no cancellation when `p` is
 //! far away), and an edge collinear with `p` (`c = 0`) contributes 0 with no
 //! division. Before summing, the polygon is clipped by the receiver's tangent
 //! plane, keeping `(x - p) . n > 0` (Sutherland–Hodgman on one plane, in a
 //! fixed-size buffer).
 
-use crate::atan::atan2_pos;
 use crate::vec3::{Vec3, area_normal, cross, dot, lerp, norm, sub};
 use smallvec::SmallVec;
 
@@ -83,7 +82,7 @@ fn sum_edges(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
         let c = cross(sub(v, prev), a);
         let len = norm(c);
         if len > 0.0 {
-            sum += dot(n, c) * (atan2_pos(len, dot(a, b)) / len);
+            sum += dot(n, c) * (len.atan2(dot(a, b)) / len);
         }
         a = b;
         prev = v;

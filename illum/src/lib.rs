@@ -42,7 +42,6 @@
 //! ```
 
 mod area_light;
-mod atan;
 mod batch;
 mod contour_integral;
 mod error;
