@@ -39,6 +39,7 @@ pub fn shadow_scene(scene: &Scene) -> Result<ShadowResult> {
         })?;
 
     let illum_started = Instant::now();
+    let illum_lights = illum_lights(scene, &pieces)?;
     let mut mesh = OutputMesh::default();
     for fragment in &out.fragments {
         let piece = &pieces.polygons[fragment.polygon.source() as usize];
@@ -47,7 +48,7 @@ pub fn shadow_scene(scene: &Scene) -> Result<ShadowResult> {
         let first = mesh.vertices.len() as u32;
         for v in fragment.polygon.vertices_f64() {
             let p = pieces.grid.grid_to_world(v);
-            let e = irradiance(scene, &pieces, p, normal, two_sided, fragment.lit_mask);
+            let e = irradiance(&illum_lights, p, normal, two_sided, fragment.lit_mask);
             mesh.vertices.push((p, e as f32));
         }
         mesh.faces.push(OutputFace {
@@ -145,47 +146,70 @@ fn grid_edges(piece: &ConvexPolygon) -> impl Iterator<Item = (GridPoint, GridPoi
     })
 }
 
+/// A light as `illum` evaluates it (area lights are not supported yet).
+enum IllumLight {
+    Point(illum::PointLight),
+    Directional(illum::DirectionalLight),
+}
+
+/// The scene's lights for `illum`, at their snapped positions so that
+/// illumination and classification agree. Intensities and falloffs were
+/// validated when the scene was loaded.
+fn illum_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<IllumLight>> {
+    let mut out = Vec::with_capacity(scene.lights.len());
+    for (i, (light, snapped)) in scene.lights.iter().zip(&pieces.lights).enumerate() {
+        let field = |message: String| Error::Field {
+            path: scene.path.clone(),
+            field: format!("light[{i}]"),
+            message,
+        };
+        let made = match (&light.kind, snapped) {
+            (LightKind::Point { .. }, SnappedLight::Point(g)) => {
+                let mut point = illum::PointLight::new(pieces.grid.to_world(*g), light.intensity)
+                    .map_err(|e| field(e.to_string()))?;
+                if let Some(f) = light.falloff {
+                    let falloff = illum::Falloff::new(f.start, f.range, f.exponent)
+                        .map_err(|e| field(e.to_string()))?;
+                    point = point.with_falloff(falloff);
+                }
+                IllumLight::Point(point)
+            }
+            (LightKind::Directional { direction }, _) => IllumLight::Directional(
+                illum::DirectionalLight::new(*direction, light.intensity)
+                    .map_err(|e| field(e.to_string()))?,
+            ),
+            _ => {
+                return Err(field(
+                    "area lights are not supported by `umbra shadow` yet".into(),
+                ));
+            }
+        };
+        out.push(made);
+    }
+    Ok(out)
+}
+
 /// Direct irradiance at world point `p` with unit normal `normal`, from
 /// every light whose bit is set in `lit_mask` (ambient excluded).
 fn irradiance(
-    scene: &Scene,
-    pieces: &Pieces,
+    lights: &[IllumLight],
     p: [f64; 3],
     normal: [f64; 3],
     two_sided: bool,
     lit_mask: u32,
 ) -> f64 {
-    let mut total = 0.0;
-    for (i, (light, snapped)) in scene.lights.iter().zip(&pieces.lights).enumerate() {
-        if lit_mask & (1 << i) == 0 {
-            continue;
-        }
-        let facing = |cos: f64| if two_sided { cos.abs() } else { cos.max(0.0) };
-        match (&light.kind, snapped) {
-            (LightKind::Point { .. }, SnappedLight::Point(g)) => {
-                // The snapped position, so light and geometry agree.
-                let l = pieces.grid.to_world(*g);
-                let d = [l[0] - p[0], l[1] - p[1], l[2] - p[2]];
-                let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-                if r2 == 0.0 {
-                    continue;
-                }
-                let r = r2.sqrt();
-                let cos = (d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2]) / r;
-                let falloff = light.falloff.map_or(1.0, |f| f.factor(r));
-                total += light.intensity * facing(cos) / r2 * falloff;
-            }
-            (LightKind::Directional { direction }, _) => {
-                let len =
-                    (direction[0].powi(2) + direction[1].powi(2) + direction[2].powi(2)).sqrt();
-                let cos = -(direction[0] * normal[0]
-                    + direction[1] * normal[1]
-                    + direction[2] * normal[2])
-                    / len;
-                total += light.intensity * facing(cos);
-            }
-            _ => {}
-        }
-    }
-    total
+    let sidedness = if two_sided {
+        illum::Sidedness::TwoSided
+    } else {
+        illum::Sidedness::OneSided
+    };
+    lights
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| lit_mask & (1 << i) != 0)
+        .map(|(_, light)| match light {
+            IllumLight::Point(l) => l.irradiance(p, normal, sidedness),
+            IllumLight::Directional(l) => l.irradiance(normal, sidedness),
+        })
+        .sum()
 }
