@@ -85,7 +85,7 @@ fn main() {
             let out = out.expect("ran at least once");
             let s = &out.lights[0];
             println!(
-                "{:<24} {:>7} {:>7} {:>7} {:>7} {:>9} {:>11.6}  (scene BSP {:.6}, SVBSP {:.6})",
+                "{:<24} {:>7} {:>7} {:>7} {:>7} {:>9} {:>11.6}  (scene BSP {:.6}, SVBSP {:.6}; {} shadow planes spared)",
                 format!("  umbra, {label}"),
                 pieces.len(),
                 s.front_facing_polygons,
@@ -94,7 +94,8 @@ fn main() {
                 out.fragments.len(),
                 best.0,
                 best.1,
-                best.2
+                best.2,
+                s.planes_skipped
             );
         }
     }
