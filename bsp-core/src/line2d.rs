@@ -60,22 +60,7 @@ impl ReceiverLine {
         if p == q {
             return Err(Error::TooFewVertices);
         }
-        let axis = receiver.dominant_axis();
-        let sign = receiver.normal()[axis].signum();
-        let d = [
-            i64::from(q.x) - i64::from(p.x),
-            i64::from(q.y) - i64::from(p.y),
-            i64::from(q.z) - i64::from(p.z),
-        ];
-        let mut e = [0_i64; 3];
-        e[axis] = sign;
-        // d x (sign e_axis): behind on the left, as for polygon edges.
-        let normal = [
-            d[1] * e[2] - d[2] * e[1],
-            d[2] * e[0] - d[0] * e[2],
-            d[0] * e[1] - d[1] * e[0],
-        ];
-        let plane = Plane::with_normal_through(normal, p).ok_or(Error::TooFewVertices)?;
+        let plane = Plane::edge_plane(&receiver, p, q).ok_or(Error::TooFewVertices)?;
         Self::new(receiver, plane)
     }
 

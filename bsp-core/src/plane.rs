@@ -68,6 +68,30 @@ impl Plane {
         Some(Self::normalized(normal[0], normal[1], normal[2], d))
     }
 
+    /// The edge plane of the directed segment `p -> q` in the plane
+    /// `support`: it holds the segment and the support normal's dominant
+    /// axis (so its coefficients stay small), and what lies on the left of
+    /// `p -> q`, seen from the support's front, is behind it. This is how
+    /// polygon edges and receiver lines are cut. `None` if `p == q`.
+    pub fn edge_plane(support: &Plane, p: GridPoint, q: GridPoint) -> Option<Self> {
+        let axis = support.dominant_axis();
+        let d = [
+            i64::from(q.x) - i64::from(p.x),
+            i64::from(q.y) - i64::from(p.y),
+            i64::from(q.z) - i64::from(p.z),
+        ];
+        let mut e = [0_i64; 3];
+        e[axis] = support.normal()[axis].signum();
+        // d x (sign e_axis): with (d x e) . (d x n) = |d|^2 |n_axis| > 0 the
+        // right-hand side of the edge, d x n, is in front.
+        let normal = [
+            d[1] * e[2] - d[2] * e[1],
+            d[2] * e[0] - d[0] * e[2],
+            d[0] * e[1] - d[1] * e[0],
+        ];
+        Self::with_normal_through(normal, p)
+    }
+
     fn normalized(a: i64, b: i64, c: i64, d: i128) -> Self {
         let g = gcd_u128(
             gcd_u128(

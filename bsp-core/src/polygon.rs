@@ -110,29 +110,12 @@ impl ConvexPolygon {
         }
         check_convex(&pts, &support)?;
 
-        let axis = support.dominant_axis();
-        let sign = support.normal()[axis].signum();
         let count = pts.len();
-        let mut edges = Vec::with_capacity(count);
-        for i in 0..count {
-            let (p, q) = (pts[i], pts[(i + 1) % count]);
-            let d = [
-                i64::from(q.x) - i64::from(p.x),
-                i64::from(q.y) - i64::from(p.y),
-                i64::from(q.z) - i64::from(p.z),
-            ];
-            // Normal d x (sign * e_axis): the plane through the edge, parallel
-            // to the dominant axis, with the polygon behind it.
-            let mut e = [0_i64; 3];
-            e[axis] = sign;
-            let normal = [
-                d[1] * e[2] - d[2] * e[1],
-                d[2] * e[0] - d[0] * e[2],
-                d[0] * e[1] - d[1] * e[0],
-            ];
-            let plane = Plane::with_normal_through(normal, p).ok_or(Error::ZeroArea)?;
-            edges.push(plane);
-        }
+        let edges = (0..count)
+            .map(|i| {
+                Plane::edge_plane(&support, pts[i], pts[(i + 1) % count]).ok_or(Error::ZeroArea)
+            })
+            .collect::<Result<Vec<Plane>, Error>>()?;
         Ok(Self {
             support,
             edges,

@@ -12,6 +12,11 @@ fn face_area(mesh: &OutputMesh, face: usize) -> f64 {
         .iter()
         .map(|&i| mesh.vertices[i as usize].0)
         .collect();
+    polygon_area(&v)
+}
+
+/// Area of a planar polygon (world units).
+fn polygon_area(v: &[[f64; 3]]) -> f64 {
     let mut n = [0.0; 3];
     for i in 1..v.len() - 1 {
         let a = [v[i][0] - v[0][0], v[i][1] - v[0][1], v[i][2] - v[0][2]];
@@ -132,20 +137,7 @@ fn demo_scenes_partition_every_input_polygon() {
             );
         }
         for (i, (_, polygon)) in scene.input_polygons().enumerate() {
-            let v = &polygon.vertices;
-            let mut n = [0.0; 3];
-            for k in 1..v.len() - 1 {
-                let a = [v[k][0] - v[0][0], v[k][1] - v[0][1], v[k][2] - v[0][2]];
-                let b = [
-                    v[k + 1][0] - v[0][0],
-                    v[k + 1][1] - v[0][1],
-                    v[k + 1][2] - v[0][2],
-                ];
-                n[0] += a[1] * b[2] - a[2] * b[1];
-                n[1] += a[2] * b[0] - a[0] * b[2];
-                n[2] += a[0] * b[1] - a[1] * b[0];
-            }
-            let expected = 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let expected = polygon_area(&polygon.vertices);
             // Snapping moves vertices by less than a grid cell.
             assert!(
                 (area[i] - expected).abs() <= 1e-5 * expected.max(1.0),
@@ -270,20 +262,7 @@ fn degenerate_scenes_partition_and_classify_consistently() {
             }
         }
         for (i, (_, polygon)) in scene.input_polygons().enumerate() {
-            let v = &polygon.vertices;
-            let mut n = [0.0; 3];
-            for k in 1..v.len() - 1 {
-                let a = [v[k][0] - v[0][0], v[k][1] - v[0][1], v[k][2] - v[0][2]];
-                let b = [
-                    v[k + 1][0] - v[0][0],
-                    v[k + 1][1] - v[0][1],
-                    v[k + 1][2] - v[0][2],
-                ];
-                n[0] += a[1] * b[2] - a[2] * b[1];
-                n[1] += a[2] * b[0] - a[0] * b[2];
-                n[2] += a[0] * b[1] - a[1] * b[0];
-            }
-            let expected = 0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            let expected = polygon_area(&polygon.vertices);
             // Integer input snaps exactly (power-of-two grid): areas agree to
             // rounding.
             assert!(
