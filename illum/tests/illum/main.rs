@@ -5,6 +5,7 @@ mod closed_forms;
 mod cornell;
 mod errors;
 mod monte_carlo;
+mod scene_bsp;
 mod symmetry;
 
 use illum::{AreaLight, Vec3};
