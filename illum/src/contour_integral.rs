@@ -17,6 +17,7 @@
 //! plane, keeping `(x - p) . n > 0` (Sutherland–Hodgman on one plane, in a
 //! fixed-size buffer).
 
+use crate::angle::angle;
 use crate::vec3::{Vec3, area_normal, cross, dot, lerp, norm, sub};
 use smallvec::SmallVec;
 
@@ -82,12 +83,15 @@ fn sum_edges(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
         let c = cross(sub(v, prev), a);
         let len = norm(c);
         if len > 0.0 {
-            sum += dot(n, c) * (len.atan2(dot(a, b)) / len);
+            sum += dot(n, c) * (angle(len, dot(a, b)) / len);
         }
         a = b;
         prev = v;
     }
-    0.5 * sum
+    // The clipped light is above the horizon, so the true value is not
+    // negative; when the edge terms (each of order one) cancel, rounding
+    // can leave a few ulps below zero.
+    (0.5 * sum).max(0.0)
 }
 
 /// Irradiance at `p` (unit normal `n`) from a convex planar polygon of unit

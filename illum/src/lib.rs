@@ -41,6 +41,7 @@
 //! # Ok::<(), illum::IllumError>(())
 //! ```
 
+mod angle;
 mod area_light;
 mod batch;
 mod contour_integral;
