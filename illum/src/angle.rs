@@ -45,15 +45,26 @@ fn atan_unit(t: f64) -> f64 {
     }
 }
 
+/// The Taylor coefficients `(-1)^k / (2k + 1)` for `k = 1..=11`.
+const SERIES: [f64; 11] = {
+    let mut c = [0.0; 11];
+    let mut k = 1;
+    while k <= 11 {
+        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+        c[k - 1] = sign / (2 * k + 1) as f64;
+        k += 1;
+    }
+    c
+};
+
 /// `atan u` for `|u| <= 0.2`: the Taylor series to `u^23 / 23`.
 #[inline(always)]
 fn series(u: f64) -> f64 {
     let z = u * u;
+    // Horner from the highest term.
     let mut sum = 0.0;
-    // Horner from the highest term: coefficients (-1)^k / (2k + 1).
-    for k in (1..12).rev() {
-        let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
-        sum = z * (sign / (2 * k + 1) as f64 + sum);
+    for c in SERIES.iter().rev() {
+        sum = z * (c + sum);
     }
     u + u * sum
 }
