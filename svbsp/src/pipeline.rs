@@ -176,7 +176,10 @@ pub fn compute_shadows(
                     });
                     continue;
                 }
-                let whole = (!receives).then(|| fragment.polygon.clone());
+                // The tree may cut a fragment into pieces that all end up on
+                // one side (planes of neighbouring volumes cross it): then it
+                // stays whole, and only its lit pieces' volumes go in.
+                let original = fragment.polygon.clone();
                 let filtered = tree.filter(fragment.polygon);
                 for (polygon, slot) in &filtered.lit {
                     if flags[piece].casts_shadows {
@@ -190,29 +193,26 @@ pub fn compute_shadows(
                         }
                     }
                 }
-                if let Some(polygon) = whole {
-                    // It receives none of this light: its pieces were needed
-                    // only to cast, so it stays whole.
-                    next.push(Fragment {
-                        polygon,
-                        lit_mask: fragment.lit_mask,
-                        umbra_mask: fragment.umbra_mask | bit,
-                    });
-                    continue;
-                }
-                for (polygon, _) in filtered.lit {
-                    next.push(Fragment {
-                        polygon,
-                        lit_mask: fragment.lit_mask | bit,
-                        umbra_mask: fragment.umbra_mask,
-                    });
-                }
-                for polygon in filtered.shadowed {
-                    next.push(Fragment {
-                        polygon,
-                        lit_mask: fragment.lit_mask,
-                        umbra_mask: fragment.umbra_mask | bit,
-                    });
+                let lit_masks = (fragment.lit_mask | bit, fragment.umbra_mask);
+                let umbra_masks = (fragment.lit_mask, fragment.umbra_mask | bit);
+                let make = |polygon, (lit_mask, umbra_mask): (u32, u32)| Fragment {
+                    polygon,
+                    lit_mask,
+                    umbra_mask,
+                };
+                if !receives || filtered.lit.is_empty() {
+                    // It receives none of this light (turned away, or all in
+                    // shadow): whole, in umbra.
+                    next.push(make(original, umbra_masks));
+                } else if filtered.shadowed.is_empty() {
+                    next.push(make(original, lit_masks));
+                } else {
+                    for (polygon, _) in filtered.lit {
+                        next.push(make(polygon, lit_masks));
+                    }
+                    for polygon in filtered.shadowed {
+                        next.push(make(polygon, umbra_masks));
+                    }
                 }
             }
             fragments[k as usize] = next;
