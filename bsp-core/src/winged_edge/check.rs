@@ -1,0 +1,125 @@
+//! The invariants of a winged-edge mesh, checked exactly.
+
+use super::WingedMesh;
+use crate::predicates::Side;
+
+impl<F: Clone, E: Clone> WingedMesh<F, E> {
+    /// Checks every invariant exactly: wings consistent and walks closed,
+    /// incident edges valid, each face's vertices on its support plane, each
+    /// edge's ends on its line plane with the left face behind it, faces
+    /// strictly convex up to straight (collinear) vertices, and Euler's
+    /// formula `V - E + F = 1` for one connected disk.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        for (k, e) in &self.edges {
+            for (side, next, prev) in [
+                (e.left, e.left_next, e.left_prev),
+                (e.right, e.right_next, e.right_prev),
+            ] {
+                let n = self.edges.get(next).ok_or("dangling wing")?;
+                let p = self.edges.get(prev).ok_or("dangling wing")?;
+                if n.left != side && n.right != side {
+                    return Err(format!("{k:?}: successor is not on the same face"));
+                }
+                if p.left != side && p.right != side {
+                    return Err(format!("{k:?}: predecessor is not on the same face"));
+                }
+                if self.prev_in(next, side) != k || self.next_in(prev, side) != k {
+                    return Err(format!("{k:?}: wings disagree"));
+                }
+                // Consecutive in the walk: this edge's walk end is the
+                // successor's walk start.
+                let end = if e.left == side { e.end } else { e.start };
+                if self.walk_start(next, side) != end {
+                    return Err(format!("{k:?}: successor does not start where it ends"));
+                }
+            }
+            if e.left == e.right {
+                return Err(format!("{k:?}: the same face on both sides"));
+            }
+            let support = self.support_of(k);
+            for v in [e.start, e.end] {
+                let position = &self.vertices.get(v).ok_or("dangling vertex")?.position;
+                if position.side(&e.line) != Side::On || position.side(&support) != Side::On {
+                    return Err(format!("{k:?}: an end is off the edge's line"));
+                }
+            }
+        }
+        for (k, v) in &self.vertices {
+            let e = self.edges.get(v.edge).ok_or("vertex without edge")?;
+            if e.start != k && e.end != k {
+                return Err(format!("{k:?}: its edge does not touch it"));
+            }
+        }
+        for (k, face) in &self.faces {
+            let e = self.edges.get(face.edge).ok_or("face without edge")?;
+            if e.left != Some(k) && e.right != Some(k) {
+                return Err(format!("{k:?}: its edge does not border it"));
+            }
+            let planes = self.face_planes(k);
+            let vertices = self.face_vertices(k);
+            if planes.len() < 3 {
+                return Err(format!("{k:?}: fewer than three sides"));
+            }
+            for &v in &vertices {
+                let p = &self.vertices[v].position;
+                if p.side(&face.support) != Side::On {
+                    return Err(format!("{k:?}: a vertex is off the support plane"));
+                }
+                if planes.iter().any(|plane| p.side(plane) == Side::Front) {
+                    return Err(format!("{k:?}: not convex"));
+                }
+            }
+            self.face_polygon(k, 0).map_err(|e| format!("{k:?}: {e}"))?;
+        }
+        // Euler: each component is a disk (one outside walk, V - E + F = 1)
+        // or closed (none, V - E + F = 2); here only genus 0 is built, so
+        // V - E + F + (outside walks) = 2 (components).
+        let mut outside_walks = 0_i64;
+        let mut seen = std::collections::HashSet::new();
+        for (k, e) in &self.edges {
+            for side in [e.left, e.right] {
+                if side.is_none() && seen.insert(k) {
+                    outside_walks += 1;
+                    for g in self.walk(k, None) {
+                        seen.insert(g);
+                    }
+                }
+            }
+        }
+        let euler = self.vertices.len() as i64 - self.edges.len() as i64 + self.faces.len() as i64;
+        let components = self.components() as i64;
+        if euler + outside_walks != 2 * components {
+            return Err(format!(
+                "V - E + F = {euler} with {outside_walks} boundaries and {components} components"
+            ));
+        }
+        Ok(())
+    }
+
+    /// Connected components (through edges).
+    fn components(&self) -> usize {
+        let mut seen = std::collections::HashSet::new();
+        let mut count = 0;
+        for start in self.vertices.keys() {
+            if !seen.insert(start) {
+                continue;
+            }
+            count += 1;
+            let mut stack = vec![start];
+            while let Some(v) = stack.pop() {
+                for e in self.vertex_edges(v) {
+                    let edge = &self.edges[e];
+                    let other = if edge.start == v {
+                        edge.end
+                    } else {
+                        edge.start
+                    };
+                    if seen.insert(other) {
+                        stack.push(other);
+                    }
+                }
+            }
+        }
+        count
+    }
+}

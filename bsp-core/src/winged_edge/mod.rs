@@ -1,0 +1,343 @@
+//! Winged-edge meshes (Baumgart) with exact vertices and `slotmap` keys.
+//!
+//! A planar subdivision of convex faces, the structure that Chrysanthou &
+//! Slater keep their discontinuity meshes in: faces are split by planes,
+//! merged across edges and condensed again as objects move, and keys stay
+//! valid across deletions.
+//!
+//! # Conventions
+//!
+//! Walking a face counter-clockwise, seen from the front of its support
+//! plane, an edge with the face on its **left** is traversed from `start` to
+//! `end`, an edge with the face on its **right** from `end` to `start`. The
+//! wings of an edge are its predecessor and successor in those two walks
+//! (`left_prev`, `left_next`, `right_prev`, `right_next`). A side with no
+//! face (`None`) is the outside; its edges form closed walks too, linked by
+//! the same wings.
+//!
+//! Each edge stores a *line plane*: with the faces' support plane it cuts
+//! out the edge's line, and it is oriented with the left face behind it,
+//! like a [`ConvexPolygon`]'s edge planes. Vertices are grid points or
+//! implicit points; every decision goes through [`predicates`](crate::predicates).
+
+use crate::predicates::{self, Side};
+use crate::{ConvexPolygon, Error, GridPoint, ImplicitPoint, Plane};
+use slotmap::{SlotMap, new_key_type};
+
+mod build;
+mod check;
+mod edit;
+
+new_key_type! {
+    /// Handle of a vertex.
+    pub struct VertexKey;
+    /// Handle of an edge.
+    pub struct EdgeKey;
+    /// Handle of a face.
+    pub struct FaceKey;
+}
+
+/// Where a vertex is, exactly.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum VertexPosition {
+    /// An input grid point.
+    Grid(GridPoint),
+    /// The intersection of three planes.
+    Implicit(ImplicitPoint),
+}
+
+impl VertexPosition {
+    /// Side of `plane` the vertex lies on, exactly.
+    pub fn side(&self, plane: &Plane) -> Side {
+        match self {
+            VertexPosition::Grid(p) => predicates::side_of_point(plane, *p),
+            VertexPosition::Implicit(p) => p.side(plane),
+        }
+    }
+
+    /// Coordinates in grid units (for output only).
+    pub fn to_f64(&self) -> [f64; 3] {
+        match self {
+            VertexPosition::Grid(p) => p.to_f64(),
+            VertexPosition::Implicit(p) => p.to_f64(),
+        }
+    }
+
+    /// Whether both are the same point, exactly.
+    pub fn same_point(&self, other: &VertexPosition) -> bool {
+        match (self, other) {
+            (VertexPosition::Grid(a), VertexPosition::Grid(b)) => a == b,
+            (VertexPosition::Implicit(a), VertexPosition::Implicit(b)) => a.same_point(b),
+            (VertexPosition::Grid(g), VertexPosition::Implicit(p))
+            | (VertexPosition::Implicit(p), VertexPosition::Grid(g)) => p
+                .planes()
+                .iter()
+                .all(|plane| predicates::side_of_point(plane, *g) == Side::On),
+        }
+    }
+}
+
+/// A vertex and one edge incident to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vertex {
+    /// Its position.
+    pub position: VertexPosition,
+    edge: EdgeKey,
+}
+
+/// An edge with its wings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Edge<E> {
+    /// First vertex (left face walks from here).
+    pub start: VertexKey,
+    /// Second vertex.
+    pub end: VertexKey,
+    /// Face on the left (walked `start -> end`), or the outside.
+    pub left: Option<FaceKey>,
+    /// Face on the right (walked `end -> start`), or the outside.
+    pub right: Option<FaceKey>,
+    left_prev: EdgeKey,
+    left_next: EdgeKey,
+    right_prev: EdgeKey,
+    right_next: EdgeKey,
+    /// The plane through the edge's line, the left face behind it.
+    pub line: Plane,
+    /// Whether the right face lies in front of `line` (always so between
+    /// faces of one plane; between faces of two planes the line plane need
+    /// not separate them).
+    right_in_front: bool,
+    /// The user's payload.
+    pub data: E,
+}
+
+/// A face, its support plane and one edge of its boundary.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Face<F> {
+    /// The plane the face lies in; its front is the face's front.
+    pub support: Plane,
+    edge: EdgeKey,
+    /// The user's payload.
+    pub data: F,
+}
+
+/// What [`WingedMesh::split_face`] did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FaceSplit {
+    /// The plane does not cut the face's interior; the face lies on this
+    /// side of it (`On` never: a face has area).
+    NotSplit(Side),
+    /// The face was cut: the parts behind and in front of the plane, and
+    /// the new edge between them.
+    Split {
+        /// The part behind the plane (it keeps the face's key).
+        back: FaceKey,
+        /// The part in front.
+        front: FaceKey,
+        /// The edge along the plane.
+        edge: EdgeKey,
+    },
+}
+
+/// A winged-edge mesh of convex faces; see the module docs.
+#[derive(Debug, Clone)]
+pub struct WingedMesh<F = (), E = ()> {
+    vertices: SlotMap<VertexKey, Vertex>,
+    edges: SlotMap<EdgeKey, Edge<E>>,
+    faces: SlotMap<FaceKey, Face<F>>,
+}
+
+impl<F: Clone, E: Clone> WingedMesh<F, E> {
+    /// Number of vertices, edges and faces.
+    pub fn counts(&self) -> (usize, usize, usize) {
+        (self.vertices.len(), self.edges.len(), self.faces.len())
+    }
+
+    /// The faces.
+    pub fn faces(&self) -> impl Iterator<Item = (FaceKey, &Face<F>)> {
+        self.faces.iter()
+    }
+
+    /// The edges.
+    pub fn edges(&self) -> impl Iterator<Item = (EdgeKey, &Edge<E>)> {
+        self.edges.iter()
+    }
+
+    /// A face.
+    pub fn face(&self, f: FaceKey) -> Option<&Face<F>> {
+        self.faces.get(f)
+    }
+
+    /// A face's payload, mutably.
+    pub fn face_data_mut(&mut self, f: FaceKey) -> Option<&mut F> {
+        self.faces.get_mut(f).map(|face| &mut face.data)
+    }
+
+    /// An edge.
+    pub fn edge(&self, e: EdgeKey) -> Option<&Edge<E>> {
+        self.edges.get(e)
+    }
+
+    /// An edge's payload, mutably. An edge made by [`split_face`](Self::split_face)
+    /// starts with a copy of a neighbour's payload.
+    pub fn edge_data_mut(&mut self, e: EdgeKey) -> Option<&mut E> {
+        self.edges.get_mut(e).map(|edge| &mut edge.data)
+    }
+
+    /// A vertex.
+    pub fn vertex(&self, v: VertexKey) -> Option<&Vertex> {
+        self.vertices.get(v)
+    }
+
+    /// The successor of `e` in the walk of `side` (one of its faces).
+    fn next_in(&self, e: EdgeKey, side: Option<FaceKey>) -> EdgeKey {
+        let edge = &self.edges[e];
+        if edge.left == side {
+            edge.left_next
+        } else {
+            edge.right_next
+        }
+    }
+
+    fn set_next(&mut self, e: EdgeKey, side: Option<FaceKey>, next: EdgeKey) {
+        let edge = &mut self.edges[e];
+        if edge.left == side {
+            edge.left_next = next;
+        } else {
+            edge.right_next = next;
+        }
+    }
+
+    fn set_prev(&mut self, e: EdgeKey, side: Option<FaceKey>, prev: EdgeKey) {
+        let edge = &mut self.edges[e];
+        if edge.left == side {
+            edge.left_prev = prev;
+        } else {
+            edge.right_prev = prev;
+        }
+    }
+
+    fn set_side(&mut self, e: EdgeKey, from: Option<FaceKey>, to: Option<FaceKey>) {
+        let edge = &mut self.edges[e];
+        if edge.left == from {
+            edge.left = to;
+        } else {
+            edge.right = to;
+        }
+    }
+
+    /// The vertex an edge's walk around `side` starts from.
+    fn walk_start(&self, e: EdgeKey, side: Option<FaceKey>) -> VertexKey {
+        let edge = &self.edges[e];
+        if edge.left == side {
+            edge.start
+        } else {
+            edge.end
+        }
+    }
+
+    /// The edges around a face, counter-clockwise.
+    pub fn face_edges(&self, f: FaceKey) -> Vec<EdgeKey> {
+        self.walk(self.faces[f].edge, Some(f))
+    }
+
+    fn walk(&self, first: EdgeKey, side: Option<FaceKey>) -> Vec<EdgeKey> {
+        let mut out = vec![first];
+        let mut e = self.next_in(first, side);
+        while e != first && out.len() <= self.edges.len() {
+            out.push(e);
+            e = self.next_in(e, side);
+        }
+        out
+    }
+
+    /// The vertices around a face, counter-clockwise.
+    pub fn face_vertices(&self, f: FaceKey) -> Vec<VertexKey> {
+        self.face_edges(f)
+            .into_iter()
+            .map(|e| self.walk_start(e, Some(f)))
+            .collect()
+    }
+
+    /// The edges around a vertex, in the order of the faces around it.
+    pub fn vertex_edges(&self, v: VertexKey) -> Vec<EdgeKey> {
+        let first = self.vertices[v].edge;
+        let mut out = Vec::new();
+        let mut e = first;
+        loop {
+            out.push(e);
+            // Around v: leave along the face walk that arrives at v on e.
+            let edge = &self.edges[e];
+            let side = if edge.end == v { edge.left } else { edge.right };
+            e = self.next_in(e, side);
+            if e == first || out.len() > self.edges.len() {
+                return out;
+            }
+        }
+    }
+
+    /// The faces around a vertex (the outside as `None`).
+    pub fn vertex_faces(&self, v: VertexKey) -> Vec<Option<FaceKey>> {
+        self.vertex_edges(v)
+            .into_iter()
+            .map(|e| {
+                let edge = &self.edges[e];
+                if edge.end == v { edge.left } else { edge.right }
+            })
+            .collect()
+    }
+
+    /// The plane of edge `e` oriented with `side` (one of its faces) behind.
+    fn edge_plane_for(&self, e: EdgeKey, side: Option<FaceKey>) -> Plane {
+        let edge = &self.edges[e];
+        if edge.left == side || !edge.right_in_front {
+            edge.line
+        } else {
+            edge.line.flipped()
+        }
+    }
+
+    /// The face's edge planes, counter-clockwise, each with the face behind
+    /// it; a plane repeated by collinear edges appears once.
+    fn face_planes(&self, f: FaceKey) -> Vec<Plane> {
+        let mut planes: Vec<Plane> = Vec::new();
+        for e in self.face_edges(f) {
+            let plane = self.edge_plane_for(e, Some(f));
+            if planes.last() != Some(&plane) {
+                planes.push(plane);
+            }
+        }
+        if planes.len() > 1 && planes.first() == planes.last() {
+            planes.pop();
+        }
+        planes
+    }
+
+    /// The face as a convex polygon with source `source`.
+    pub fn face_polygon(&self, f: FaceKey, source: u32) -> Result<ConvexPolygon, Error> {
+        ConvexPolygon::from_planes(self.faces[f].support, &self.face_planes(f), source)
+    }
+
+    /// The face's outline in grid units, counter-clockwise (output only).
+    pub fn face_outline(&self, f: FaceKey) -> Vec<[f64; 3]> {
+        self.face_vertices(f)
+            .into_iter()
+            .map(|v| self.vertices[v].position.to_f64())
+            .collect()
+    }
+
+    /// The support plane of an edge's faces.
+    fn support_of(&self, e: EdgeKey) -> Plane {
+        let edge = &self.edges[e];
+        let f = edge.left.or(edge.right).expect("an edge has a face");
+        self.faces[f].support
+    }
+
+    fn prev_in(&self, e: EdgeKey, side: Option<FaceKey>) -> EdgeKey {
+        let edge = &self.edges[e];
+        if edge.left == side {
+            edge.left_prev
+        } else {
+            edge.right_prev
+        }
+    }
+}
