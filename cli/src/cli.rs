@@ -73,7 +73,7 @@ pub enum View {
     Shaded,
     /// Lit, penumbra and umbra in flat colours.
     Classes,
-    /// Every fragment in its own colour, with outlines.
+    /// The classes, with every fragment outlined.
     Fragments,
 }
 

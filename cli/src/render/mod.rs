@@ -28,7 +28,7 @@ pub use image::{Image, linear_to_srgb8, srgb8_to_linear};
 
 use crate::error::{Error, Result};
 use crate::mesh::OutputFace;
-use crate::scene::{Camera, Scene};
+use crate::scene::{Camera, LightKind, Scene};
 use crate::shadow::{ShadowResult, shadow_scene};
 use raster::{Corner, EMPTY, Samples};
 
@@ -66,14 +66,25 @@ pub enum FragmentClass {
 impl FragmentClass {
     /// The class of a fragment of a scene with `lights` lights.
     pub fn of(face: &OutputFace, lights: usize) -> Self {
+        Self::from_masks(face.lit_mask, face.umbra_mask, lights)
+    }
+
+    /// The class of the side of a fragment that the eye sees, where `seen`
+    /// has bit `i` if light `i` is on that side: the lights on the other
+    /// side light none of it.
+    pub fn of_seen_side(face: &OutputFace, lights: usize, seen: u32) -> Self {
+        Self::from_masks(face.lit_mask & seen, face.umbra_mask | !seen, lights)
+    }
+
+    fn from_masks(lit_mask: u32, umbra_mask: u32, lights: usize) -> Self {
         let all = if lights >= 32 {
             u32::MAX
         } else {
             (1u32 << lights) - 1
         };
-        if face.lit_mask & all != 0 {
+        if lit_mask & all != 0 {
             Self::Lit
-        } else if face.umbra_mask & all == all {
+        } else if umbra_mask & all == all {
             Self::Umbra
         } else {
             Self::Penumbra
@@ -198,17 +209,22 @@ pub fn render(scene: &Scene, shadows: &ShadowResult, view: View) -> Result<Image
         camera.height as usize * n,
         view == View::Shaded,
     );
-    let values = vertex_values(scene, shadows, view);
+    let exposed_albedo = ALBEDO * exposure(scene, shadows);
     let near = near_distance(&camera);
     let mesh = &shadows.mesh;
+    let mut classes = Vec::with_capacity(mesh.faces.len());
     let mut polygon: Vec<([f64; 3], [f64; 3])> = Vec::new();
     for (id, face) in mesh.faces.iter().enumerate() {
+        let seen = lights_on_seen_side(scene, shadows, face, camera.eye);
+        classes.push(FragmentClass::of_seen_side(face, shadows.lights, seen));
         polygon.clear();
         polygon.extend(face.vertices.iter().map(|&v| {
-            (
-                projection.to_view(mesh.vertices[v as usize].0),
-                values[v as usize],
-            )
+            let value = if view == View::Shaded {
+                shaded_value(scene, shadows, v as usize, seen).map(|c| exposed_albedo * c)
+            } else {
+                [0.0; 3]
+            };
+            (projection.to_view(mesh.vertices[v as usize].0), value)
         }));
         let clipped = clip_near(&polygon, near);
         let corners: Vec<Corner> = clipped
@@ -228,7 +244,7 @@ pub fn render(scene: &Scene, shadows: &ShadowResult, view: View) -> Result<Image
     }
     Ok(resolve(
         &samples,
-        shadows,
+        &classes,
         view,
         camera.width,
         camera.height,
@@ -266,25 +282,74 @@ fn near_distance(camera: &Camera) -> f64 {
     1e-3 * d.sqrt()
 }
 
-/// The linear colour to interpolate at every vertex: the exposed shaded
-/// colour in the shaded view (nothing is interpolated in the others).
-fn vertex_values(scene: &Scene, shadows: &ShadowResult, view: View) -> Vec<[f64; 3]> {
-    let vertices = shadows.mesh.vertices.len();
-    if view != View::Shaded {
-        return vec![[0.0; 3]; vertices];
-    }
-    let k = ALBEDO * exposure(scene, shadows);
-    (0..vertices)
-        .map(|v| {
-            let mut c = [scene.ambient; 3];
-            for (e, light) in shadows.vertex_light_irradiance(v).iter().zip(&scene.lights) {
-                for (ch, out) in c.iter_mut().enumerate() {
-                    *out += e * light.color[ch];
-                }
+/// `ambient + sum_i E_i * colour_i` at vertex `v`, over the lights whose
+/// bit is set in `seen` (linear, before albedo and exposure).
+fn shaded_value(scene: &Scene, shadows: &ShadowResult, v: usize, seen: u32) -> [f64; 3] {
+    let mut c = [scene.ambient; 3];
+    let per_light = shadows.vertex_light_irradiance(v).iter();
+    for (i, (e, light)) in per_light.zip(&scene.lights).enumerate() {
+        if seen & (1 << i) != 0 {
+            for (ch, out) in c.iter_mut().enumerate() {
+                *out += e * light.color[ch];
             }
-            c.map(|x| k * x)
-        })
-        .collect()
+        }
+    }
+    c
+}
+
+/// The lights (bit `i`: light `i`) on the side of the fragment's plane that
+/// the eye sees. The irradiance of a fragment is that of the side facing
+/// each light: a one-sided polygon seen from the back, or a two-sided one
+/// seen from the side away from a light, receives none of that light.
+/// Lights in the plane, and degenerate fragments, count as seen.
+fn lights_on_seen_side(
+    scene: &Scene,
+    shadows: &ShadowResult,
+    face: &OutputFace,
+    eye: [f64; 3],
+) -> u32 {
+    let corners: Vec<[f64; 3]> = face
+        .vertices
+        .iter()
+        .map(|&v| shadows.mesh.vertices[v as usize].0)
+        .collect();
+    // Newell's normal: robust for any planar polygon, zero if degenerate.
+    let mut normal = [0.0; 3];
+    for (i, a) in corners.iter().enumerate() {
+        let b = corners[(i + 1) % corners.len()];
+        normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    let origin = corners[0];
+    let side = |d: [f64; 3]| dot(normal, d);
+    let eye_side = side(sub(eye, origin));
+    let mut seen = 0;
+    for (i, light) in scene.lights.iter().enumerate() {
+        let light_side = match &light.kind {
+            LightKind::Point { position } => side(sub(*position, origin)),
+            LightKind::Directional { direction } => -side(*direction),
+            LightKind::Area { vertices } => {
+                let k = 1.0 / vertices.len() as f64;
+                let centre = vertices.iter().fold([0.0; 3], |c, v| {
+                    [c[0] + k * v[0], c[1] + k * v[1], c[2] + k * v[2]]
+                });
+                side(sub(centre, origin))
+            }
+        };
+        if eye_side * light_side >= 0.0 {
+            seen |= 1 << i;
+        }
+    }
+    seen
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The part of a convex polygon (view frame, with values) at depth `near`
@@ -315,17 +380,12 @@ fn clip_near(polygon: &[([f64; 3], [f64; 3])], near: f64) -> Vec<([f64; 3], [f64
 /// Averages the samples of every pixel (in linear light) into an sRGB image.
 fn resolve(
     samples: &Samples,
-    shadows: &ShadowResult,
+    classes: &[FragmentClass],
     view: View,
     width: u32,
     height: u32,
 ) -> Image {
-    let class_colour: Vec<[f32; 3]> = shadows
-        .mesh
-        .faces
-        .iter()
-        .map(|f| linear(FragmentClass::of(f, shadows.lights).srgb()))
-        .collect();
+    let class_colour: Vec<[f32; 3]> = classes.iter().map(|c| linear(c.srgb())).collect();
     let background = linear(match view {
         View::Shaded => BACKGROUND_SHADED,
         View::Classes | View::Fragments => BACKGROUND_CLASSES,
@@ -420,5 +480,11 @@ mod tests {
             FragmentClass::Penumbra
         );
         assert_eq!(FragmentClass::of(&face(0, 0), 0), FragmentClass::Umbra);
+        // Seen from the side of light 0 only: light 1 lights none of it.
+        let seen = FragmentClass::of_seen_side;
+        assert_eq!(seen(&face(0b10, 0b01), 2, 0b01), FragmentClass::Umbra);
+        assert_eq!(seen(&face(0b10, 0b01), 2, 0b10), FragmentClass::Lit);
+        assert_eq!(seen(&face(0b01, 0), 2, 0b01), FragmentClass::Lit);
+        assert_eq!(seen(&face(0, 0), 2, 0b01), FragmentClass::Penumbra);
     }
 }

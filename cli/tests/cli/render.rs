@@ -150,3 +150,51 @@ fn an_unwritable_output_leaves_nothing() {
     assert!(run.stderr.contains("missing/out.png"), "{}", run.stderr);
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
 }
+
+#[test]
+fn per_light_irradiance_adds_up_to_the_vertex_irradiance() {
+    let two_lights = SCENE.replace(
+        "[camera]",
+        "[[light]]\ntype = \"directional\"\ndirection = [1, -2, 0.5]\nintensity = 0.5\n\n[camera]",
+    );
+    let scene = Scene::from_toml_str(&two_lights, "scene.toml").unwrap();
+    let shadows = umbra::shadow_scene(&scene).unwrap();
+    assert_eq!(shadows.lights, 2);
+    assert_eq!(
+        shadows.light_irradiance.len(),
+        2 * shadows.mesh.vertices.len()
+    );
+    for face in &shadows.mesh.faces {
+        for &v in &face.vertices {
+            let per_light = shadows.vertex_light_irradiance(v as usize);
+            for (i, e) in per_light.iter().enumerate() {
+                if face.lit_mask & (1 << i) == 0 {
+                    assert_eq!(*e, 0.0);
+                }
+            }
+            let total: f64 = per_light.iter().sum();
+            let ply = f64::from(shadows.mesh.vertices[v as usize].1);
+            assert!(
+                (total - ply).abs() <= 1e-6 * total.max(1.0),
+                "{total} {ply}"
+            );
+        }
+    }
+}
+
+#[test]
+fn back_faces_are_drawn_dark() {
+    // The one-sided floor seen from below: its back shows, lit by the
+    // ambient term only, in front of the black background.
+    let below = SCENE.replace("eye = [0.0, 3.0, 12.0]", "eye = [0.0, -3.0, 12.0]");
+    let scene = Scene::from_toml_str(&below, "scene.toml").unwrap();
+    let p = Projection::new(&scene.camera.unwrap())
+        .project([6.5, 0.0, 1.0])
+        .unwrap();
+    let (x, y) = (p[0] as u32, p[1] as u32);
+    let shaded = umbra::render_scene(&scene, umbra::View::Shaded).unwrap();
+    let back = shaded.pixel(x, y);
+    assert!(back[0] > 0 && back[0] < 100, "{back:?}");
+    let classes = umbra::render_scene(&scene, umbra::View::Classes).unwrap();
+    assert_eq!(classes.pixel(x, y), FragmentClass::Umbra.srgb());
+}
