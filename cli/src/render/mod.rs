@@ -200,6 +200,11 @@ pub fn render_scene(scene: &Scene, view: View) -> Result<Image> {
 ///
 /// If the scene has no `[camera]`, or its image is larger than
 /// [`MAX_IMAGE_SIDE`] on a side.
+///
+/// # Panics
+///
+/// If `shadows` was not computed for `scene` (a face naming a vertex that
+/// does not exist, fewer per-light values than lights).
 pub fn render(scene: &Scene, shadows: &ShadowResult, view: View) -> Result<Image> {
     let camera = camera_of(scene)?;
     let projection = Projection::new(&camera);
@@ -321,7 +326,9 @@ fn lights_on_seen_side(
         normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
         normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
-    let origin = corners[0];
+    let Some(&origin) = corners.first() else {
+        return u32::MAX;
+    };
     let side = |d: [f64; 3]| dot(normal, d);
     let eye_side = side(sub(eye, origin));
     let mut seen = 0;
