@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, csg, save_csg_obj, save_obj, save_ply,
-    shadow_scene, write_demo,
+    Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, csg, render_scene, save_csg_obj, save_obj,
+    save_ply, shadow_scene, write_demo,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -73,7 +73,7 @@ pub enum View {
     Shaded,
     /// Lit, penumbra and umbra in flat colours.
     Classes,
-    /// Every fragment in its own colour, with outlines.
+    /// The classes, with every fragment outlined.
     Fragments,
 }
 
@@ -177,9 +177,6 @@ fn parse_vector(text: &str) -> std::result::Result<[f64; 3], String> {
     Ok(v)
 }
 
-const WAITS_FOR_SHADOWS: &str =
-    "the shadow computation (svbsp and area-shadow) is not wired into the command yet";
-
 /// A spinner with the current phase on a terminal (stderr); nothing when
 /// stderr is not a terminal, so scripts and logs stay quiet.
 struct Progress(Option<indicatif::ProgressBar>);
@@ -259,17 +256,39 @@ fn run_shadow(args: &ShadowArgs) -> Result<()> {
     Ok(())
 }
 
+/// `umbra render`: the image is written atomically, and only once the whole
+/// rendering succeeded.
+fn run_render(args: &RenderArgs) -> Result<()> {
+    let started = std::time::Instant::now();
+    let progress = Progress::start("loading the scene");
+    let scene = Scene::load(&args.scene)?;
+    progress.say("rendering");
+    let view = match args.view {
+        View::Shaded => umbra::View::Shaded,
+        View::Classes => umbra::View::Classes,
+        View::Fragments => umbra::View::Fragments,
+    };
+    let image = render_scene(&scene, view)?;
+    progress.say("writing");
+    image.save_png(&args.output)?;
+    progress.finish();
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "{}: {} x {} pixels, {:.3} s",
+        args.output.display(),
+        image.width,
+        image.height,
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 /// Runs one command.
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Shadow(args) => run_shadow(&args),
-        Command::Render(args) => {
-            Pieces::from_scene(&Scene::load(&args.scene)?)?;
-            Err(Error::NotImplemented {
-                command: "render",
-                reason: WAITS_FOR_SHADOWS,
-            })
-        }
+        Command::Render(args) => run_render(&args),
         Command::Dm(args) => {
             Pieces::from_scene(&Scene::load(&args.scene)?)?;
             Err(Error::NotImplemented {

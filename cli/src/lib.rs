@@ -10,6 +10,8 @@
 //!   binary or ASCII; [`load_ply`] reads it back), [`save_obj`], and
 //!   [`Stats`] (FORMATS.md §3); every file is written with [`write_atomic`],
 //!   so a failed run leaves no partial file;
+//! - [`render_scene`] draws the scene from its camera with its shadows into
+//!   an [`Image`] (PNG through [`Image::save_png`]), in one of the [`View`]s;
 //! - [`write_demo`] writes the built-in scenes; [`tetra_triangles`] is
 //!   Haines' SPD tetrahedra.
 //!
@@ -51,6 +53,7 @@ mod mesh;
 mod obj;
 mod obj_out;
 mod ply;
+mod render;
 mod scene;
 mod shadow;
 mod stats;
@@ -68,6 +71,10 @@ pub use mesh::{OutputFace, OutputMesh};
 pub use obj::{ObjFace, ObjMesh};
 pub use obj_out::{save_obj, write_obj};
 pub use ply::{PlyEncoding, load_ply, read_ply, save_ply, write_ply};
+pub use render::{
+    ALBEDO, FragmentClass, Image, MAX_IMAGE_SIDE, Projection, SAMPLES_PER_SIDE, View, exposure,
+    linear_to_srgb8, render, render_scene, srgb8_to_linear,
+};
 pub use scene::{Camera, Falloff, InputPolygon, Light, LightKind, MAX_LIGHTS, Object, Scene};
 pub use shadow::{ShadowResult, shadow_scene};
 pub use stats::{LightStats, Seconds, Stats};

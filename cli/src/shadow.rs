@@ -20,6 +20,26 @@ pub struct ShadowResult {
     pub mesh: OutputMesh,
     /// The figures of FORMATS.md §3.
     pub stats: Stats,
+    /// Direct irradiance at every vertex of [`Self::mesh`] from each light
+    /// separately (0 where the fragment does not see all of the light), for
+    /// coloured images: `lights` values per vertex, vertex after vertex.
+    /// [`Self::vertex_light_irradiance`] reads one vertex's values.
+    pub light_irradiance: Vec<f64>,
+    /// Number of lights of the scene (values per vertex in
+    /// [`Self::light_irradiance`]).
+    pub lights: usize,
+}
+
+impl ShadowResult {
+    /// The direct irradiance from each light (scene-file order) at vertex
+    /// `vertex` of [`Self::mesh`].
+    ///
+    /// # Panics
+    ///
+    /// If `vertex` is not a vertex of the mesh.
+    pub fn vertex_light_irradiance(&self, vertex: usize) -> &[f64] {
+        &self.light_irradiance[vertex * self.lights..(vertex + 1) * self.lights]
+    }
 }
 
 /// Runs the shadow pipeline on a loaded scene.
@@ -41,6 +61,7 @@ pub fn shadow_scene(scene: &Scene) -> Result<ShadowResult> {
     let illum_started = Instant::now();
     let illum_lights = illum_lights(scene, &pieces)?;
     let mut mesh = OutputMesh::default();
+    let mut light_irradiance = Vec::new();
     for fragment in &out.fragments {
         let piece = &pieces.polygons[fragment.polygon.source() as usize];
         let two_sided = flags[fragment.polygon.source() as usize].two_sided;
@@ -48,7 +69,22 @@ pub fn shadow_scene(scene: &Scene) -> Result<ShadowResult> {
         let first = mesh.vertices.len() as u32;
         for v in fragment.polygon.vertices_f64() {
             let p = pieces.grid.grid_to_world(v);
-            let e = irradiance(&illum_lights, p, normal, two_sided, fragment.lit_mask);
+            let first_value = light_irradiance.len();
+            light_irradiance.extend(per_light_irradiance(
+                &illum_lights,
+                p,
+                normal,
+                two_sided,
+                fragment.lit_mask,
+            ));
+            // The sum over the lit lights, in light order, as the PLY has
+            // always had it.
+            let e: f64 = light_irradiance[first_value..]
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| fragment.lit_mask & (1 << i) != 0)
+                .map(|(_, e)| e)
+                .sum();
             mesh.vertices.push((p, e as f32));
         }
         mesh.faces.push(OutputFace {
@@ -85,7 +121,12 @@ pub fn shadow_scene(scene: &Scene) -> Result<ShadowResult> {
             })
             .collect(),
     };
-    Ok(ShadowResult { mesh, stats })
+    Ok(ShadowResult {
+        mesh,
+        stats,
+        light_irradiance,
+        lights: illum_lights.len(),
+    })
 }
 
 /// The scene's lights for `svbsp`; area lights are not supported yet.
@@ -189,27 +230,28 @@ fn illum_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<IllumLight>> {
     Ok(out)
 }
 
-/// Direct irradiance at world point `p` with unit normal `normal`, from
-/// every light whose bit is set in `lit_mask` (ambient excluded).
-fn irradiance(
+/// Direct irradiance at world point `p` with unit normal `normal` from each
+/// light in turn: its value if its bit is set in `lit_mask`, else 0 (ambient
+/// excluded).
+fn per_light_irradiance(
     lights: &[IllumLight],
     p: [f64; 3],
     normal: [f64; 3],
     two_sided: bool,
     lit_mask: u32,
-) -> f64 {
+) -> impl Iterator<Item = f64> + '_ {
     let sidedness = if two_sided {
         illum::Sidedness::TwoSided
     } else {
         illum::Sidedness::OneSided
     };
-    lights
-        .iter()
-        .enumerate()
-        .filter(|(i, _)| lit_mask & (1 << i) != 0)
-        .map(|(_, light)| match light {
+    lights.iter().enumerate().map(move |(i, light)| {
+        if lit_mask & (1 << i) == 0 {
+            return 0.0;
+        }
+        match light {
             IllumLight::Point(l) => l.irradiance(p, normal, sidedness),
             IllumLight::Directional(l) => l.irradiance(normal, sidedness),
-        })
-        .sum()
+        }
+    })
 }

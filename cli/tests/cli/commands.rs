@@ -38,8 +38,7 @@ fn unwired_commands_say_so_with_exit_2_and_write_nothing() {
         ("scene.toml", TRIANGLE),
         ("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
     ]);
-    let runs: [&[&str]; 3] = [
-        &["render", "scene.toml", "-o", "out.png", "--view", "classes"],
+    let runs: [&[&str]; 2] = [
         &["dm", "scene.toml", "-o", "out.ply"],
         &[
             "update",

@@ -7,6 +7,7 @@ mod demos;
 mod errors;
 mod ply_files;
 mod properties;
+mod render;
 mod shadow;
 
 use std::path::Path;
