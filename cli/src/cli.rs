@@ -42,6 +42,8 @@ pub enum Command {
     /// Load and validate a scene, cut it into convex pieces on the grid and
     /// print a summary (nothing is written).
     Check(CheckArgs),
+    /// Draw one input polygon's fragments in its own plane as SVG.
+    Svg(SvgArgs),
 }
 
 /// Options of `umbra shadow`.
@@ -157,6 +159,19 @@ pub struct DemoArgs {
 pub struct CheckArgs {
     /// The scene file (TOML).
     pub scene: PathBuf,
+}
+
+/// Options of `umbra svg`.
+#[derive(Debug, Args)]
+pub struct SvgArgs {
+    /// The scene file (TOML).
+    pub scene: PathBuf,
+    /// The input polygon to draw (0-based, FORMATS.md numbering).
+    #[arg(long, value_name = "N")]
+    pub polygon: u32,
+    /// Output SVG file.
+    #[arg(short, long, value_name = "OUT.svg")]
+    pub output: PathBuf,
 }
 
 fn parse_vector(text: &str) -> std::result::Result<[f64; 3], String> {
@@ -347,6 +362,15 @@ pub fn run(cli: Cli) -> Result<()> {
                 grid: None,
                 ascii: false,
             })
+        }
+        Command::Svg(args) => {
+            let scene = Scene::load(&args.scene)?;
+            let result = shadow_scene(&scene)?;
+            let svg = umbra::fragments_svg(&scene, &result.mesh, args.polygon)?;
+            umbra::save_svg(&args.output, &svg)?;
+            let mut out = std::io::stdout().lock();
+            let _ = writeln!(out, "{}", args.output.display());
+            Ok(())
         }
         Command::Check(args) => {
             let scene = Scene::load(&args.scene)?;

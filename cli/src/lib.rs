@@ -57,6 +57,7 @@ mod render;
 mod scene;
 mod shadow;
 mod stats;
+mod svg;
 mod transform;
 
 pub use atomic::write_atomic;
@@ -78,4 +79,5 @@ pub use render::{
 pub use scene::{Camera, Falloff, InputPolygon, Light, LightKind, MAX_LIGHTS, Object, Scene};
 pub use shadow::{ShadowResult, shadow_scene};
 pub use stats::{LightStats, Seconds, Stats};
+pub use svg::{fragments_svg, save_svg};
 pub use transform::Transform;

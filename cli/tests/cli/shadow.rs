@@ -273,3 +273,29 @@ fn degenerate_scenes_partition_and_classify_consistently() {
         }
     }
 }
+
+#[test]
+fn svg_draws_one_polygons_fragments() {
+    let dir = folder(&[("scene.toml", FLOOR_AND_SQUARE)]);
+    let run = umbra(
+        dir.path(),
+        &["svg", "scene.toml", "--polygon", "0", "-o", "floor.svg"],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let svg = std::fs::read_to_string(dir.path().join("floor.svg")).unwrap();
+    let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "out.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+    let floor_fragments = mesh.faces.iter().filter(|f| f.source == 0).count();
+    assert_eq!(svg.matches("<polygon ").count(), floor_fragments);
+    // The square's shadow is drawn in the umbra colour, the rest lit.
+    assert!(svg.contains(r##"fill="#555555""##) && svg.contains(r##"fill="#ffe9a0""##));
+    assert!(svg.starts_with("<svg ") && svg.trim_end().ends_with("</svg>"));
+    let run = umbra(
+        dir.path(),
+        &["svg", "scene.toml", "--polygon", "7", "-o", "none.svg"],
+    );
+    assert_eq!(run.code, 2);
+    assert!(run.stderr.contains("polygon"), "{}", run.stderr);
+    assert!(!dir.path().join("none.svg").exists());
+}
