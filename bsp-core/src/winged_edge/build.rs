@@ -5,6 +5,26 @@ use crate::predicates::{self, Side};
 use crate::{ConvexPolygon, EdgeKey, Error, FaceKey, GridPoint, ImplicitPoint, Plane};
 use slotmap::SlotMap;
 
+impl<E> Edge<E> {
+    /// An edge `start -> end` with `face` on its left and the outside on its
+    /// right, its wings still to be linked by the builder.
+    fn unlinked(start: VertexKey, end: VertexKey, face: FaceKey, line: Plane, data: E) -> Self {
+        Self {
+            start,
+            end,
+            left: Some(face),
+            right: None,
+            left_prev: EdgeKey::default(),
+            left_next: EdgeKey::default(),
+            right_prev: EdgeKey::default(),
+            right_next: EdgeKey::default(),
+            line,
+            right_in_front: true,
+            data,
+        }
+    }
+}
+
 impl<F: Clone, E: Clone> WingedMesh<F, E> {
     /// A mesh of one face: the polygon, its edges carrying `edge_data`.
     pub fn from_polygon(polygon: &ConvexPolygon, face_data: F, edge_data: E) -> Self {
@@ -38,19 +58,13 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         });
         let edges: Vec<EdgeKey> = (0..n)
             .map(|i| {
-                mesh.edges.insert(Edge {
-                    start: vertices[i],
-                    end: vertices[(i + 1) % n],
-                    left: Some(face),
-                    right: None,
-                    left_prev: EdgeKey::default(),
-                    left_next: EdgeKey::default(),
-                    right_prev: EdgeKey::default(),
-                    right_next: EdgeKey::default(),
-                    line: polygon.edges()[i],
-                    right_in_front: true,
-                    data: edge_data.clone(),
-                })
+                mesh.edges.insert(Edge::unlinked(
+                    vertices[i],
+                    vertices[(i + 1) % n],
+                    face,
+                    polygon.edges()[i],
+                    edge_data.clone(),
+                ))
             })
             .collect();
         for i in 0..n {
@@ -143,19 +157,13 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                         e
                     }
                     Some(_) => return Err(Error::NonConvex),
-                    None => mesh.edges.insert(Edge {
-                        start: a,
-                        end: b,
-                        left: Some(face),
-                        right: None,
-                        left_prev: EdgeKey::default(),
-                        left_next: EdgeKey::default(),
-                        right_prev: EdgeKey::default(),
-                        right_next: EdgeKey::default(),
-                        line: polygon.edges()[i],
-                        right_in_front: true,
-                        data: edge_data.clone(),
-                    }),
+                    None => mesh.edges.insert(Edge::unlinked(
+                        a,
+                        b,
+                        face,
+                        polygon.edges()[i],
+                        edge_data.clone(),
+                    )),
                 };
                 edge_of.insert((a, b), e);
                 mesh.vertices[a].edge = e;
