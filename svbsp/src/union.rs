@@ -44,17 +44,43 @@ use bsp_core::{BspSolid, Region, SolidChild, SolidNode};
 pub fn union_with_convex(solid: &BspSolid, polyhedron: &ConvexPolyhedron) -> BspSolid {
     let mut nodes: Vec<SolidNode> = solid.nodes().to_vec();
     let mut root = solid.root();
+    union_in_place(&mut nodes, &mut root, polyhedron.clone());
+    BspSolid::from_nodes(nodes, root).expect("insertion keeps a tree")
+}
+
+/// [`union_with_convex`] on a tree held as an arena (`nodes`, `root`),
+/// changed in place: no node is copied, so a tree grown by many insertions
+/// (the penumbra and umbra trees of an area light) costs only the nodes
+/// each insertion visits and appends.
+///
+/// ```
+/// use bsp_core::{GridPoint, Plane, Region, SolidChild};
+/// use svbsp::{ConvexPolyhedron, union_in_place};
+///
+/// let g = |x, y, z| GridPoint { x, y, z };
+/// let planes: Vec<Plane> = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]]
+///     .map(|n: [i64; 3]| Plane::with_normal_through(n, g(n[0] as i32, n[1] as i32, n[2] as i32)).unwrap())
+///     .to_vec();
+/// let (mut nodes, mut root) = (Vec::new(), SolidChild::Leaf(Region::Out));
+/// union_in_place(&mut nodes, &mut root, ConvexPolyhedron::from_planes(&planes).unwrap());
+/// assert_eq!(nodes.len(), 6);
+/// ```
+pub fn union_in_place(
+    nodes: &mut Vec<SolidNode>,
+    root: &mut SolidChild,
+    polyhedron: ConvexPolyhedron,
+) {
     // (subtree, part of P in its cell, where the subtree hangs: None for
     // the root, else (parent, is front child)).
-    let mut stack = vec![(solid.root(), polyhedron.clone(), None::<(u32, bool)>)];
+    let mut stack = vec![(*root, polyhedron, None::<(u32, bool)>)];
     while let Some((mut child, mut part, mut slot)) = stack.pop() {
         loop {
             let i = match child {
                 SolidChild::Leaf(Region::In) => break,
                 SolidChild::Leaf(Region::Out) => {
-                    let link = hang_chain(&mut nodes, &part);
+                    let link = hang_chain(nodes, &part);
                     match slot {
-                        None => root = link,
+                        None => *root = link,
                         Some((parent, true)) => nodes[parent as usize].front = link,
                         Some((parent, false)) => nodes[parent as usize].back = link,
                     }
@@ -77,7 +103,6 @@ pub fn union_with_convex(solid: &BspSolid, polyhedron: &ConvexPolyhedron) -> Bsp
             }
         }
     }
-    BspSolid::from_nodes(nodes, root).expect("insertion keeps a tree")
 }
 
 /// Appends the chain of `part`'s remaining input planes (outside in front of
