@@ -1,0 +1,286 @@
+//! A conforming mesh from fragments: every vertex shared by the fragments
+//! that meet at it, and no T-vertex.
+//!
+//! Splitting leaves T-junctions: a fragment's edge may have, inside it, a
+//! vertex of a neighbouring fragment (of the same polygon, cut differently
+//! on the other side of a shadow boundary, or of an adjacent polygon). An
+//! interpolated shading then cracks there. [`conform`] gives every distinct
+//! point one index and inserts into each fragment's outline, in order,
+//! every point that lies strictly inside one of its edges.
+//!
+//! Floating point only finds candidates (a uniform bucket grid over the
+//! points' coordinates, with a margin far above their rounding); whether
+//! two vertices are the same point and whether a point lies inside an edge
+//! are exact predicates, as is the order of the points inserted into an
+//! edge.
+
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{ConvexPolygon, GridPoint, ImplicitPoint, Plane};
+use std::collections::HashMap;
+
+/// A vertex of the mesh, exact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MeshPoint {
+    /// An input grid point.
+    Grid(GridPoint),
+    /// The intersection of three planes.
+    Implicit(ImplicitPoint),
+}
+
+impl MeshPoint {
+    /// Side of `plane`, exact.
+    pub fn side(&self, plane: &Plane) -> Side {
+        match self {
+            MeshPoint::Grid(g) => side_of_point(plane, *g),
+            MeshPoint::Implicit(p) => p.side(plane),
+        }
+    }
+
+    /// Whether `self` and `other` are the same point, exact.
+    pub fn same_point(&self, other: &MeshPoint) -> bool {
+        match (self, other) {
+            (MeshPoint::Grid(a), MeshPoint::Grid(b)) => a == b,
+            (MeshPoint::Implicit(a), MeshPoint::Implicit(b)) => a.same_point(b),
+            (MeshPoint::Grid(g), MeshPoint::Implicit(p))
+            | (MeshPoint::Implicit(p), MeshPoint::Grid(g)) => {
+                p.planes().iter().all(|q| side_of_point(q, *g) == Side::On)
+            }
+        }
+    }
+
+    /// Coordinates in grid units.
+    pub fn to_f64(&self) -> [f64; 3] {
+        match self {
+            MeshPoint::Grid(g) => g.to_f64(),
+            MeshPoint::Implicit(p) => p.to_f64(),
+        }
+    }
+
+    /// A plane through the point that the line through `a` and `b` (two
+    /// other points) crosses: orders points along that line.
+    fn crossing_plane(&self, a: &MeshPoint, b: &MeshPoint, direction: [f64; 3]) -> Option<Plane> {
+        match self {
+            MeshPoint::Grid(g) => {
+                let axis = (0..3)
+                    .max_by(|&i, &j| direction[i].abs().total_cmp(&direction[j].abs()))
+                    .unwrap_or(0);
+                let mut normal = [0_i64; 3];
+                normal[axis] = 1;
+                Plane::with_normal_through(normal, *g)
+            }
+            MeshPoint::Implicit(p) => p
+                .planes()
+                .iter()
+                .find(|q| a.side(q) != Side::On || b.side(q) != Side::On)
+                .copied(),
+        }
+    }
+}
+
+/// The result of [`conform`].
+#[derive(Debug, Clone, Default)]
+pub struct ConformingMesh {
+    /// Distinct points, exact.
+    pub points: Vec<MeshPoint>,
+    /// Their coordinates in grid units.
+    pub coords: Vec<[f64; 3]>,
+    /// Per input fragment, its outline as point indices, counter-clockwise,
+    /// with the points inside its edges inserted.
+    pub faces: Vec<Vec<u32>>,
+    /// How many points were inserted into edges (T-vertices removed).
+    pub inserted: usize,
+}
+
+/// Buckets of point indices over a uniform grid of cells.
+struct Buckets {
+    cell: f64,
+    map: HashMap<[i64; 3], Vec<u32>>,
+}
+
+impl Buckets {
+    fn key(&self, p: [f64; 3]) -> [i64; 3] {
+        p.map(|c| (c / self.cell).floor() as i64)
+    }
+
+    /// Indices in the cells that the box `[lo, hi]` touches.
+    fn query(&self, lo: [f64; 3], hi: [f64; 3], out: &mut Vec<u32>) {
+        out.clear();
+        let (a, b) = (self.key(lo), self.key(hi));
+        let cells = (0..3).map(|i| (b[i] - a[i] + 1) as f64).product::<f64>();
+        if cells > self.map.len() as f64 {
+            // A box over more cells than there are buckets: scan them all.
+            for (k, ids) in &self.map {
+                if (0..3).all(|i| a[i] <= k[i] && k[i] <= b[i]) {
+                    out.extend(ids);
+                }
+            }
+            return;
+        }
+        for x in a[0]..=b[0] {
+            for y in a[1]..=b[1] {
+                for z in a[2]..=b[2] {
+                    if let Some(ids) = self.map.get(&[x, y, z]) {
+                        out.extend(ids);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Far above the rounding of implicit points' coordinates (`2^-20` grid
+/// units), far below the distance between distinct grid points.
+const MARGIN: f64 = 1e-3;
+
+/// The conforming mesh of `fragments` (convex polygons in grid units).
+pub fn conform(fragments: &[ConvexPolygon]) -> ConformingMesh {
+    let mut mesh = ConformingMesh::default();
+    let corners: usize = fragments.iter().map(ConvexPolygon::len).sum();
+    let (lo, hi) = fragments.iter().flat_map(|f| f.vertices_f64()).fold(
+        ([f64::MAX; 3], [f64::MIN; 3]),
+        |(lo, hi), p| {
+            (
+                [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+            )
+        },
+    );
+    let extent = (0..3).map(|i| hi[i] - lo[i]).fold(1.0, f64::max);
+    let mut buckets = Buckets {
+        cell: (extent / (corners.max(1) as f64).sqrt()).max(1.0),
+        map: HashMap::new(),
+    };
+
+    // Distinct points, and each fragment's corners as indices.
+    let mut found = Vec::new();
+    let mut outlines: Vec<Vec<u32>> = Vec::with_capacity(fragments.len());
+    for f in fragments {
+        let mut outline = Vec::with_capacity(f.len());
+        for k in 0..f.len() {
+            let point = match f.vertex_grid_point(k) {
+                Some(g) => MeshPoint::Grid(g),
+                None => {
+                    let [s, a, b] = f.vertex_planes(k);
+                    MeshPoint::Implicit(
+                        ImplicitPoint::new(*s, *a, *b).expect("a polygon's vertex is a point"),
+                    )
+                }
+            };
+            let c = f.vertex_f64(k);
+            buckets.query(c.map(|x| x - MARGIN), c.map(|x| x + MARGIN), &mut found);
+            let id = match found
+                .iter()
+                .find(|&&id| mesh.points[id as usize].same_point(&point))
+            {
+                Some(&id) => id,
+                None => {
+                    let id = mesh.points.len() as u32;
+                    mesh.points.push(point);
+                    mesh.coords.push(c);
+                    let key = buckets.key(c);
+                    buckets.map.entry(key).or_default().push(id);
+                    id
+                }
+            };
+            outline.push(id);
+        }
+        outlines.push(outline);
+    }
+
+    // Points inside each edge, in order along it.
+    for (f, outline) in fragments.iter().zip(outlines) {
+        let n = f.len();
+        let mut face = Vec::with_capacity(n);
+        for k in 0..n {
+            let (a, b) = (outline[k], outline[(k + 1) % n]);
+            face.push(a);
+            let (pa, pb) = (mesh.coords[a as usize], mesh.coords[b as usize]);
+            let lo = [0, 1, 2].map(|i| pa[i].min(pb[i]) - MARGIN);
+            let hi = [0, 1, 2].map(|i| pa[i].max(pb[i]) + MARGIN);
+            buckets.query(lo, hi, &mut found);
+            let edge = &f.edges()[k];
+            let (prev, next) = (&f.edges()[(k + n - 1) % n], &f.edges()[(k + 1) % n]);
+            let mut inside: Vec<u32> = found
+                .iter()
+                .copied()
+                .filter(|&id| id != a && id != b)
+                .filter(|&id| near_segment(mesh.coords[id as usize], pa, pb))
+                .filter(|&id| {
+                    let p = &mesh.points[id as usize];
+                    p.side(f.support()) == Side::On
+                        && p.side(edge) == Side::On
+                        && p.side(prev) == Side::Back
+                        && p.side(next) == Side::Back
+                })
+                .collect();
+            if inside.len() > 1 {
+                let direction = [0, 1, 2].map(|i| pb[i] - pa[i]);
+                let (start, end) = (mesh.points[a as usize], mesh.points[b as usize]);
+                inside.sort_by(|&p, &q| {
+                    let (pp, qq) = (&mesh.points[p as usize], &mesh.points[q as usize]);
+                    // q is after p when it lies on the far side of a plane
+                    // through p that the edge crosses.
+                    match pp.crossing_plane(&start, &end, direction) {
+                        Some(h) if qq.side(&h) == start.side(&h) => std::cmp::Ordering::Greater,
+                        Some(_) => std::cmp::Ordering::Less,
+                        None => std::cmp::Ordering::Equal,
+                    }
+                });
+            }
+            mesh.inserted += inside.len();
+            face.extend(inside);
+        }
+        mesh.faces.push(face);
+    }
+    mesh
+}
+
+/// Whether `p` is within [`MARGIN`] of the segment `ab` (a candidate
+/// filter only).
+fn near_segment(p: [f64; 3], a: [f64; 3], b: [f64; 3]) -> bool {
+    let d = [0, 1, 2].map(|i| b[i] - a[i]);
+    let w = [0, 1, 2].map(|i| p[i] - a[i]);
+    let len2: f64 = d.iter().map(|x| x * x).sum();
+    if len2 == 0.0 {
+        return false;
+    }
+    let t = (0..3).map(|i| w[i] * d[i]).sum::<f64>() / len2;
+    let closest = [0, 1, 2].map(|i| a[i] + t.clamp(0.0, 1.0) * d[i]);
+    let dist2: f64 = (0..3).map(|i| (p[i] - closest[i]).powi(2)).sum();
+    dist2 <= MARGIN * MARGIN * 4.0 + 1e-18 * len2
+}
+
+/// [`conform`], with every face kept to at most `max_corners` corners:
+/// a fragment whose outline gathers more (a large cell beside many small
+/// ones) is halved across its longer side ([`crate::halve`]) and the mesh
+/// made again, until none does or none can be halved. Returns the
+/// fragments as cut and their mesh (faces in fragment order).
+pub fn conform_fragments(
+    mut fragments: Vec<svbsp::Fragment>,
+    max_corners: usize,
+) -> (Vec<svbsp::Fragment>, ConformingMesh) {
+    loop {
+        let polygons: Vec<ConvexPolygon> = fragments.iter().map(|f| f.polygon.clone()).collect();
+        let mesh = conform(&polygons);
+        let mut halved = false;
+        for (i, face) in mesh.faces.iter().enumerate() {
+            if face.len() <= max_corners {
+                continue;
+            }
+            if let Some((a, b)) = crate::halve(&fragments[i].polygon, 2.0) {
+                let f = &fragments[i];
+                let (lit_mask, umbra_mask) = (f.lit_mask, f.umbra_mask);
+                fragments[i].polygon = a;
+                fragments.push(svbsp::Fragment {
+                    polygon: b,
+                    lit_mask,
+                    umbra_mask,
+                });
+                halved = true;
+            }
+        }
+        if !halved {
+            return (fragments, mesh);
+        }
+    }
+}

@@ -1,0 +1,263 @@
+//! One area light's pass over the fragments: penumbra and umbra trees,
+//! then classification.
+//!
+//! The 1992 paper filters polygons front-to-back from the light and grows
+//! the trees as it goes, which is right only when the order is the same from
+//! every point of the light (hence its splitting of the light). umbra
+//! separates the two jobs instead:
+//!
+//! 1. **Volumes.** Every shadow-casting piece adds the penumbra and umbra
+//!    volumes of its whole original polygon ([`crate::cast_volumes`]). A
+//!    piece already inside the umbra tree adds nothing: whatever it hides is
+//!    hidden already (each of its points is hidden from all of the light by
+//!    one earlier occluder, so every ray it stops was stopped before). Pieces
+//!    go nearest the light first so that this culling finds most of what
+//!    the paper's order would; the order changes only the trees' size.
+//! 2. **Classification.** Every fragment is filtered down the final trees:
+//!    outside the penumbra tree it sees all of the light (lit); inside the
+//!    umbra tree, none (umbra); otherwise part (penumbra). A point strictly
+//!    inside an occluder's penumbra volume has part of the light hidden by
+//!    it whichever order the pieces came in, so the classification does not
+//!    depend on the order, and the light need not be split.
+//!
+//! As in the paper, umbra is the union of single occluders' umbrae: where
+//! several occluders together hide the whole light, fragments are penumbra
+//! and their vertices' visible part of the light comes out empty.
+
+use crate::merge_pieces::merge_same_class;
+use crate::tree::VolumeTree;
+use crate::volumes::cast_volumes;
+use crate::{AreaSource, SourceSide};
+use bsp_core::{ConvexPolygon, Split};
+use svbsp::{Fragment, PieceFlags};
+
+/// Figures of one area light's pass (the 1992 paper's Figure 8 columns that
+/// belong to classification).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct AreaLightStats {
+    /// Input pieces that some of the light reaches from the front.
+    pub front_facing_polygons: usize,
+    /// Edges of those pieces.
+    pub front_facing_edges: usize,
+    /// Inner nodes of the penumbra tree.
+    pub penumbra_nodes: usize,
+    /// Inner nodes of the umbra tree.
+    pub umbra_nodes: usize,
+    /// Pieces whose volumes went into the trees.
+    pub occluders: usize,
+    /// Shadow-casting pieces left out because they lay in umbra already.
+    pub occluders_culled: usize,
+    /// Final fragments that see all of the light.
+    pub lit: usize,
+    /// Final fragments that see part of it.
+    pub penumbra: usize,
+    /// Final fragments that see none of it.
+    pub umbra: usize,
+}
+
+/// The class of a fragment for one light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Class {
+    /// Sees all of the light.
+    Lit,
+    /// Sees part of it.
+    Penumbra,
+    /// Sees none of it.
+    Umbra,
+}
+
+impl Class {
+    /// The class of a fragment for the light of mask bit `bit`.
+    pub fn of(fragment: &Fragment, bit: u32) -> Class {
+        let mask = 1_u32 << bit;
+        if fragment.lit_mask & mask != 0 {
+            Class::Lit
+        } else if fragment.umbra_mask & mask != 0 {
+            Class::Umbra
+        } else {
+            Class::Penumbra
+        }
+    }
+
+    fn apply(self, fragment: &mut Fragment, bit: u32) {
+        let mask = 1_u32 << bit;
+        fragment.lit_mask &= !mask;
+        fragment.umbra_mask &= !mask;
+        match self {
+            Class::Lit => fragment.lit_mask |= mask,
+            Class::Umbra => fragment.umbra_mask |= mask,
+            Class::Penumbra => {}
+        }
+    }
+}
+
+/// The trees of one area light, built from the pieces' volumes.
+#[derive(Debug, Clone, Default)]
+pub struct AreaTrees {
+    /// Where some of the light is hidden.
+    pub penumbra: VolumeTree,
+    /// Where all of it is hidden (by one occluder).
+    pub umbra: VolumeTree,
+    /// Pieces whose volumes went in.
+    pub occluders: usize,
+    /// Pieces left out because they lay in umbra already.
+    pub culled: usize,
+}
+
+impl AreaTrees {
+    /// Builds the trees from `pieces` (grid-point vertices; `flags[k]` for
+    /// piece `k`).
+    ///
+    /// # Panics
+    ///
+    /// If `flags` is shorter than `pieces`.
+    pub fn build(pieces: &[ConvexPolygon], flags: &[PieceFlags], light: &AreaSource) -> Self {
+        let mut trees = AreaTrees::default();
+        let centre = light.centroid();
+        let mut order: Vec<(f64, usize)> = pieces
+            .iter()
+            .enumerate()
+            .filter(|(k, piece)| {
+                // A closed surface's faces turned away from all of the light
+                // hide nothing its faces towards the light do not.
+                flags[*k].casts_shadows
+                    && !(flags[*k].closed_surface
+                        && matches!(
+                            light.side_of(piece.support()),
+                            SourceSide::Back | SourceSide::In
+                        ))
+            })
+            .map(|(k, piece)| (distance2(piece.centroid(), centre), k))
+            .collect();
+        order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for (_, k) in order {
+            let piece = &pieces[k];
+            if !trees.umbra.is_empty() && trees.umbra.contains(piece) {
+                trees.culled += 1;
+                continue;
+            }
+            let volumes = cast_volumes(piece, light);
+            if volumes.penumbra.is_empty() {
+                continue;
+            }
+            trees.occluders += 1;
+            for volume in volumes.penumbra {
+                trees.penumbra.insert(volume);
+            }
+            if let Some(volume) = volumes.umbra {
+                trees.umbra.insert(volume);
+            }
+        }
+        trees
+    }
+
+    /// Classifies `polygon` (in the plane of a piece with flags `flags`):
+    /// its pieces with their classes. A polygon whose pieces all have one
+    /// class comes back whole.
+    pub fn classify(
+        &self,
+        polygon: ConvexPolygon,
+        flags: PieceFlags,
+        light: &AreaSource,
+    ) -> Vec<(ConvexPolygon, Class)> {
+        let reach = match light.side_of(polygon.support()) {
+            SourceSide::In => Reach::None,
+            SourceSide::Front => Reach::All,
+            SourceSide::Back if flags.two_sided => Reach::All,
+            SourceSide::Back => Reach::None,
+            SourceSide::Both => Reach::Part,
+        };
+        if reach == Reach::None {
+            return vec![(polygon, Class::Umbra)];
+        }
+        let mut out: Vec<(ConvexPolygon, Class)> = Vec::new();
+        // Behind the light's plane nothing arrives.
+        let lit_part = match polygon.split(light.support()) {
+            Split::Front => polygon.clone(),
+            Split::Both(back, front) => {
+                out.push((back, Class::Umbra));
+                front
+            }
+            Split::Back | Split::Coplanar(_) => return vec![(polygon, Class::Umbra)],
+        };
+        let unblocked = if reach == Reach::All {
+            Class::Lit
+        } else {
+            Class::Penumbra
+        };
+        let hidden = self.penumbra.partition(lit_part);
+        out.extend(hidden.outside.into_iter().map(|p| (p, unblocked)));
+        for piece in hidden.inside {
+            let dark = self.umbra.partition(piece);
+            out.extend(dark.outside.into_iter().map(|p| (p, Class::Penumbra)));
+            out.extend(dark.inside.into_iter().map(|p| (p, Class::Umbra)));
+        }
+        if out.iter().all(|(_, c)| *c == out[0].1) {
+            let class = out[0].1;
+            return vec![(polygon, class)];
+        }
+        merge_same_class(out)
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Reach {
+    None,
+    Part,
+    All,
+}
+
+fn distance2(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]) * (a[i] - b[i])).sum()
+}
+
+/// Runs one area light's pass: builds its trees from `pieces` and
+/// classifies every fragment (whose `source` is its piece's index) for mask
+/// bit `bit`, in place of what the fragment said about that bit.
+///
+/// # Panics
+///
+/// If `flags` is shorter than `pieces`, a fragment names a piece out of
+/// range, or `bit >= 32`.
+pub fn shadow_area_light(
+    fragments: Vec<Fragment>,
+    pieces: &[ConvexPolygon],
+    flags: &[PieceFlags],
+    light: &AreaSource,
+    bit: u32,
+) -> (Vec<Fragment>, AreaLightStats) {
+    let trees = AreaTrees::build(pieces, flags, light);
+    let mut stats = AreaLightStats {
+        penumbra_nodes: trees.penumbra.len(),
+        umbra_nodes: trees.umbra.len(),
+        occluders: trees.occluders,
+        occluders_culled: trees.culled,
+        ..AreaLightStats::default()
+    };
+    for piece in pieces {
+        if light.reaches_front_of(piece.support()) {
+            stats.front_facing_polygons += 1;
+            stats.front_facing_edges += piece.len();
+        }
+    }
+    let mut out = Vec::with_capacity(fragments.len());
+    for fragment in fragments {
+        let piece = fragment.polygon.source() as usize;
+        let (lit_mask, umbra_mask) = (fragment.lit_mask, fragment.umbra_mask);
+        for (polygon, class) in trees.classify(fragment.polygon, flags[piece], light) {
+            let mut made = Fragment {
+                polygon,
+                lit_mask,
+                umbra_mask,
+            };
+            class.apply(&mut made, bit);
+            match class {
+                Class::Lit => stats.lit += 1,
+                Class::Penumbra => stats.penumbra += 1,
+                Class::Umbra => stats.umbra += 1,
+            }
+            out.push(made);
+        }
+    }
+    (out, stats)
+}

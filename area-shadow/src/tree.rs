@@ -1,0 +1,178 @@
+//! A union of convex volumes kept as a BSP tree: the penumbra tree and the
+//! umbra tree of one area light.
+//!
+//! Volumes go in by the general Thibault-Naylor union
+//! ([`svbsp::union_in_place`]): penumbra volumes overlap, so the simplified
+//! insertion of the 1989 paper would be wrong here. Polygons are filtered
+//! down to their cells exactly; a polygon's point counts as inside only if
+//! it is in the *interior* of the union. Points on a volume's boundary see
+//! the light it would hide only along a set of measure zero, so they belong
+//! with the outside: a fragment on its own occluder's plane is not shadowed
+//! by that occluder, nor are fragments coplanar with it.
+
+use bsp_core::{ConvexPolygon, Region, SolidChild, SolidNode, Split};
+use svbsp::ConvexPolyhedron;
+
+/// A union of convex volumes as a BSP tree (an arena of nodes).
+#[derive(Debug, Clone)]
+pub struct VolumeTree {
+    nodes: Vec<SolidNode>,
+    root: SolidChild,
+}
+
+impl Default for VolumeTree {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// A polygon filtered down a [`VolumeTree`].
+#[derive(Debug, Clone, Default)]
+pub struct Partition {
+    /// Pieces in the interior of the union.
+    pub inside: Vec<ConvexPolygon>,
+    /// Pieces outside it or on its boundary.
+    pub outside: Vec<ConvexPolygon>,
+}
+
+impl VolumeTree {
+    /// The empty union.
+    pub fn new() -> Self {
+        Self {
+            nodes: Vec::new(),
+            root: SolidChild::Leaf(Region::Out),
+        }
+    }
+
+    /// Inner nodes.
+    pub fn len(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Whether the union is empty (no volume inserted).
+    pub fn is_empty(&self) -> bool {
+        self.nodes.is_empty() && self.root == SolidChild::Leaf(Region::Out)
+    }
+
+    /// The nodes, for inspection.
+    pub fn nodes(&self) -> &[SolidNode] {
+        &self.nodes
+    }
+
+    /// The root link.
+    pub fn root(&self) -> SolidChild {
+        self.root
+    }
+
+    /// Adds a volume to the union.
+    pub fn insert(&mut self, volume: ConvexPolyhedron) {
+        svbsp::union_in_place(&mut self.nodes, &mut self.root, volume);
+    }
+
+    /// Splits `polygon` into its pieces inside the union and outside it (or
+    /// on its boundary), exactly.
+    pub fn partition(&self, polygon: ConvexPolygon) -> Partition {
+        let mut out = Partition::default();
+        self.filter(polygon, |piece, inside| {
+            if inside {
+                out.inside.push(piece);
+            } else {
+                out.outside.push(piece);
+            }
+            true
+        });
+        out
+    }
+
+    /// Whether all of `polygon` lies in the interior of the union; stops at
+    /// the first piece outside.
+    pub fn contains(&self, polygon: &ConvexPolygon) -> bool {
+        let mut all = true;
+        self.filter(polygon.clone(), |_, inside| {
+            all &= inside;
+            inside
+        });
+        all
+    }
+
+    /// Filters `polygon` down the tree and hands each final piece with
+    /// whether it is inside to `visit`, which returns whether to go on.
+    ///
+    /// A piece in a node's plane lies on the boundary of both cells; it is
+    /// inside only if it is inside on both sides, so it goes down the front
+    /// first and what ends inside there goes down the back too. Below such
+    /// a node, a node with the same plane (a volume hung there repeats it)
+    /// has an empty cell on one side: the piece goes only to the side it is
+    /// being tested on.
+    fn filter(&self, polygon: ConvexPolygon, mut visit: impl FnMut(ConvexPolygon, bool) -> bool) {
+        // (piece, subtree, coplanar nodes above it with the side being
+        // tested: true while on the front).
+        type Pending = Vec<(u32, bool)>;
+        let mut stack: Vec<(ConvexPolygon, SolidChild, Pending)> =
+            vec![(polygon, self.root, Vec::new())];
+        while let Some((mut piece, mut child, mut pending)) = stack.pop() {
+            loop {
+                let i = match child {
+                    SolidChild::Leaf(Region::In) => {
+                        // Inside on the front of a plane it lies in: now the
+                        // back must agree; inside on both: the next one out.
+                        let mut next = None;
+                        while let Some(&(node, front)) = pending.last() {
+                            if front {
+                                pending.last_mut().expect("just read").1 = false;
+                                next = Some(self.nodes[node as usize].back);
+                                break;
+                            }
+                            pending.pop();
+                        }
+                        if let Some(back) = next {
+                            child = back;
+                            continue;
+                        }
+                        if !visit(piece, true) {
+                            return;
+                        }
+                        break;
+                    }
+                    SolidChild::Leaf(Region::Out) => {
+                        if !visit(piece, false) {
+                            return;
+                        }
+                        break;
+                    }
+                    SolidChild::Node(i) => i,
+                };
+                let node = &self.nodes[i as usize];
+                match piece.split(&node.plane) {
+                    Split::Back => child = node.back,
+                    Split::Front => child = node.front,
+                    Split::Both(back, front) => {
+                        stack.push((back, node.back, pending.clone()));
+                        piece = front;
+                        child = node.front;
+                    }
+                    Split::Coplanar(_) => {
+                        let known = pending.iter().find_map(|&(above, front)| {
+                            let plane = &self.nodes[above as usize].plane;
+                            if *plane == node.plane {
+                                Some(front)
+                            } else if plane.is_opposite(&node.plane) {
+                                Some(!front)
+                            } else {
+                                None
+                            }
+                        });
+                        match known {
+                            Some(true) => child = node.front,
+                            Some(false) => child = node.back,
+                            None => {
+                                pending.push((i, true));
+                                child = node.front;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
