@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, csg, render_scene, save_csg_obj, save_obj,
-    save_ply, shadow_scene, write_demo,
+    DemoFiles, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg,
+    render_scene, save_csg_obj, save_obj, save_ply, shadow_scene, shadow_scene_with,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -60,12 +60,27 @@ pub struct ShadowArgs {
     /// Write run statistics as JSON.
     #[arg(long, value_name = "S.json")]
     pub stats: Option<PathBuf>,
-    /// Gridding of lit and penumbra fragments: N x N cells per fragment.
+    /// Gridding: lit fragments are cut into square cells of the scene's
+    /// largest extent / N (one lattice for all polygons), penumbra
+    /// fragments into cells half that size; umbra stays whole.
     #[arg(long, value_name = "N")]
     pub grid: Option<u32>,
+    /// Adaptive subdivision: lit and penumbra cells are halved across their
+    /// longer side while the irradiance at their corners varies by more
+    /// than TOL times the largest (e.g. 0.1).
+    #[arg(long, value_name = "TOL", value_parser = positive_tolerance)]
+    pub adaptive: Option<f64>,
     /// Write ASCII PLY instead of binary little-endian.
     #[arg(long)]
     pub ascii: bool,
+}
+
+/// A finite tolerance above zero.
+fn positive_tolerance(text: &str) -> std::result::Result<f64, String> {
+    match text.parse::<f64>() {
+        Ok(t) if t.is_finite() && t > 0.0 => Ok(t),
+        _ => Err(format!("expected a positive number, not `{text}`")),
+    }
 }
 
 /// What `umbra render` shows.
@@ -234,13 +249,11 @@ fn run_shadow(args: &ShadowArgs) -> Result<()> {
     let progress = Progress::start("loading the scene");
     let scene = Scene::load(&args.scene)?;
     progress.say("computing shadows");
-    if args.grid.is_some() {
-        return Err(Error::NotImplemented {
-            command: "shadow --grid",
-            reason: "gridding comes with area lights",
-        });
-    }
-    let result = shadow_scene(&scene)?;
+    let options = ShadowOptions {
+        grid: args.grid,
+        adaptive: args.adaptive,
+    };
+    let result = shadow_scene_with(&scene, &options)?;
     progress.say("writing");
     let output = args
         .output
@@ -349,7 +362,8 @@ pub fn run(cli: Cli) -> Result<()> {
         }
         Command::Demo(args) => {
             let dir = args.output.unwrap_or_else(|| PathBuf::from(&args.name));
-            let path = write_demo(&args.name, &dir)?;
+            let files = DemoFiles::named(&args.name)?;
+            let path = files.write(&dir)?;
             let mut out = std::io::stdout().lock();
             let _ = writeln!(out, "wrote the `{}` scene: {}", args.name, path.display());
             drop(out);
@@ -359,7 +373,8 @@ pub fn run(cli: Cli) -> Result<()> {
                 output: Some(path.with_extension("ply")),
                 obj: None,
                 stats: Some(path.with_extension("json")),
-                grid: None,
+                grid: files.grid,
+                adaptive: None,
                 ascii: false,
             })
         }

@@ -2,8 +2,10 @@
 //!
 //! - `tetra`: Haines' SPD tetrahedra (recursive tetrahedra standing on a
 //!   ground plane), the scene of the Chin-Feiner tables;
-//! - `room`: a room with a window, two boxes, a point light under the
-//!   ceiling and sunlight coming through the window.
+//! - `room` and `room1`: a furnished room (151 input polygons) under two
+//!   or one square ceiling lights, like the 1992 paper's plates 3-6;
+//! - `window`: the same room with a window, two boxes, a point light under
+//!   the ceiling and sunlight coming through the window.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -13,7 +15,7 @@ use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 
 /// The names of the built-in scenes.
-pub const DEMOS: &[&str] = &["room", "tetra"];
+pub const DEMOS: &[&str] = &["room", "room1", "tetra", "window"];
 
 /// Recursion depth of the `tetra` demo: 4 gives 256 triangles.
 pub const TETRA_DEPTH: u32 = 4;
@@ -78,6 +80,8 @@ pub struct DemoFiles {
     pub scene: String,
     /// The meshes, as (path relative to the scene file, OBJ text).
     pub meshes: Vec<(String, String)>,
+    /// The `--grid` the demo runs with (scenes with area lights).
+    pub grid: Option<u32>,
 }
 
 impl DemoFiles {
@@ -85,7 +89,17 @@ impl DemoFiles {
     pub fn named(name: &str) -> Result<Self> {
         match name {
             "tetra" => Ok(tetra_files(TETRA_DEPTH)),
-            "room" => Ok(room_files()),
+            "window" => Ok(window_files()),
+            "room" | "room1" => {
+                let lights = if name == "room" { 2 } else { 1 };
+                let window = window_files();
+                Ok(DemoFiles {
+                    name: name.to_string(),
+                    scene: crate::demo_room::room_scene(lights),
+                    meshes: window.meshes,
+                    grid: Some(40),
+                })
+            }
             _ => Err(Error::UnknownDemo {
                 name: name.to_string(),
                 known: DEMOS.join(", "),
@@ -188,6 +202,7 @@ height = 512
         name: "tetra".into(),
         scene,
         meshes: vec![("meshes/tetra.obj".into(), mesh)],
+        grid: None,
     }
 }
 
@@ -198,7 +213,7 @@ fn quad(o: [f64; 3], a: [f64; 3], b: [f64; 3]) -> Vec<[f64; 3]> {
     vec![o, add(o, a), add(add(o, a), b), add(o, b)]
 }
 
-fn room_files() -> DemoFiles {
+fn window_files() -> DemoFiles {
     // The room: x in [-5, 5], y in [0, 4], z in [-5, 5], every surface
     // facing inward. The wall z = -5 has the window and is inline below.
     let room = obj_text(
@@ -238,26 +253,25 @@ fn room_files() -> DemoFiles {
             ],
         )],
     );
-    let scene = r#"# A room 10 x 4 x 10 with a window in the wall z = -5, two boxes, a lamp
-# under the ceiling and sunlight coming in through the window.
-ambient = 0.05
+    let scene = format!(
+        "# A room 10 x 4 x 10 with a window in the wall z = -5, two boxes, a lamp\n\
+         # under the ceiling and sunlight coming in through the window.\n\
+         ambient = 0.05\n\n{}{WINDOW_REST}",
+        crate::demo_room::ROOM_SHELL
+    );
+    DemoFiles {
+        name: "window".into(),
+        scene,
+        meshes: vec![
+            ("meshes/room.obj".into(), room),
+            ("meshes/box.obj".into(), cube),
+        ],
+        grid: None,
+    }
+}
 
-[[object]]
-name = "room"
-mesh = "meshes/room.obj"
-
-# The window wall, facing into the room: two concave (C-shaped) polygons
-# around the window x in [-1, 1], y in [1.5, 3].
-[[object]]
-name = "window_wall"
-polygons = [
-    [[-5.0, 0.0, -5.0], [0.0, 0.0, -5.0], [0.0, 1.5, -5.0], [-1.0, 1.5, -5.0],
-     [-1.0, 3.0, -5.0], [0.0, 3.0, -5.0], [0.0, 4.0, -5.0], [-5.0, 4.0, -5.0]],
-    [[0.0, 0.0, -5.0], [5.0, 0.0, -5.0], [5.0, 4.0, -5.0], [0.0, 4.0, -5.0],
-     [0.0, 3.0, -5.0], [1.0, 3.0, -5.0], [1.0, 1.5, -5.0], [0.0, 1.5, -5.0]],
-]
-
-[[object]]
+/// The `window` scene after the room's shell: boxes, lights, camera.
+const WINDOW_REST: &str = r#"[[object]]
 name = "table"
 mesh = "meshes/box.obj"
 scale = [1.5, 0.8, 1.0]
@@ -291,15 +305,6 @@ fov_deg = 60.0
 width = 800
 height = 600
 "#;
-    DemoFiles {
-        name: "room".into(),
-        scene: scene.into(),
-        meshes: vec![
-            ("meshes/room.obj".into(), room),
-            ("meshes/box.obj".into(), cube),
-        ],
-    }
-}
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]

@@ -48,7 +48,9 @@ mod atomic;
 mod csg;
 mod decompose;
 mod demo;
+mod demo_room;
 mod error;
+mod illuminate;
 mod mesh;
 mod obj;
 mod obj_out;
@@ -77,7 +79,7 @@ pub use render::{
     linear_to_srgb8, render, render_scene, srgb8_to_linear,
 };
 pub use scene::{Camera, Falloff, InputPolygon, Light, LightKind, MAX_LIGHTS, Object, Scene};
-pub use shadow::{ShadowResult, shadow_scene};
+pub use shadow::{ShadowOptions, ShadowResult, shadow_scene, shadow_scene_with};
 pub use stats::{LightStats, Seconds, Stats};
 pub use svg::{fragments_svg, save_svg};
 pub use transform::Transform;

@@ -4,11 +4,16 @@
 use std::collections::HashMap;
 use std::time::Instant;
 
+use area_shadow::{
+    AreaSource, Class, LightFigures, SceneLight, conform_fragments, grid_fragments,
+    subdivide_adaptive,
+};
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
-use svbsp::{LightSource, PieceFlags, compute_shadows};
+use svbsp::{LightSource, PieceFlags};
 
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
+use crate::illuminate::{IllumLight, Illuminator, illuminate};
 use crate::mesh::{OutputFace, OutputMesh};
 use crate::scene::{LightKind, Scene};
 use crate::stats::{LightStats, Seconds, Stats};
@@ -42,82 +47,143 @@ impl ShadowResult {
     }
 }
 
-/// Runs the shadow pipeline on a loaded scene.
-///
-/// Point and directional lights are supported; area lights are reported as
-/// not supported yet (their penumbra trees are still to come).
+/// Faces with more corners than this (a large fragment beside many small
+/// ones gathers their vertices) are halved: the PLY's vertex lists hold at
+/// most 255, and shading is smoother on compact faces.
+const MAX_FACE_CORNERS: usize = 64;
+
+/// Options of the shadow pipeline beyond the scene file.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ShadowOptions {
+    /// Gridding: lit fragments are cut into cells of the scene's largest
+    /// extent divided by this, penumbra fragments into cells half that
+    /// size; umbra is left whole. `None`: no gridding.
+    pub grid: Option<u32>,
+    /// Adaptive subdivision: cells (or whole fragments) are halved across
+    /// their longer side while the irradiance at their corners varies by
+    /// more than this fraction of the largest. `None`: none.
+    pub adaptive: Option<f64>,
+}
+
+/// Runs the shadow pipeline on a loaded scene with default options.
 pub fn shadow_scene(scene: &Scene) -> Result<ShadowResult> {
+    shadow_scene_with(scene, &ShadowOptions::default())
+}
+
+/// Runs the shadow pipeline on a loaded scene: classification for every
+/// light, gridding, a conforming mesh, illumination.
+pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<ShadowResult> {
     let started = Instant::now();
     let pieces = Pieces::from_scene(scene)?;
-    let lights = svbsp_lights(scene, &pieces)?;
+    let lights = scene_lights(scene, &pieces)?;
     let flags = piece_flags(scene, &pieces);
-    let out = compute_shadows(&pieces.polygons, &flags, &lights, &BuildOptions::default())
-        .map_err(|e| Error::Field {
+    let out =
+        area_shadow::compute_shadows(&pieces.polygons, &flags, &lights, &BuildOptions::default())
+            .map_err(|e| Error::Field {
             path: scene.path.clone(),
             field: "light".into(),
             message: e.to_string(),
         })?;
+    let illum_lights = illum_lights(scene, &pieces)?;
+    let illuminator = Illuminator::new(
+        &illum_lights,
+        &pieces.polygons,
+        &pieces.casts_shadows,
+        &pieces.two_sided,
+        &pieces.grid,
+    );
+
+    let grid_started = Instant::now();
+    let area_mask = lights
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| matches!(l, SceneLight::Area(_)))
+        .fold(0_u32, |m, (i, _)| m | (1 << i));
+    let mut fragments = out.fragments;
+    let extent = scene_extent(&pieces.polygons);
+    if let Some(n) = options.grid.filter(|&n| n > 0) {
+        let cell = (extent / f64::from(n)).ceil().max(2.0) as i64;
+        fragments = grid_fragments(fragments, lights.len(), area_mask, cell);
+    }
+    if let Some(tolerance) = options.adaptive {
+        // Cells stop halving at 1/1024 of the scene: far below what an
+        // image shows.
+        fragments = subdivide_adaptive(
+            fragments,
+            lights.len(),
+            area_mask,
+            tolerance,
+            extent / 1024.0,
+            |f| illuminator.fragment_irradiance(f),
+        );
+    }
+    let (fragments, conforming) = conform_fragments(fragments, MAX_FACE_CORNERS);
+    let grid = grid_started.elapsed().as_secs_f64();
 
     let illum_started = Instant::now();
-    let illum_lights = illum_lights(scene, &pieces)?;
+    let lit = illuminate(&illuminator, &fragments, &conforming);
     let mut mesh = OutputMesh::default();
-    let mut light_irradiance = Vec::new();
-    for fragment in &out.fragments {
-        let piece = &pieces.polygons[fragment.polygon.source() as usize];
-        let two_sided = flags[fragment.polygon.source() as usize].two_sided;
-        let normal = piece.support().unit_normal_f64();
-        let first = mesh.vertices.len() as u32;
-        for v in fragment.polygon.vertices_f64() {
-            let p = pieces.grid.grid_to_world(v);
-            let first_value = light_irradiance.len();
-            light_irradiance.extend(per_light_irradiance(
-                &illum_lights,
-                p,
-                normal,
-                two_sided,
-                fragment.lit_mask,
-            ));
-            // The sum over the lit lights, in light order, as the PLY has
-            // always had it.
-            let e: f64 = light_irradiance[first_value..]
-                .iter()
-                .enumerate()
-                .filter(|(i, _)| fragment.lit_mask & (1 << i) != 0)
-                .map(|(_, e)| e)
-                .sum();
-            mesh.vertices.push((p, e as f32));
-        }
+    for (p, values) in lit.coords.iter().zip(&lit.per_light) {
+        let e: f64 = values.iter().sum();
+        mesh.vertices
+            .push((pieces.grid.grid_to_world(*p), e as f32));
+    }
+    for (fragment, face) in fragments.iter().zip(lit.faces) {
         mesh.faces.push(OutputFace {
-            vertices: (first..mesh.vertices.len() as u32).collect(),
+            vertices: face,
             source: pieces.input_of[fragment.polygon.source() as usize],
             lit_mask: fragment.lit_mask,
             umbra_mask: fragment.umbra_mask,
         });
     }
+    let light_irradiance: Vec<f64> = lit.per_light.iter().flatten().copied().collect();
     let illum = illum_started.elapsed().as_secs_f64();
 
+    let class_count = |i: usize, class: Class| -> u64 {
+        fragments
+            .iter()
+            .filter(|f| Class::of(f, i as u32) == class)
+            .count() as u64
+    };
     let stats = Stats {
         input_polygons: pieces.input_polygons as u64,
         output_fragments: mesh.faces.len() as u64,
         seconds: Seconds {
             bsp: out.bsp_seconds,
             shadow: out.shadow_seconds,
-            grid: 0.0,
+            grid,
             illum,
             total: started.elapsed().as_secs_f64(),
         },
         lights: out
             .lights
             .iter()
-            .map(|s| LightStats {
-                front_facing_polygons: s.front_facing_polygons as u64,
-                front_facing_edges: s.front_facing_edges as u64,
-                tree_nodes: Some(s.tree_nodes as u64),
-                penumbra_nodes: None,
-                umbra_nodes: None,
-                lit: s.lit as u64,
-                penumbra: 0,
-                umbra: s.umbra as u64,
+            .enumerate()
+            .map(|(i, figures)| {
+                let [lit_vertices, penumbra_vertices, umbra_vertices] = lit.vertex_classes[i];
+                let mut s = LightStats {
+                    lit: class_count(i, Class::Lit),
+                    penumbra: class_count(i, Class::Penumbra),
+                    umbra: class_count(i, Class::Umbra),
+                    lit_vertices: Some(lit_vertices),
+                    penumbra_vertices: Some(penumbra_vertices),
+                    umbra_vertices: Some(umbra_vertices),
+                    ..LightStats::default()
+                };
+                match figures {
+                    LightFigures::Svbsp(f) => {
+                        s.front_facing_polygons = f.front_facing_polygons as u64;
+                        s.front_facing_edges = f.front_facing_edges as u64;
+                        s.tree_nodes = Some(f.tree_nodes as u64);
+                    }
+                    LightFigures::Area(f) => {
+                        s.front_facing_polygons = f.front_facing_polygons as u64;
+                        s.front_facing_edges = f.front_facing_edges as u64;
+                        s.penumbra_nodes = Some(f.penumbra_nodes as u64);
+                        s.umbra_nodes = Some(f.umbra_nodes as u64);
+                    }
+                }
+                s
             })
             .collect(),
     };
@@ -129,23 +195,42 @@ pub fn shadow_scene(scene: &Scene) -> Result<ShadowResult> {
     })
 }
 
-/// The scene's lights for `svbsp`; area lights are not supported yet.
-fn svbsp_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<svbsp::Light>> {
+/// The largest side of the pieces' bounding box, in grid units.
+fn scene_extent(pieces: &[ConvexPolygon]) -> f64 {
+    let (lo, hi) = pieces.iter().flat_map(|p| p.vertices_f64()).fold(
+        ([f64::MAX; 3], [f64::MIN; 3]),
+        |(lo, hi), v| {
+            (
+                [0, 1, 2].map(|i| lo[i].min(v[i])),
+                [0, 1, 2].map(|i| hi[i].max(v[i])),
+            )
+        },
+    );
+    (0..3).map(|i| hi[i] - lo[i]).fold(0.0, f64::max)
+}
+
+/// The scene's lights for the shadow passes.
+fn scene_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<SceneLight>> {
     let mut lights = Vec::with_capacity(pieces.lights.len());
     for (i, (light, snapped)) in scene.lights.iter().zip(&pieces.lights).enumerate() {
-        let source = match snapped {
-            SnappedLight::Point(p) => LightSource::Point(*p),
-            SnappedLight::Directional(d) => LightSource::Directional(*d),
-            SnappedLight::Area(_) => {
-                return Err(Error::Field {
-                    path: scene.path.clone(),
-                    field: format!("light[{i}].type"),
-                    message: "area lights are not supported by `umbra shadow` yet (penumbra and umbra trees are still to come)".into(),
-                });
-            }
-        };
         let range = light.falloff.map(|f| f.range * pieces.grid.scale());
-        lights.push(svbsp::Light { source, range });
+        lights.push(match snapped {
+            SnappedLight::Point(p) => SceneLight::Svbsp(svbsp::Light {
+                source: LightSource::Point(*p),
+                range,
+            }),
+            SnappedLight::Directional(d) => SceneLight::Svbsp(svbsp::Light {
+                source: LightSource::Directional(*d),
+                range,
+            }),
+            SnappedLight::Area(polygon) => {
+                SceneLight::Area(AreaSource::new(polygon.clone()).map_err(|e| Error::Field {
+                    path: scene.path.clone(),
+                    field: format!("light[{i}].vertices"),
+                    message: e.to_string(),
+                })?)
+            }
+        });
     }
     Ok(lights)
 }
@@ -187,12 +272,6 @@ fn grid_edges(piece: &ConvexPolygon) -> impl Iterator<Item = (GridPoint, GridPoi
     })
 }
 
-/// A light as `illum` evaluates it (area lights are not supported yet).
-enum IllumLight {
-    Point(illum::PointLight),
-    Directional(illum::DirectionalLight),
-}
-
 /// The scene's lights for `illum`, at their snapped positions so that
 /// illumination and classification agree. Intensities and falloffs were
 /// validated when the scene was loaded.
@@ -219,39 +298,13 @@ fn illum_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<IllumLight>> {
                 illum::DirectionalLight::new(*direction, light.intensity)
                     .map_err(|e| field(e.to_string()))?,
             ),
-            _ => {
-                return Err(field(
-                    "area lights are not supported by `umbra shadow` yet".into(),
-                ));
-            }
+            (LightKind::Area { .. }, SnappedLight::Area(polygon)) => IllumLight::Area(
+                illum::AreaLight::new(&polygon.vertices_f64(), light.intensity)
+                    .map_err(|e| field(e.to_string()))?,
+            ),
+            _ => return Err(field("the light's kind changed when snapped".into())),
         };
         out.push(made);
     }
     Ok(out)
-}
-
-/// Direct irradiance at world point `p` with unit normal `normal` from each
-/// light in turn: its value if its bit is set in `lit_mask`, else 0 (ambient
-/// excluded).
-fn per_light_irradiance(
-    lights: &[IllumLight],
-    p: [f64; 3],
-    normal: [f64; 3],
-    two_sided: bool,
-    lit_mask: u32,
-) -> impl Iterator<Item = f64> + '_ {
-    let sidedness = if two_sided {
-        illum::Sidedness::TwoSided
-    } else {
-        illum::Sidedness::OneSided
-    };
-    lights.iter().enumerate().map(move |(i, light)| {
-        if lit_mask & (1 << i) == 0 {
-            return 0.0;
-        }
-        match light {
-            IllumLight::Point(l) => l.irradiance(p, normal, sidedness),
-            IllumLight::Directional(l) => l.irradiance(normal, sidedness),
-        }
-    })
 }

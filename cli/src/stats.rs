@@ -57,6 +57,16 @@ pub struct LightStats {
     pub penumbra: u64,
     /// Fragments that see none of it.
     pub umbra: u64,
+    /// Output mesh points (per receiving plane) evaluated with the whole
+    /// light: the 1992 paper's Figure 8 "lit vertices".
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lit_vertices: Option<u64>,
+    /// Mesh points evaluated from the visible part of the light.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub penumbra_vertices: Option<u64>,
+    /// Mesh points given no light.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub umbra_vertices: Option<u64>,
 }
 
 impl Stats {

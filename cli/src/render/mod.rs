@@ -29,7 +29,11 @@ pub use image::{Image, linear_to_srgb8, srgb8_to_linear};
 use crate::error::{Error, Result};
 use crate::mesh::OutputFace;
 use crate::scene::{Camera, LightKind, Scene};
-use crate::shadow::{ShadowResult, shadow_scene};
+use crate::shadow::{ShadowOptions, ShadowResult, shadow_scene_with};
+
+/// Gridding `render_scene` uses for scenes with area lights (cells of
+/// 1/40 of the scene, 1/80 in penumbra).
+pub const RENDER_GRID: u32 = 40;
 use raster::{Corner, EMPTY, Samples};
 
 /// Samples per pixel side: 3 x 3 samples per pixel.
@@ -153,7 +157,7 @@ pub fn exposure(scene: &Scene, shadows: &ShadowResult) -> f64 {
 }
 
 /// Renders `scene` from its camera: computes its shadows
-/// ([`shadow_scene`]) and draws them ([`render`]).
+/// ([`shadow_scene_with`]) and draws them ([`render`]).
 ///
 /// # Errors
 ///
@@ -189,7 +193,16 @@ pub fn exposure(scene: &Scene, shadows: &ShadowResult) -> f64 {
 /// ```
 pub fn render_scene(scene: &Scene, view: View) -> Result<Image> {
     camera_of(scene)?;
-    let shadows = shadow_scene(scene)?;
+    // Soft shadows need vertices inside the penumbra to show its gradient.
+    let has_area_light = scene
+        .lights
+        .iter()
+        .any(|l| matches!(l.kind, crate::scene::LightKind::Area { .. }));
+    let options = ShadowOptions {
+        grid: has_area_light.then_some(RENDER_GRID),
+        adaptive: None,
+    };
+    let shadows = shadow_scene_with(scene, &options)?;
     render(scene, &shadows, view)
 }
 

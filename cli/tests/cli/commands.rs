@@ -28,7 +28,7 @@ fn demo_writes_the_scene_and_prints_its_path() {
     assert_eq!(run.code, 2);
     assert!(
         run.stderr
-            .contains("unknown demo scene `nowhere` (known: room, tetra)")
+            .contains("unknown demo scene `nowhere` (known: room, room1, tetra, window)")
     );
 }
 

@@ -47,9 +47,9 @@ fn tetra_has_256_triangles_and_the_ground_faces_the_light() {
 }
 
 #[test]
-fn room_faces_inward_and_its_window_wall_is_concave() {
+fn window_room_faces_inward_and_its_window_wall_is_concave() {
     let dir = folder(&[]);
-    let scene = Scene::load(write_demo("room", dir.path()).unwrap()).unwrap();
+    let scene = Scene::load(write_demo("window", dir.path()).unwrap()).unwrap();
     let pieces = Pieces::from_scene(&scene).unwrap();
     // Room: 5 quads; window wall: 2 concave faces; two boxes of 6 faces.
     assert_eq!(pieces.input_polygons, 5 + 2 + 12);
@@ -75,4 +75,20 @@ fn room_faces_inward_and_its_window_wall_is_concave() {
         .map(|p| p.area() / scale2)
         .sum();
     assert!((wall - (40.0 - 3.0)).abs() < 1e-9, "{wall}");
+}
+
+#[test]
+fn room_has_the_plate_6_polygon_count_under_two_quad_lights() {
+    for (name, lights) in [("room", 2), ("room1", 1)] {
+        let dir = folder(&[]);
+        let scene = Scene::load(write_demo(name, dir.path()).unwrap()).unwrap();
+        assert_eq!(scene.polygon_count(), 151, "{name}");
+        assert_eq!(scene.lights.len(), lights);
+        assert!(
+            scene
+                .lights
+                .iter()
+                .all(|l| matches!(l.kind, LightKind::Area { .. }))
+        );
+    }
 }

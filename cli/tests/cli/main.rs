@@ -1,5 +1,6 @@
 //! Integration tests of the `umbra` library and command, as one binary.
 
+mod area;
 mod commands;
 mod csg;
 mod decomposition;

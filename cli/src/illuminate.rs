@@ -1,0 +1,354 @@
+//! Direct illumination of the conforming mesh's vertices, each light by
+//! its own rule: point and directional lights in closed form, area lights
+//! by Lambert's contour integral over the whole light (lit) or its visible
+//! part (penumbra), with the 1992 paper's vertex-sharing rules.
+
+use std::collections::HashMap;
+
+use smallvec::SmallVec;
+
+use area_shadow::{Class, ConformingMesh};
+use bsp_core::{BuildOptions, ConvexPolygon, Grid, SceneBsp};
+use illum::rayon::prelude::*;
+use illum::{FragmentClass, Sidedness, VertexPlan, VisiblePart, vertex_plan};
+use svbsp::Fragment;
+
+/// A light as `illum` evaluates it.
+pub enum IllumLight {
+    /// A point light, in world units.
+    Point(illum::PointLight),
+    /// A directional light.
+    Directional(illum::DirectionalLight),
+    /// An area light, in grid units (irradiance from a polygon does not
+    /// change with the scale).
+    Area(illum::AreaLight),
+}
+
+/// Everything illumination needs about the scene.
+pub struct Illuminator<'a> {
+    /// The lights, in scene order.
+    pub lights: &'a [IllumLight],
+    /// The pieces (grid units); fragment sources index them.
+    pub pieces: &'a [ConvexPolygon],
+    /// Per piece: whether it receives on both sides.
+    pub two_sided: &'a [bool],
+    /// The grid, for world coordinates.
+    pub grid: &'a Grid,
+    /// The pieces in a BSP, to find the occluders between a point and an
+    /// area light (only when there are area lights).
+    pub bsp: Option<SceneBsp>,
+    /// The outlines of the BSP's polygons (grid units), made once.
+    outlines: Vec<Vec<[f64; 3]>>,
+    /// Their bounding boxes, to drop candidates far from a query's hull.
+    boxes: Vec<([f64; 3], [f64; 3])>,
+}
+
+/// The bounding box of `points`, grown by a margin far above rounding.
+fn bounding_box<'p>(points: impl IntoIterator<Item = &'p [f64; 3]>) -> ([f64; 3], [f64; 3]) {
+    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
+    for p in points {
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    let margin = 1e-6 * (0..3).map(|i| hi[i] - lo[i]).fold(1.0, f64::max);
+    (lo.map(|x| x - margin), hi.map(|x| x + margin))
+}
+
+impl<'a> Illuminator<'a> {
+    /// Sets up illumination; builds the occluder search BSP when some light
+    /// is an area light.
+    pub fn new(
+        lights: &'a [IllumLight],
+        pieces: &'a [ConvexPolygon],
+        casts_shadows: &'a [bool],
+        two_sided: &'a [bool],
+        grid: &'a Grid,
+    ) -> Self {
+        let bsp = lights
+            .iter()
+            .any(|l| matches!(l, IllumLight::Area(_)))
+            .then(|| {
+                let casters: Vec<ConvexPolygon> = pieces
+                    .iter()
+                    .zip(casts_shadows)
+                    .filter(|(_, c)| **c)
+                    .map(|(p, _)| p.clone())
+                    .collect();
+                SceneBsp::build(casters, &BuildOptions::default())
+            });
+        let outlines = bsp.as_ref().map_or_else(Vec::new, |bsp| {
+            bsp.polygons()
+                .iter()
+                .map(ConvexPolygon::vertices_f64)
+                .collect()
+        });
+        let boxes = outlines.iter().map(bounding_box).collect();
+        Self {
+            lights,
+            pieces,
+            two_sided,
+            grid,
+            bsp,
+            outlines,
+            boxes,
+        }
+    }
+
+    fn sidedness(&self, piece: usize) -> Sidedness {
+        if self.two_sided[piece] {
+            Sidedness::TwoSided
+        } else {
+            Sidedness::OneSided
+        }
+    }
+
+    /// Irradiance from light `i` at grid point `p` on piece `piece`, as
+    /// `value` asks.
+    fn value(&self, i: usize, value: Value, p: [f64; 3], piece: usize) -> f64 {
+        let normal = self.pieces[piece].support().unit_normal_f64();
+        let sidedness = self.sidedness(piece);
+        match (&self.lights[i], value) {
+            (_, Value::Zero) => 0.0,
+            (IllumLight::Point(l), _) => {
+                l.irradiance(self.grid.grid_to_world(p), normal, sidedness)
+            }
+            (IllumLight::Directional(l), _) => l.irradiance(normal, sidedness),
+            (IllumLight::Area(l), Value::Whole) => l.irradiance(p, normal, sidedness),
+            (IllumLight::Area(l), Value::Visible) => {
+                let occluders = self.occluders(p, l, piece);
+                let mut part = VisiblePart::new();
+                part.compute(l, &occluders, p);
+                part.irradiance(l, p, normal, sidedness)
+            }
+        }
+    }
+
+    /// Outlines of the shadow-casting polygons that may lie between `p`
+    /// and `light`, except those in `piece`'s plane.
+    fn occluders(&self, p: [f64; 3], light: &illum::AreaLight, piece: usize) -> Vec<&[[f64; 3]]> {
+        let Some(bsp) = &self.bsp else {
+            return Vec::new();
+        };
+        let own = self.pieces[piece].support();
+        // A polygon between `p` and the light lies in their hull, so in its
+        // bounding box.
+        let (lo, hi) = bounding_box(light.vertices().iter().chain(std::iter::once(&p)));
+        illum::occluders_between(bsp, p, light)
+            .into_iter()
+            .filter(|&k| {
+                let (a, b) = &self.boxes[k as usize];
+                (0..3).all(|i| a[i] <= hi[i] && lo[i] <= b[i])
+            })
+            .filter(|&k| !bsp.polygons()[k as usize].support().is_coincident(own))
+            .map(|k| self.outlines[k as usize].as_slice())
+            .collect()
+    }
+
+    /// Irradiance at every vertex of `fragment` from each light by its
+    /// class (no sharing: for adaptive subdivision), summed over lights.
+    pub fn fragment_irradiance(&self, fragment: &Fragment) -> Vec<f64> {
+        let piece = fragment.polygon.source() as usize;
+        fragment
+            .polygon
+            .vertices_f64()
+            .into_iter()
+            .map(|p| {
+                (0..self.lights.len())
+                    .map(|i| {
+                        let value = match Class::of(fragment, i as u32) {
+                            Class::Lit => Value::Whole,
+                            Class::Penumbra => Value::Visible,
+                            Class::Umbra => Value::Zero,
+                        };
+                        self.value(i, value, p, piece)
+                    })
+                    .sum()
+            })
+            .collect()
+    }
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Value {
+    Whole,
+    Visible,
+    Zero,
+}
+
+/// The illuminated mesh: output vertices (grid units) with per-light
+/// irradiance, faces as indices into them.
+pub struct Illuminated {
+    /// Grid coordinates of each output vertex.
+    pub coords: Vec<[f64; 3]>,
+    /// Per output vertex, one value per light.
+    pub per_light: Vec<Vec<f64>>,
+    /// Per fragment, its output vertex indices.
+    pub faces: Vec<Vec<u32>>,
+    /// Per light: mesh points evaluated whole (lit), from their visible
+    /// part (penumbra), and given zero (umbra); a point shared by lit and
+    /// umbra fragments counts as lit and umbra.
+    pub vertex_classes: Vec<[u64; 3]>,
+}
+
+/// Illuminates the conforming mesh of `fragments`: each distinct point of
+/// each receiving plane once per light, with the sharing rules deciding
+/// what is evaluated; a vertex shared by lit and umbra fragments keeps a
+/// value for each side.
+pub fn illuminate(
+    illuminator: &Illuminator<'_>,
+    fragments: &[Fragment],
+    mesh: &ConformingMesh,
+) -> Illuminated {
+    let lights = illuminator.lights.len();
+    // Groups: a point on one receiving plane (its normal and sidedness
+    // decide its irradiance), with the fragments around it.
+    // Per point, the groups on it: (plane id, group); nearly always one.
+    let mut groups_at: Vec<SmallVec<[(usize, usize); 1]>> =
+        vec![SmallVec::new(); mesh.points.len()];
+    let mut plane_key: HashMap<([i64; 3], i128, bool), usize> = HashMap::new();
+    let mut plane_of_piece: HashMap<usize, usize> = HashMap::new();
+    let mut groups: Vec<(u32, usize)> = Vec::new();
+    let mut corner_group: Vec<Vec<usize>> = Vec::with_capacity(fragments.len());
+    for (f, face) in fragments.iter().zip(&mesh.faces) {
+        let piece = f.polygon.source() as usize;
+        let plane = *plane_of_piece.entry(piece).or_insert_with(|| {
+            let support = f.polygon.support();
+            let planes = plane_key.len();
+            *plane_key
+                .entry((
+                    support.normal(),
+                    support.offset(),
+                    illuminator.two_sided[piece],
+                ))
+                .or_insert(planes)
+        });
+        let mut corners = Vec::with_capacity(face.len());
+        for &point in face {
+            let at = &mut groups_at[point as usize];
+            let g = match at.iter().find(|(p, _)| *p == plane) {
+                Some(&(_, g)) => g,
+                None => {
+                    let g = groups.len();
+                    groups.push((point, piece));
+                    at.push((plane, g));
+                    g
+                }
+            };
+            corners.push(g);
+        }
+        corner_group.push(corners);
+    }
+    // Fragments around each group, by class per light.
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); groups.len()];
+    for (f, corners) in corner_group.iter().enumerate() {
+        for &g in corners {
+            if around[g].last() != Some(&f) {
+                around[g].push(f);
+            }
+        }
+    }
+    let plans: Vec<Vec<VertexPlan>> = around
+        .par_iter()
+        .map(|fs| {
+            (0..lights)
+                .map(|i| {
+                    vertex_plan(
+                        fs.iter()
+                            .map(|&f| to_illum(Class::of(&fragments[f], i as u32))),
+                    )
+                    .expect("a group has a fragment")
+                })
+                .collect()
+        })
+        .collect();
+    // Evaluate each group once per light (in parallel; each value depends
+    // only on its own inputs, so results do not depend on thread count).
+    let values: Vec<Vec<f64>> = groups
+        .par_iter()
+        .zip(plans.par_iter())
+        .map(|((point, piece), plans)| {
+            let p = mesh.coords[*point as usize];
+            plans
+                .iter()
+                .enumerate()
+                .map(|(i, plan)| match plan {
+                    VertexPlan::Zero => 0.0,
+                    VertexPlan::VisiblePart => illuminator.value(i, Value::Visible, p, *piece),
+                    VertexPlan::Unoccluded | VertexPlan::Split => {
+                        illuminator.value(i, Value::Whole, p, *piece)
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let mut vertex_classes = vec![[0_u64; 3]; lights];
+    for plans in &plans {
+        for (i, plan) in plans.iter().enumerate() {
+            match plan {
+                VertexPlan::Unoccluded => vertex_classes[i][0] += 1,
+                VertexPlan::VisiblePart => vertex_classes[i][1] += 1,
+                VertexPlan::Zero => vertex_classes[i][2] += 1,
+                VertexPlan::Split => {
+                    vertex_classes[i][0] += 1;
+                    vertex_classes[i][2] += 1;
+                }
+            }
+        }
+    }
+    // Output vertices: one per group and per set of lights that a Split
+    // plan zeroes for the fragment at hand.
+    let mut out = Illuminated {
+        coords: Vec::new(),
+        per_light: Vec::new(),
+        faces: Vec::with_capacity(fragments.len()),
+        vertex_classes,
+    };
+    // Per group, its output vertices by the lights a Split plan zeroes.
+    let mut vertex_of: Vec<SmallVec<[(u32, u32); 1]>> = vec![SmallVec::new(); groups.len()];
+    for (f, corners) in corner_group.iter().enumerate() {
+        let mut face = Vec::with_capacity(corners.len());
+        for &g in corners {
+            let zeroed = (0..lights)
+                .filter(|&i| {
+                    plans[g][i] == VertexPlan::Split
+                        && Class::of(&fragments[f], i as u32) == Class::Umbra
+                })
+                .fold(0_u32, |m, i| m | (1 << i));
+            let next = out.coords.len() as u32;
+            let v = match vertex_of[g].iter().find(|(z, _)| *z == zeroed) {
+                Some(&(_, v)) => v,
+                None => {
+                    vertex_of[g].push((zeroed, next));
+                    next
+                }
+            };
+            if v == next {
+                out.coords.push(mesh.coords[groups[g].0 as usize]);
+                out.per_light.push(
+                    (0..lights)
+                        .map(|i| {
+                            if zeroed & (1 << i) != 0 {
+                                0.0
+                            } else {
+                                values[g][i]
+                            }
+                        })
+                        .collect(),
+                );
+            }
+            face.push(v);
+        }
+        out.faces.push(face);
+    }
+    out
+}
+
+fn to_illum(class: Class) -> FragmentClass {
+    match class {
+        Class::Lit => FragmentClass::Lit,
+        Class::Penumbra => FragmentClass::Penumbra,
+        Class::Umbra => FragmentClass::Umbra,
+    }
+}

@@ -1,0 +1,255 @@
+//! `umbra shadow` with area lights end to end: classes against the exact
+//! geometry of a square under a square light, irradiance against direct
+//! quadrature over the light with an occlusion test, a conforming mesh
+//! (no T-vertex), gridding and adaptive subdivision, stats.
+
+use crate::{folder, umbra};
+use umbra::{OutputMesh, load_ply};
+
+/// Floor 20 x 20 at y = 0, a 4 x 4 square at y = 5, a 2 x 2 light at
+/// y = 10 facing down: umbra |x|, |z| <= 3, penumbra out to 5.
+const SQUARE_UNDER_LIGHT: &str = r#"
+[[object]]
+name = "floor"
+polygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]
+
+[[object]]
+name = "square"
+polygons = [[[-2, 5, 2], [2, 5, 2], [2, 5, -2], [-2, 5, -2]]]
+
+[[light]]
+type = "area"
+vertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]
+intensity = 2.0
+"#;
+
+/// Irradiance at floor point `p` (normal +y) from the light of
+/// [`SQUARE_UNDER_LIGHT`] by midpoint quadrature over the light, each
+/// sample blocked when its ray crosses the square.
+fn quadrature(p: [f64; 3]) -> f64 {
+    let n = 400;
+    let h = 2.0 / f64::from(n);
+    let mut e = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let x = [
+                -1.0 + (f64::from(i) + 0.5) * h,
+                10.0,
+                -1.0 + (f64::from(j) + 0.5) * h,
+            ];
+            let d = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+            // Where the ray crosses y = 5.
+            let t = (5.0 - p[1]) / d[1];
+            let c = [p[0] + t * d[0], p[2] + t * d[2]];
+            if (0.0..1.0).contains(&t) && c[0].abs() < 2.0 && c[1].abs() < 2.0 {
+                continue;
+            }
+            let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            // cos at the floor (normal +y) and at the light (normal -y).
+            let cos = d[1] / r2.sqrt();
+            // Radiance 2: E = L * integral of cos * cos' / r^2 over the light.
+            e += 2.0 * cos * cos / r2 * h * h;
+        }
+    }
+    e
+}
+
+fn face_points(mesh: &OutputMesh, f: usize) -> Vec<[f64; 3]> {
+    mesh.faces[f]
+        .vertices
+        .iter()
+        .map(|&i| mesh.vertices[i as usize].0)
+        .collect()
+}
+
+fn area(v: &[[f64; 3]]) -> f64 {
+    // Floor faces: the xz-plane area.
+    let mut a = 0.0;
+    for i in 0..v.len() {
+        let (p, q) = (v[i], v[(i + 1) % v.len()]);
+        a += p[0] * q[2] - q[0] * p[2];
+    }
+    0.5 * a.abs()
+}
+
+/// No vertex of the mesh lies strictly inside an edge of a face.
+fn assert_no_t_vertices(mesh: &OutputMesh) {
+    for (f, face) in mesh.faces.iter().enumerate() {
+        let pts = face_points(mesh, f);
+        for k in 0..pts.len() {
+            let (a, b) = (pts[k], pts[(k + 1) % pts.len()]);
+            let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let len2 = d.iter().map(|x| x * x).sum::<f64>();
+            for (v, (p, _)) in mesh.vertices.iter().enumerate() {
+                if face.vertices.contains(&(v as u32)) {
+                    continue;
+                }
+                let w = [p[0] - a[0], p[1] - a[1], p[2] - a[2]];
+                let t = (0..3).map(|i| w[i] * d[i]).sum::<f64>() / len2;
+                if t <= 1e-9 || t >= 1.0 - 1e-9 {
+                    continue;
+                }
+                let off = (0..3).map(|i| (w[i] - t * d[i]).powi(2)).sum::<f64>();
+                assert!(
+                    off > 1e-14 * len2,
+                    "face {f} edge {k}: vertex {v} at {p:?} inside it"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn a_square_under_a_square_light() {
+    let dir = folder(&[("scene.toml", SQUARE_UNDER_LIGHT)]);
+    let run = umbra(
+        dir.path(),
+        &[
+            "shadow",
+            "scene.toml",
+            "-o",
+            "out.ply",
+            "--stats",
+            "s.json",
+            "--grid",
+            "8",
+        ],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+    let (mut lit, mut pen, mut umb) = (0.0, 0.0, 0.0);
+    for (f, face) in mesh.faces.iter().enumerate() {
+        if face.source != 0 {
+            continue;
+        }
+        let a = area(&face_points(&mesh, f));
+        match (face.lit_mask & 1, face.umbra_mask & 1) {
+            (1, 0) => lit += a,
+            (0, 1) => umb += a,
+            (0, 0) => pen += a,
+            _ => panic!("face {f} lit and umbra"),
+        }
+    }
+    assert!((umb - 36.0).abs() < 1e-9, "umbra {umb}");
+    assert!((pen - 64.0).abs() < 1e-9, "penumbra {pen}");
+    assert!((lit - 300.0).abs() < 1e-9, "lit {lit}");
+    assert_no_t_vertices(&mesh);
+
+    // Irradiance at every floor vertex against quadrature; umbra faces are
+    // dark, lit faces see the whole light.
+    let mut checked = 0;
+    for face in mesh.faces.iter().filter(|f| f.source == 0) {
+        for &v in &face.vertices {
+            let (p, e) = mesh.vertices[v as usize];
+            if face.umbra_mask & 1 != 0 {
+                assert!(f64::from(e).abs() < 1e-6, "umbra vertex {p:?}: {e}");
+                continue;
+            }
+            if checked % 7 == 0 {
+                let truth = quadrature(p);
+                assert!(
+                    (f64::from(e) - truth).abs() <= 2e-3 * truth + 1e-5,
+                    "vertex {p:?}: {e} vs {truth}"
+                );
+            }
+            checked += 1;
+        }
+    }
+    assert!(checked > 50);
+
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    let light = &stats["lights"][0];
+    for key in [
+        "penumbra_nodes",
+        "umbra_nodes",
+        "lit",
+        "penumbra",
+        "umbra",
+        "lit_vertices",
+        "penumbra_vertices",
+        "umbra_vertices",
+    ] {
+        assert!(light[key].as_u64().is_some(), "{key} in {light}");
+    }
+    assert!(light.get("tree_nodes").is_none());
+    assert!(light["penumbra_vertices"].as_u64().unwrap() > 0);
+}
+
+#[test]
+fn point_and_area_lights_in_one_run() {
+    let scene = format!(
+        "{SQUARE_UNDER_LIGHT}\n[[light]]\ntype = \"point\"\nposition = [8, 10, 0]\nintensity = 50.0\n"
+    );
+    let dir = folder(&[("scene.toml", scene.as_str())]);
+    let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "out.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+    // The point light (bit 1) is lit or umbra everywhere; the area light
+    // (bit 0) has all three classes on the floor.
+    let mut classes = [false; 3];
+    for face in &mesh.faces {
+        assert_eq!((face.lit_mask | face.umbra_mask) & 2, 2);
+        assert_eq!(face.lit_mask & face.umbra_mask, 0);
+        if face.source == 0 {
+            classes[match (face.lit_mask & 1, face.umbra_mask & 1) {
+                (1, _) => 0,
+                (_, 1) => 2,
+                _ => 1,
+            }] = true;
+        }
+    }
+    assert_eq!(classes, [true; 3]);
+    assert_no_t_vertices(&mesh);
+}
+
+#[test]
+fn adaptive_subdivision_refines_where_light_changes() {
+    let dir = folder(&[("scene.toml", SQUARE_UNDER_LIGHT)]);
+    let coarse = umbra(dir.path(), &["shadow", "scene.toml", "-o", "a.ply"]);
+    assert_eq!(coarse.code, 0, "{}", coarse.stderr);
+    let fine = umbra(
+        dir.path(),
+        &["shadow", "scene.toml", "-o", "b.ply", "--adaptive", "0.2"],
+    );
+    assert_eq!(fine.code, 0, "{}", fine.stderr);
+    let (a, b) = (
+        load_ply(&dir.path().join("a.ply")).unwrap(),
+        load_ply(&dir.path().join("b.ply")).unwrap(),
+    );
+    assert!(
+        b.faces.len() > 2 * a.faces.len(),
+        "{} vs {}",
+        b.faces.len(),
+        a.faces.len()
+    );
+    assert_no_t_vertices(&b);
+    // Every face with some light left varies by at most the tolerance, or
+    // reached the smallest cell (1/1024 of the scene: 0.02 here).
+    for (f, face) in b.faces.iter().enumerate() {
+        let pts = face_points(&b, f);
+        let es: Vec<f64> = face
+            .vertices
+            .iter()
+            .map(|&v| f64::from(b.vertices[v as usize].1))
+            .collect();
+        let hi = es.iter().copied().fold(0.0, f64::max);
+        let lo = es.iter().copied().fold(f64::MAX, f64::min);
+        let size = (0..3)
+            .map(|i| {
+                pts.iter().map(|p| p[i]).fold(f64::MIN, f64::max)
+                    - pts.iter().map(|p| p[i]).fold(f64::MAX, f64::min)
+            })
+            .fold(0.0, f64::max);
+        assert!(
+            hi - lo <= 0.2 * hi + 1e-6 || size < 0.05,
+            "face {f}: {lo}..{hi}, size {size}"
+        );
+    }
+    let bad = umbra(
+        dir.path(),
+        &["shadow", "scene.toml", "-o", "c.ply", "--adaptive", "-1"],
+    );
+    assert_eq!(bad.code, 2);
+    assert!(!dir.path().join("c.ply").exists());
+}
