@@ -6,5 +6,6 @@
 //! build the scenes of the papers.
 
 pub mod random;
+pub mod rooms;
 pub mod scene;
 pub mod tetra;

@@ -13,6 +13,7 @@
 //! cargo test --manifest-path fuzz/Cargo.toml             # replay the corpus (stable)
 //! ```
 
+pub mod area;
 pub mod merge;
 pub mod split;
 
