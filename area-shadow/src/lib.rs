@@ -56,7 +56,7 @@ pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
 pub use merge_pieces::{merge_pair, merge_same_class};
-pub use pass::{AreaLightStats, AreaTrees, Class, shadow_area_light};
+pub use pass::{AreaLightStats, AreaTrees, Class, classify_fragments, shadow_area_light};
 pub use pipeline::{LightFigures, SceneLight, Shadows, compute_shadows};
 pub use source::{AreaSource, SourceSide};
 pub use tree::{Partition, VolumeTree};

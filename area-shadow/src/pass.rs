@@ -29,6 +29,7 @@ use crate::tree::VolumeTree;
 use crate::volumes::cast_volumes;
 use crate::{AreaSource, SourceSide};
 use bsp_core::{ConvexPolygon, Split};
+use rayon::prelude::*;
 use svbsp::{Fragment, PieceFlags};
 
 /// Figures of one area light's pass (the 1992 paper's Figure 8 columns that
@@ -227,6 +228,25 @@ pub fn shadow_area_light(
     bit: u32,
 ) -> (Vec<Fragment>, AreaLightStats) {
     let trees = AreaTrees::build(pieces, flags, light);
+    classify_fragments(&trees, fragments, pieces, flags, light, bit)
+}
+
+/// The classification half of [`shadow_area_light`], with trees built
+/// beforehand (the trees of several lights can be built side by side).
+/// Fragments are classified in parallel; the output keeps their order, so
+/// it does not depend on the number of threads.
+///
+/// # Panics
+///
+/// As [`shadow_area_light`].
+pub fn classify_fragments(
+    trees: &AreaTrees,
+    fragments: Vec<Fragment>,
+    pieces: &[ConvexPolygon],
+    flags: &[PieceFlags],
+    light: &AreaSource,
+    bit: u32,
+) -> (Vec<Fragment>, AreaLightStats) {
     let mut stats = AreaLightStats {
         penumbra_nodes: trees.penumbra.len(),
         umbra_nodes: trees.umbra.len(),
@@ -240,24 +260,35 @@ pub fn shadow_area_light(
             stats.front_facing_edges += piece.len();
         }
     }
-    let mut out = Vec::with_capacity(fragments.len());
-    for fragment in fragments {
-        let piece = fragment.polygon.source() as usize;
-        let (lit_mask, umbra_mask) = (fragment.lit_mask, fragment.umbra_mask);
-        for (polygon, class) in trees.classify(fragment.polygon, flags[piece], light) {
-            let mut made = Fragment {
-                polygon,
-                lit_mask,
-                umbra_mask,
-            };
-            class.apply(&mut made, bit);
-            match class {
-                Class::Lit => stats.lit += 1,
-                Class::Penumbra => stats.penumbra += 1,
-                Class::Umbra => stats.umbra += 1,
-            }
-            out.push(made);
+    let classified: Vec<Vec<(Fragment, Class)>> = fragments
+        .into_par_iter()
+        .with_min_len(16)
+        .map(|fragment| {
+            let piece = fragment.polygon.source() as usize;
+            let (lit_mask, umbra_mask) = (fragment.lit_mask, fragment.umbra_mask);
+            trees
+                .classify(fragment.polygon, flags[piece], light)
+                .into_iter()
+                .map(|(polygon, class)| {
+                    let mut made = Fragment {
+                        polygon,
+                        lit_mask,
+                        umbra_mask,
+                    };
+                    class.apply(&mut made, bit);
+                    (made, class)
+                })
+                .collect()
+        })
+        .collect();
+    let mut out = Vec::with_capacity(classified.iter().map(Vec::len).sum());
+    for (made, class) in classified.into_iter().flatten() {
+        match class {
+            Class::Lit => stats.lit += 1,
+            Class::Penumbra => stats.penumbra += 1,
+            Class::Umbra => stats.umbra += 1,
         }
+        out.push(made);
     }
     (out, stats)
 }

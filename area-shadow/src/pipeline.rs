@@ -2,9 +2,10 @@
 //! `svbsp`'s SVBSP trees, area lights through their penumbra and umbra
 //! trees, each fragment carrying its bits in `lit_mask` / `umbra_mask`.
 
-use crate::pass::{AreaLightStats, shadow_area_light};
+use crate::pass::{AreaLightStats, AreaTrees, classify_fragments};
 use crate::{AreaSource, Error};
 use bsp_core::{BuildOptions, ConvexPolygon};
+use rayon::prelude::*;
 use std::time::Instant;
 use svbsp::{Fragment, PieceFlags};
 
@@ -115,12 +116,25 @@ pub fn compute_shadows(
     };
 
     let started = Instant::now();
-    for (i, light) in lights.iter().enumerate() {
-        if let SceneLight::Area(source) = light {
-            let (next, stats) = shadow_area_light(fragments, &originals, flags, source, i as u32);
-            fragments = next;
-            figures[i] = Some(LightFigures::Area(stats));
-        }
+    // Each area light's trees depend only on the pieces: build them side by
+    // side, then let each light refine the fragments in turn.
+    let area_lights: Vec<(usize, &AreaSource)> = lights
+        .iter()
+        .enumerate()
+        .filter_map(|(i, l)| match l {
+            SceneLight::Area(source) => Some((i, source)),
+            SceneLight::Svbsp(_) => None,
+        })
+        .collect();
+    let trees: Vec<AreaTrees> = area_lights
+        .par_iter()
+        .map(|(_, source)| AreaTrees::build(&originals, flags, source))
+        .collect();
+    for ((i, source), trees) in area_lights.into_iter().zip(&trees) {
+        let (next, stats) =
+            classify_fragments(trees, fragments, &originals, flags, source, i as u32);
+        fragments = next;
+        figures[i] = Some(LightFigures::Area(stats));
     }
     shadow_seconds += started.elapsed().as_secs_f64();
     Ok(Shadows {

@@ -8,9 +8,9 @@ use std::collections::HashMap;
 use smallvec::SmallVec;
 
 use area_shadow::{Class, ConformingMesh};
-use bsp_core::{BuildOptions, ConvexPolygon, Grid, SceneBsp};
+use bsp_core::{ConvexPolygon, Grid};
 use illum::rayon::prelude::*;
-use illum::{FragmentClass, Sidedness, VertexPlan, VisiblePart, vertex_plan};
+use illum::{FragmentClass, OccluderIndex, Sidedness, VertexPlan, VisiblePart, vertex_plan};
 use svbsp::Fragment;
 
 /// A light as `illum` evaluates it.
@@ -34,31 +34,17 @@ pub struct Illuminator<'a> {
     pub two_sided: &'a [bool],
     /// The grid, for world coordinates.
     pub grid: &'a Grid,
-    /// The pieces in a BSP, to find the occluders between a point and an
-    /// area light (only when there are area lights).
-    pub bsp: Option<SceneBsp>,
-    /// The outlines of the BSP's polygons (grid units), made once.
-    outlines: Vec<Vec<[f64; 3]>>,
-    /// Their bounding boxes, to drop candidates far from a query's hull.
-    boxes: Vec<([f64; 3], [f64; 3])>,
-}
-
-/// The bounding box of `points`, grown by a margin far above rounding.
-fn bounding_box<'p>(points: impl IntoIterator<Item = &'p [f64; 3]>) -> ([f64; 3], [f64; 3]) {
-    let (mut lo, mut hi) = ([f64::MAX; 3], [f64::MIN; 3]);
-    for p in points {
-        for i in 0..3 {
-            lo[i] = lo[i].min(p[i]);
-            hi[i] = hi[i].max(p[i]);
-        }
-    }
-    let margin = 1e-6 * (0..3).map(|i| hi[i] - lo[i]).fold(1.0, f64::max);
-    (lo.map(|x| x - margin), hi.map(|x| x + margin))
+    /// The shadow-casting pieces' outlines (grid units), to find the
+    /// occluders between a point and an area light (empty when there is no
+    /// area light).
+    occluders: OccluderIndex,
+    /// The piece of each outline.
+    occluder_pieces: Vec<usize>,
 }
 
 impl<'a> Illuminator<'a> {
-    /// Sets up illumination; builds the occluder search BSP when some light
-    /// is an area light.
+    /// Sets up illumination; indexes the occluders when some light is an
+    /// area light.
     pub fn new(
         lights: &'a [IllumLight],
         pieces: &'a [ConvexPolygon],
@@ -66,33 +52,25 @@ impl<'a> Illuminator<'a> {
         two_sided: &'a [bool],
         grid: &'a Grid,
     ) -> Self {
-        let bsp = lights
-            .iter()
-            .any(|l| matches!(l, IllumLight::Area(_)))
-            .then(|| {
-                let casters: Vec<ConvexPolygon> = pieces
-                    .iter()
-                    .zip(casts_shadows)
-                    .filter(|(_, c)| **c)
-                    .map(|(p, _)| p.clone())
-                    .collect();
-                SceneBsp::build(casters, &BuildOptions::default())
-            });
-        let outlines = bsp.as_ref().map_or_else(Vec::new, |bsp| {
-            bsp.polygons()
+        let any_area = lights.iter().any(|l| matches!(l, IllumLight::Area(_)));
+        let occluder_pieces: Vec<usize> = if any_area {
+            (0..pieces.len()).filter(|&k| casts_shadows[k]).collect()
+        } else {
+            Vec::new()
+        };
+        let occluders = OccluderIndex::new(
+            occluder_pieces
                 .iter()
-                .map(ConvexPolygon::vertices_f64)
-                .collect()
-        });
-        let boxes = outlines.iter().map(bounding_box).collect();
+                .map(|&k| pieces[k].vertices_f64())
+                .collect(),
+        );
         Self {
             lights,
             pieces,
             two_sided,
             grid,
-            bsp,
-            outlines,
-            boxes,
+            occluders,
+            occluder_pieces,
         }
     }
 
@@ -128,21 +106,18 @@ impl<'a> Illuminator<'a> {
     /// Outlines of the shadow-casting polygons that may lie between `p`
     /// and `light`, except those in `piece`'s plane.
     fn occluders(&self, p: [f64; 3], light: &illum::AreaLight, piece: usize) -> Vec<&[[f64; 3]]> {
-        let Some(bsp) = &self.bsp else {
-            return Vec::new();
-        };
         let own = self.pieces[piece].support();
-        // A polygon between `p` and the light lies in their hull, so in its
-        // bounding box.
-        let (lo, hi) = bounding_box(light.vertices().iter().chain(std::iter::once(&p)));
-        illum::occluders_between(bsp, p, light)
+        let mut candidates = Vec::new();
+        self.occluders.candidates_between(p, light, &mut candidates);
+        candidates
             .into_iter()
+            .map(|k| k as usize)
             .filter(|&k| {
-                let (a, b) = &self.boxes[k as usize];
-                (0..3).all(|i| a[i] <= hi[i] && lo[i] <= b[i])
+                !self.pieces[self.occluder_pieces[k]]
+                    .support()
+                    .is_coincident(own)
             })
-            .filter(|&k| !bsp.polygons()[k as usize].support().is_coincident(own))
-            .map(|k| self.outlines[k as usize].as_slice())
+            .map(|k| self.occluders.outlines()[k].as_slice())
             .collect()
     }
 

@@ -9,6 +9,9 @@
 //! - [`PointLight`], [`DirectionalLight`]: `I cos / r^2` with Bergeron's
 //!   sphere of influence ([`Falloff`]); one- or two-sided receivers
 //!   ([`Sidedness`]).
+//! - [`OccluderIndex`]: a bounding-volume hierarchy of occluder outlines
+//!   that finds the occluders that may lie between a point and an area
+//!   light.
 //! - [`vertex_plan`]: the 1992 paper's vertex-sharing rules.
 //! - [`area_irradiance_batch`], [`evaluate_batch`]: many receivers in
 //!   parallel, results independent of the thread count.
@@ -46,8 +49,8 @@ mod area_light;
 mod batch;
 mod contour_integral;
 mod error;
+mod occluder_index;
 mod point_light;
-mod scene_occluders;
 mod sharing;
 mod vec3;
 mod visibility;
@@ -56,8 +59,8 @@ pub use area_light::AreaLight;
 pub use batch::{Receiver, area_irradiance_batch, evaluate_batch};
 pub use contour_integral::{contour_integral, contour_integral_sum};
 pub use error::IllumError;
+pub use occluder_index::OccluderIndex;
 pub use point_light::{DirectionalLight, Falloff, PointLight, Sidedness};
-pub use scene_occluders::occluders_between;
 pub use sharing::{FragmentClass, VertexPlan, VertexValue, vertex_plan};
 pub use vec3::Vec3;
 pub use visibility::{VisiblePart, visible_irradiance};

@@ -5,7 +5,7 @@ mod closed_forms;
 mod cornell;
 mod errors;
 mod monte_carlo;
-mod scene_bsp;
+mod occluder_index;
 mod symmetry;
 
 use illum::{AreaLight, Vec3};
