@@ -32,6 +32,12 @@ use bsp_core::{ConvexPolygon, Split};
 use rayon::prelude::*;
 use svbsp::{Fragment, PieceFlags};
 
+/// Shadow-casting pieces per cell of the trees' skeleton
+/// ([`VolumeTree::with_cells`]). On the 600- and 1665-box halls of the
+/// benchmarks, 8 to 64 give trees half the size of no skeleton at all, and
+/// about 5 % fewer fragments; 16 was a little faster than the rest.
+pub const OCCLUDERS_PER_CELL: usize = 16;
+
 /// Figures of one area light's pass (the 1992 paper's Figure 8 columns that
 /// belong to classification).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -131,9 +137,14 @@ impl AreaTrees {
             .map(|(k, piece)| (distance2(piece.centroid(), centre), k))
             .collect();
         order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let (lo, hi) = grid_box(pieces);
+        let cells = order.len() / OCCLUDERS_PER_CELL;
+        trees.penumbra = VolumeTree::with_cells(lo, hi, cells);
+        trees.umbra = VolumeTree::with_cells(lo, hi, cells);
+        let skeleton = trees.penumbra.len();
         for (_, k) in order {
             let piece = &pieces[k];
-            if !trees.umbra.is_empty() && trees.umbra.contains(piece) {
+            if trees.umbra.len() > skeleton && trees.umbra.contains(piece) {
                 trees.culled += 1;
                 continue;
             }
@@ -199,6 +210,20 @@ impl AreaTrees {
         }
         merge_same_class(out)
     }
+}
+
+/// The box of the pieces' grid-point vertices.
+fn grid_box(pieces: &[ConvexPolygon]) -> ([i32; 3], [i32; 3]) {
+    let (mut lo, mut hi) = ([i32::MAX; 3], [i32::MIN; 3]);
+    for piece in pieces {
+        for p in (0..piece.len()).filter_map(|k| piece.vertex_grid_point(k)) {
+            for (i, c) in [p.x, p.y, p.z].into_iter().enumerate() {
+                lo[i] = lo[i].min(c);
+                hi[i] = hi[i].max(c);
+            }
+        }
+    }
+    (lo, hi)
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -10,7 +10,7 @@
 //! with the outside: a fragment on its own occluder's plane is not shadowed
 //! by that occluder, nor are fragments coplanar with it.
 
-use bsp_core::{ConvexPolygon, Region, SolidChild, SolidNode, Split};
+use bsp_core::{ConvexPolygon, GridPoint, Plane, Region, SolidChild, SolidNode, Split};
 use svbsp::ConvexPolyhedron;
 
 /// A union of convex volumes as a BSP tree (an arena of nodes).
@@ -42,6 +42,54 @@ impl VolumeTree {
             nodes: Vec::new(),
             root: SolidChild::Leaf(Region::Out),
         }
+    }
+
+    /// The empty union over a skeleton of axis-aligned planes that cut the
+    /// box `lo..hi` into about `cells` boxes (halving the longest side
+    /// each time). Volumes inserted later are split along these planes, so
+    /// each keeps to the cells it meets and volumes far apart never cut
+    /// each other's subtrees; without them, the planes of the first volumes
+    /// run through the whole scene and split every later one.
+    pub fn with_cells(lo: [i32; 3], hi: [i32; 3], cells: usize) -> Self {
+        let mut tree = Self::new();
+        tree.root = tree.cells(lo, hi, cells.max(1));
+        tree
+    }
+
+    fn cells(&mut self, lo: [i32; 3], hi: [i32; 3], cells: usize) -> SolidChild {
+        let axis = (0..3)
+            .max_by_key(|&i| i64::from(hi[i]) - i64::from(lo[i]))
+            .unwrap_or(0);
+        let mid = ((i64::from(lo[axis]) + i64::from(hi[axis])) / 2) as i32;
+        if cells < 2 || mid <= lo[axis] || mid >= hi[axis] {
+            return SolidChild::Leaf(Region::Out);
+        }
+        let mut normal = [0_i64; 3];
+        normal[axis] = 1;
+        let mut through = lo;
+        through[axis] = mid;
+        let point = GridPoint {
+            x: through[0],
+            y: through[1],
+            z: through[2],
+        };
+        let Some(plane) = Plane::with_normal_through(normal, point) else {
+            return SolidChild::Leaf(Region::Out);
+        };
+        let index = self.nodes.len();
+        self.nodes.push(SolidNode {
+            plane,
+            front: SolidChild::Leaf(Region::Out),
+            back: SolidChild::Leaf(Region::Out),
+        });
+        let (mut back_hi, mut front_lo) = (hi, lo);
+        back_hi[axis] = mid;
+        front_lo[axis] = mid;
+        let back = self.cells(lo, back_hi, cells / 2);
+        let front = self.cells(front_lo, hi, cells - cells / 2);
+        self.nodes[index].back = back;
+        self.nodes[index].front = front;
+        SolidChild::Node(index as u32)
     }
 
     /// Inner nodes.
