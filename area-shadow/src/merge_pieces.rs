@@ -81,33 +81,52 @@ fn plane_key(p: &bsp_core::Plane) -> ([i64; 3], i128) {
     }
 }
 
+/// Where edge `e` of `p` lies along its line, in `f64`: its midpoint's
+/// coordinate on the axis the line runs most along. Two pieces that share
+/// a whole edge give the same value up to rounding.
+fn edge_position(p: &ConvexPolygon, e: usize) -> f64 {
+    let (a, b) = (p.vertex_f64(e), p.vertex_f64((e + 1) % p.len()));
+    let axis = (0..3)
+        .max_by(|&i, &j| (a[i] - b[i]).abs().total_cmp(&(a[j] - b[j]).abs()))
+        .unwrap_or(0);
+    0.5 * (a[axis] + b[axis])
+}
+
 /// Merges same-class neighbours among `pieces` (the pieces of one polygon)
 /// until no two can merge.
 ///
-/// Merging goes in rounds: pieces are indexed by the planes of their edges,
-/// only pieces with an edge on a common plane are tried, and a piece merges
-/// at most once per round, so a polygon cut into many pieces costs rounds
-/// of near-linear work rather than a quadratic search.
+/// Merging goes in rounds: the pieces' edges are grouped by their line and
+/// sorted along it, and only edges at the same place on the same line are
+/// tried (the `f64` position only chooses which pairs [`merge_pair`] tests
+/// exactly, with a margin far above rounding). A piece merges at most once
+/// per round, so a polygon cut into many pieces costs rounds of
+/// `n log n` work rather than a quadratic search.
 pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolygon, Class)> {
     let mut pieces: Vec<Option<(ConvexPolygon, Class)>> = pieces.into_iter().map(Some).collect();
     loop {
-        let mut by_plane: HashMap<([i64; 3], i128), Vec<usize>> = HashMap::new();
+        let mut by_line: HashMap<([i64; 3], i128), Vec<(f64, usize)>> = HashMap::new();
         for (i, piece) in pieces.iter().enumerate() {
             if let Some((p, _)) = piece {
-                for e in p.edges() {
-                    by_plane.entry(plane_key(e)).or_default().push(i);
+                for (e, plane) in p.edges().iter().enumerate() {
+                    by_line
+                        .entry(plane_key(plane))
+                        .or_default()
+                        .push((edge_position(p, e), i));
                 }
             }
         }
-        let mut keys: Vec<_> = by_plane.keys().copied().collect();
+        let mut lines: Vec<_> = by_line.into_iter().collect();
         // A fixed order: results do not depend on the hash map's.
-        keys.sort_unstable();
+        lines.sort_unstable_by(|a, b| a.0.cmp(&b.0));
         let mut merged_this_round = vec![false; pieces.len()];
         let mut merged_any = false;
-        for key in keys {
-            let list = &by_plane[&key];
-            for (x, &i) in list.iter().enumerate() {
-                for &j in &list[x + 1..] {
+        for (_, mut list) in lines {
+            list.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            for x in 0..list.len() {
+                let (t, i) = list[x];
+                let margin = 1e-7 * t.abs().max(1.0);
+                for &(u, j) in list[x + 1..].iter().take_while(|(u, _)| *u - t <= margin) {
+                    debug_assert!(u >= t);
                     if i == j || merged_this_round[i] || merged_this_round[j] {
                         continue;
                     }
