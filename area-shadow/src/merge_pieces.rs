@@ -70,8 +70,12 @@ pub fn merge_pair(a: &ConvexPolygon, b: &ConvexPolygon) -> Option<ConvexPolygon>
     ConvexPolygon::from_planes(*a.support(), &edges, a.source()).ok()
 }
 
+/// The key of an edge plane's line: its normal and offset, signed so that
+/// both orientations agree.
+type LineKey = ([i64; 3], i128);
+
 /// A plane's line key, the same for both orientations.
-fn plane_key(p: &bsp_core::Plane) -> ([i64; 3], i128) {
+fn plane_key(p: &bsp_core::Plane) -> LineKey {
     let n = p.normal();
     let first = n.iter().copied().find(|&c| c != 0).unwrap_or(0);
     if first < 0 {
@@ -104,7 +108,8 @@ fn edge_position(p: &ConvexPolygon, e: usize) -> f64 {
 pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolygon, Class)> {
     let mut pieces: Vec<Option<(ConvexPolygon, Class)>> = pieces.into_iter().map(Some).collect();
     loop {
-        let mut by_line: HashMap<([i64; 3], i128), Vec<(f64, usize)>> = HashMap::new();
+        // Per line, its pieces' edges: (position along it, piece).
+        let mut by_line: HashMap<LineKey, Vec<(f64, usize)>> = HashMap::new();
         for (i, piece) in pieces.iter().enumerate() {
             if let Some((p, _)) = piece {
                 for (e, plane) in p.edges().iter().enumerate() {
@@ -117,7 +122,7 @@ pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolyg
         }
         let mut lines: Vec<_> = by_line.into_iter().collect();
         // A fixed order: results do not depend on the hash map's.
-        lines.sort_unstable_by(|a, b| a.0.cmp(&b.0));
+        lines.sort_unstable_by_key(|line| line.0);
         let mut merged_this_round = vec![false; pieces.len()];
         let mut merged_any = false;
         for (_, mut list) in lines {

@@ -157,8 +157,9 @@ enum Value {
 pub struct Illuminated {
     /// Grid coordinates of each output vertex.
     pub coords: Vec<[f64; 3]>,
-    /// Per output vertex, one value per light.
-    pub per_light: Vec<Vec<f64>>,
+    /// Per output vertex, one value per light (vertex `v`'s values are
+    /// `per_light[v * lights..(v + 1) * lights]`).
+    pub per_light: Vec<f64>,
     /// Per fragment, its output vertex indices.
     pub faces: Vec<Vec<u32>>,
     /// Per light: mesh points evaluated whole (lit), from their visible
@@ -171,6 +172,10 @@ pub struct Illuminated {
 /// each receiving plane once per light, with the sharing rules deciding
 /// what is evaluated; a vertex shared by lit and umbra fragments keeps a
 /// value for each side.
+///
+/// The bookkeeping is in flat arrays (corners and fragments around a group
+/// as offsets into one list) so that the serial part stays small beside
+/// the parallel evaluation.
 pub fn illuminate(
     illuminator: &Illuminator<'_>,
     fragments: &[Fragment],
@@ -183,12 +188,14 @@ pub fn illuminate(
     let mut groups_at: Vec<SmallVec<[(usize, usize); 1]>> =
         vec![SmallVec::new(); mesh.points.len()];
     let mut plane_key: HashMap<([i64; 3], i128, bool), usize> = HashMap::new();
-    let mut plane_of_piece: HashMap<usize, usize> = HashMap::new();
+    let mut plane_of_piece: Vec<Option<usize>> = vec![None; illuminator.pieces.len()];
     let mut groups: Vec<(u32, usize)> = Vec::new();
-    let mut corner_group: Vec<Vec<usize>> = Vec::with_capacity(fragments.len());
+    // Fragment f's corners' groups: corners[corner_start[f]..corner_start[f + 1]].
+    let mut corner_start: Vec<usize> = Vec::with_capacity(fragments.len() + 1);
+    let mut corners: Vec<usize> = Vec::with_capacity(4 * fragments.len());
     for (f, face) in fragments.iter().zip(&mesh.faces) {
         let piece = f.polygon.source() as usize;
-        let plane = *plane_of_piece.entry(piece).or_insert_with(|| {
+        let plane = *plane_of_piece[piece].get_or_insert_with(|| {
             let support = f.polygon.support();
             let planes = plane_key.len();
             *plane_key
@@ -199,7 +206,7 @@ pub fn illuminate(
                 ))
                 .or_insert(planes)
         });
-        let mut corners = Vec::with_capacity(face.len());
+        corner_start.push(corners.len());
         for &point in face {
             let at = &mut groups_at[point as usize];
             let g = match at.iter().find(|(p, _)| *p == plane) {
@@ -213,82 +220,82 @@ pub fn illuminate(
             };
             corners.push(g);
         }
-        corner_group.push(corners);
     }
-    // Fragments around each group, by class per light.
-    let mut around: Vec<Vec<usize>> = vec![Vec::new(); groups.len()];
-    for (f, corners) in corner_group.iter().enumerate() {
-        for &g in corners {
-            if around[g].last() != Some(&f) {
-                around[g].push(f);
-            }
+    corner_start.push(corners.len());
+    let corners_of = |f: usize| &corners[corner_start[f]..corner_start[f + 1]];
+    // Fragments around each group: around[around_start[g]..around_start[g + 1]].
+    let mut around_start = vec![0_usize; groups.len() + 1];
+    for &g in &corners {
+        around_start[g + 1] += 1;
+    }
+    for g in 0..groups.len() {
+        around_start[g + 1] += around_start[g];
+    }
+    let mut around = vec![0_usize; corners.len()];
+    let mut filled = around_start.clone();
+    for f in 0..fragments.len() {
+        for &g in corners_of(f) {
+            around[filled[g]] = f;
+            filled[g] += 1;
         }
     }
-    let plans: Vec<Vec<VertexPlan>> = around
-        .par_iter()
-        .map(|fs| {
-            (0..lights)
-                .map(|i| {
-                    vertex_plan(
-                        fs.iter()
-                            .map(|&f| to_illum(Class::of(&fragments[f], i as u32))),
-                    )
-                    .expect("a group has a fragment")
-                })
-                .collect()
-        })
-        .collect();
-    // Evaluate each group once per light (in parallel; each value depends
-    // only on its own inputs, so results do not depend on thread count).
-    let values: Vec<Vec<f64>> = groups
-        .par_iter()
-        .zip(plans.par_iter())
-        .map(|((point, piece), plans)| {
-            let p = mesh.coords[*point as usize];
-            plans
-                .iter()
-                .enumerate()
-                .map(|(i, plan)| match plan {
+    // Plans and values, in parallel (each group's depend only on its own
+    // inputs, so results do not depend on the thread count). A fragment
+    // listed twice around a group (a repeated corner) changes no plan.
+    let (plans, values): (Vec<VertexPlan>, Vec<f64>) = (0..groups.len())
+        .into_par_iter()
+        .with_min_len(64)
+        .flat_map_iter(|g| {
+            let fs = &around[around_start[g]..around_start[g + 1]];
+            let (point, piece) = groups[g];
+            let p = mesh.coords[point as usize];
+            (0..lights).map(move |i| {
+                let plan = vertex_plan(
+                    fs.iter()
+                        .map(|&f| to_illum(Class::of(&fragments[f], i as u32))),
+                )
+                .expect("a group has a fragment");
+                let value = match plan {
                     VertexPlan::Zero => 0.0,
-                    VertexPlan::VisiblePart => illuminator.value(i, Value::Visible, p, *piece),
+                    VertexPlan::VisiblePart => illuminator.value(i, Value::Visible, p, piece),
                     VertexPlan::Unoccluded | VertexPlan::Split => {
-                        illuminator.value(i, Value::Whole, p, *piece)
+                        illuminator.value(i, Value::Whole, p, piece)
                     }
-                })
-                .collect()
+                };
+                (plan, value)
+            })
         })
-        .collect();
+        .unzip();
     let mut vertex_classes = vec![[0_u64; 3]; lights];
-    for plans in &plans {
-        for (i, plan) in plans.iter().enumerate() {
-            match plan {
-                VertexPlan::Unoccluded => vertex_classes[i][0] += 1,
-                VertexPlan::VisiblePart => vertex_classes[i][1] += 1,
-                VertexPlan::Zero => vertex_classes[i][2] += 1,
-                VertexPlan::Split => {
-                    vertex_classes[i][0] += 1;
-                    vertex_classes[i][2] += 1;
-                }
+    for (k, plan) in plans.iter().enumerate() {
+        let i = k % lights.max(1);
+        match plan {
+            VertexPlan::Unoccluded => vertex_classes[i][0] += 1,
+            VertexPlan::VisiblePart => vertex_classes[i][1] += 1,
+            VertexPlan::Zero => vertex_classes[i][2] += 1,
+            VertexPlan::Split => {
+                vertex_classes[i][0] += 1;
+                vertex_classes[i][2] += 1;
             }
         }
     }
     // Output vertices: one per group and per set of lights that a Split
     // plan zeroes for the fragment at hand.
     let mut out = Illuminated {
-        coords: Vec::new(),
-        per_light: Vec::new(),
+        coords: Vec::with_capacity(groups.len()),
+        per_light: Vec::with_capacity(groups.len() * lights),
         faces: Vec::with_capacity(fragments.len()),
         vertex_classes,
     };
     // Per group, its output vertices by the lights a Split plan zeroes.
     let mut vertex_of: Vec<SmallVec<[(u32, u32); 1]>> = vec![SmallVec::new(); groups.len()];
-    for (f, corners) in corner_group.iter().enumerate() {
-        let mut face = Vec::with_capacity(corners.len());
-        for &g in corners {
+    for (f, fragment) in fragments.iter().enumerate() {
+        let mut face = Vec::with_capacity(corners_of(f).len());
+        for &g in corners_of(f) {
             let zeroed = (0..lights)
                 .filter(|&i| {
-                    plans[g][i] == VertexPlan::Split
-                        && Class::of(&fragments[f], i as u32) == Class::Umbra
+                    plans[g * lights + i] == VertexPlan::Split
+                        && Class::of(fragment, i as u32) == Class::Umbra
                 })
                 .fold(0_u32, |m, i| m | (1 << i));
             let next = out.coords.len() as u32;
@@ -301,17 +308,13 @@ pub fn illuminate(
             };
             if v == next {
                 out.coords.push(mesh.coords[groups[g].0 as usize]);
-                out.per_light.push(
-                    (0..lights)
-                        .map(|i| {
-                            if zeroed & (1 << i) != 0 {
-                                0.0
-                            } else {
-                                values[g][i]
-                            }
-                        })
-                        .collect(),
-                );
+                out.per_light.extend((0..lights).map(|i| {
+                    if zeroed & (1 << i) != 0 {
+                        0.0
+                    } else {
+                        values[g * lights + i]
+                    }
+                }));
             }
             face.push(v);
         }

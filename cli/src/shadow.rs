@@ -123,8 +123,9 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     let illum_started = Instant::now();
     let lit = illuminate(&illuminator, &fragments, &conforming);
     let mut mesh = OutputMesh::default();
-    for (p, values) in lit.coords.iter().zip(&lit.per_light) {
-        let e: f64 = values.iter().sum();
+    let lights = illum_lights.len();
+    for (v, p) in lit.coords.iter().enumerate() {
+        let e: f64 = lit.per_light[v * lights..(v + 1) * lights].iter().sum();
         mesh.vertices
             .push((pieces.grid.grid_to_world(*p), e as f32));
     }
@@ -136,7 +137,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
             umbra_mask: fragment.umbra_mask,
         });
     }
-    let light_irradiance: Vec<f64> = lit.per_light.iter().flatten().copied().collect();
+    let light_irradiance: Vec<f64> = lit.per_light;
     let illum = illum_started.elapsed().as_secs_f64();
 
     let class_count = |i: usize, class: Class| -> u64 {
