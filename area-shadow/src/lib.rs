@@ -60,4 +60,4 @@ pub use pass::{AreaLightStats, AreaTrees, Class, classify_fragments, shadow_area
 pub use pipeline::{LightFigures, SceneLight, Shadows, compute_shadows};
 pub use source::{AreaSource, SourceSide};
 pub use tree::{Partition, VolumeTree};
-pub use volumes::{CastVolumes, VolumePlanes, cast_volumes, volume_planes};
+pub use volumes::{CastVolumes, VolumePlanes, cast_volumes, cast_volumes_within, volume_planes};

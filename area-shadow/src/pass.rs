@@ -26,11 +26,11 @@
 
 use crate::merge_pieces::merge_same_class;
 use crate::tree::VolumeTree;
-use crate::volumes::cast_volumes;
+use crate::volumes::cast_volumes_within;
 use crate::{AreaSource, SourceSide};
-use bsp_core::{ConvexPolygon, Split};
+use bsp_core::{ConvexPolygon, GRID_LIMIT, GridPoint, Split};
 use rayon::prelude::*;
-use svbsp::{Fragment, PieceFlags};
+use svbsp::{ConvexPolyhedron, Fragment, PieceFlags};
 
 /// Shadow-casting pieces per cell of the trees' skeleton
 /// ([`VolumeTree::with_cells`]). On the 600- and 1665-box halls of the
@@ -138,6 +138,7 @@ impl AreaTrees {
             .collect();
         order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let (lo, hi) = grid_box(pieces);
+        let region = receiver_region(lo, hi);
         let cells = order.len() / OCCLUDERS_PER_CELL;
         trees.penumbra = VolumeTree::with_cells(lo, hi, cells);
         trees.umbra = VolumeTree::with_cells(lo, hi, cells);
@@ -148,7 +149,7 @@ impl AreaTrees {
                 trees.culled += 1;
                 continue;
             }
-            let volumes = cast_volumes(piece, light);
+            let volumes = cast_volumes_within(piece, light, &region);
             if volumes.penumbra.is_empty() {
                 continue;
             }
@@ -210,6 +211,25 @@ impl AreaTrees {
         }
         merge_same_class(out)
     }
+}
+
+/// The box `lo..hi` one grid unit larger on each side, so that every
+/// receiver lies strictly inside it. Volumes are cut down to it: past it
+/// there is nothing to shadow, and in a closed room the parts of the
+/// volumes behind the floor and walls would otherwise cross each other and
+/// split the trees for nothing.
+fn receiver_region(lo: [i32; 3], hi: [i32; 3]) -> ConvexPolyhedron {
+    let corner = |c: [i32; 3]| GridPoint {
+        x: c[0],
+        y: c[1],
+        z: c[2],
+    };
+    let widen = |c: i32, by: i32| c.saturating_add(by).clamp(-GRID_LIMIT, GRID_LIMIT);
+    ConvexPolyhedron::axis_box(
+        corner(lo.map(|c| widen(c, -1))),
+        corner(hi.map(|c| widen(c, 1))),
+    )
+    .unwrap_or_else(ConvexPolyhedron::bounding_box)
 }
 
 /// The box of the pieces' grid-point vertices.

@@ -62,17 +62,21 @@ pub struct VolumePlanes {
 /// casts from `light`; empty when it lies in or behind the light's plane, or
 /// in a plane through the light.
 pub fn cast_volumes(occluder: &ConvexPolygon, light: &AreaSource) -> CastVolumes {
+    cast_volumes_within(occluder, light, &ConvexPolyhedron::bounding_box())
+}
+
+/// [`cast_volumes`] cut down to `region`: where no receiver lies, a
+/// volume's only effect would be to split the trees for nothing.
+pub fn cast_volumes_within(
+    occluder: &ConvexPolygon,
+    light: &AreaSource,
+    region: &ConvexPolyhedron,
+) -> CastVolumes {
     let planes = volume_planes(occluder, light);
+    let cut = |planes: &[Plane]| region.clone().cut_by(planes);
     CastVolumes {
-        penumbra: planes
-            .penumbra
-            .iter()
-            .filter_map(|p| ConvexPolyhedron::from_planes(p))
-            .collect(),
-        umbra: planes
-            .umbra
-            .as_deref()
-            .and_then(ConvexPolyhedron::from_planes),
+        penumbra: planes.penumbra.iter().filter_map(|p| cut(p)).collect(),
+        umbra: planes.umbra.as_deref().and_then(cut),
     }
 }
 

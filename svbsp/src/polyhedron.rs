@@ -62,24 +62,62 @@ impl ConvexPolyhedron {
     /// [`SECTION_SOURCE`].
     pub fn bounding_box() -> Self {
         let l = GRID_LIMIT;
-        let p = |x: i32, y: i32, z: i32| GridPoint { x, y, z };
-        let quads = [
-            [p(-l, -l, -l), p(-l, l, -l), p(l, l, -l), p(l, -l, -l)],
-            [p(-l, -l, l), p(l, -l, l), p(l, l, l), p(-l, l, l)],
-            [p(-l, -l, -l), p(l, -l, -l), p(l, -l, l), p(-l, -l, l)],
-            [p(-l, l, -l), p(-l, l, l), p(l, l, l), p(l, l, -l)],
-            [p(-l, -l, -l), p(-l, -l, l), p(-l, l, l), p(-l, l, -l)],
-            [p(l, -l, -l), p(l, l, -l), p(l, l, l), p(l, -l, l)],
-        ];
-        Self {
-            facets: quads
-                .iter()
-                .map(|q| {
-                    ConvexPolygon::from_grid_points(q, SECTION_SOURCE)
-                        .expect("the box's faces are squares")
-                })
-                .collect(),
+        let corner = |c: i32| GridPoint { x: c, y: c, z: c };
+        Self::axis_box(corner(-l), corner(l)).expect("the bounding box has volume")
+    }
+
+    /// The axis-aligned box from `lo` to `hi` (grid points), its facets
+    /// marked [`SECTION_SOURCE`]; `None` unless `lo < hi` in every
+    /// coordinate.
+    pub fn axis_box(lo: GridPoint, hi: GridPoint) -> Option<Self> {
+        if lo.x >= hi.x || lo.y >= hi.y || lo.z >= hi.z {
+            return None;
         }
+        let p = |x: i32, y: i32, z: i32| GridPoint { x, y, z };
+        let (a, b) = (lo, hi);
+        let quads = [
+            [
+                p(a.x, a.y, a.z),
+                p(a.x, b.y, a.z),
+                p(b.x, b.y, a.z),
+                p(b.x, a.y, a.z),
+            ],
+            [
+                p(a.x, a.y, b.z),
+                p(b.x, a.y, b.z),
+                p(b.x, b.y, b.z),
+                p(a.x, b.y, b.z),
+            ],
+            [
+                p(a.x, a.y, a.z),
+                p(b.x, a.y, a.z),
+                p(b.x, a.y, b.z),
+                p(a.x, a.y, b.z),
+            ],
+            [
+                p(a.x, b.y, a.z),
+                p(a.x, b.y, b.z),
+                p(b.x, b.y, b.z),
+                p(b.x, b.y, a.z),
+            ],
+            [
+                p(a.x, a.y, a.z),
+                p(a.x, a.y, b.z),
+                p(a.x, b.y, b.z),
+                p(a.x, b.y, a.z),
+            ],
+            [
+                p(b.x, a.y, a.z),
+                p(b.x, b.y, a.z),
+                p(b.x, b.y, b.z),
+                p(b.x, a.y, b.z),
+            ],
+        ];
+        let facets = quads
+            .iter()
+            .map(|q| ConvexPolygon::from_grid_points(q, SECTION_SOURCE).ok())
+            .collect::<Option<Vec<_>>>()?;
+        Some(Self { facets })
     }
 
     /// The intersection of the half-spaces behind `planes` (each oriented
@@ -88,7 +126,14 @@ impl ConvexPolyhedron {
     /// Facets cut from plane `k` get source `k`; what the box closes gets
     /// [`SECTION_SOURCE`].
     pub fn from_planes(planes: &[Plane]) -> Option<Self> {
-        let mut cell = Self::bounding_box();
+        Self::bounding_box().cut_by(planes)
+    }
+
+    /// The part of this polyhedron behind every plane of `planes` (each
+    /// oriented outwards); `None` if it has no interior. Facets cut from
+    /// plane `k` get source `k`.
+    pub fn cut_by(self, planes: &[Plane]) -> Option<Self> {
+        let mut cell = self;
         for (k, plane) in planes.iter().enumerate() {
             match cell.split(plane) {
                 CellSplit::Back => {}

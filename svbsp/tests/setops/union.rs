@@ -103,3 +103,27 @@ fn unbounded_polyhedra_are_closed_by_the_box() {
         assert_eq!(u.classify_point(p), want, "at {p:?}");
     }
 }
+
+#[test]
+fn a_box_cut_by_planes_is_their_region_within_the_box() {
+    let g = |x, y, z| gp(x, y, z);
+    assert!(svbsp::ConvexPolyhedron::axis_box(g(0, 0, 0), g(4, 0, 4)).is_none());
+    let cube = svbsp::ConvexPolyhedron::axis_box(g(-4, -4, -4), g(4, 4, 4)).unwrap();
+    assert_eq!(cube.volume(), 512.0);
+    assert!(
+        cube.input_planes().is_empty(),
+        "the box's faces are sections"
+    );
+    // The wedge x < 0, y < x inside the cube: half of the quarter x < 0,
+    // y < 0, an eighth of the cube.
+    let planes = [
+        bsp_core::Plane::with_normal_through([1, 0, 0], g(0, 0, 0)).unwrap(),
+        bsp_core::Plane::with_normal_through([-1, 1, 0], g(0, 0, 0)).unwrap(),
+    ];
+    let wedge = cube.clone().cut_by(&planes).unwrap();
+    assert_eq!(wedge.volume(), 64.0);
+    assert_eq!(wedge.input_planes(), planes.to_vec());
+    // Planes that leave nothing of the cube.
+    let away = [bsp_core::Plane::with_normal_through([-1, 0, 0], g(4, 0, 0)).unwrap()];
+    assert!(cube.cut_by(&away).is_none());
+}
