@@ -16,6 +16,7 @@
 
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, ImplicitPoint, Plane};
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// A vertex of the mesh, exact.
@@ -187,52 +188,75 @@ pub fn conform(fragments: &[ConvexPolygon]) -> ConformingMesh {
         outlines.push(outline);
     }
 
-    // Points inside each edge, in order along it.
-    for (f, outline) in fragments.iter().zip(outlines) {
-        let n = f.len();
-        let mut face = Vec::with_capacity(n);
-        for k in 0..n {
-            let (a, b) = (outline[k], outline[(k + 1) % n]);
-            face.push(a);
-            let (pa, pb) = (mesh.coords[a as usize], mesh.coords[b as usize]);
-            let lo = [0, 1, 2].map(|i| pa[i].min(pb[i]) - MARGIN);
-            let hi = [0, 1, 2].map(|i| pa[i].max(pb[i]) + MARGIN);
-            buckets.query(lo, hi, &mut found);
-            let edge = &f.edges()[k];
-            let (prev, next) = (&f.edges()[(k + n - 1) % n], &f.edges()[(k + 1) % n]);
-            let mut inside: Vec<u32> = found
-                .iter()
-                .copied()
-                .filter(|&id| id != a && id != b)
-                .filter(|&id| near_segment(mesh.coords[id as usize], pa, pb))
-                .filter(|&id| {
-                    let p = &mesh.points[id as usize];
-                    p.side(f.support()) == Side::On
-                        && p.side(edge) == Side::On
-                        && p.side(prev) == Side::Back
-                        && p.side(next) == Side::Back
-                })
-                .collect();
-            if inside.len() > 1 {
-                let direction = [0, 1, 2].map(|i| pb[i] - pa[i]);
-                let (start, end) = (mesh.points[a as usize], mesh.points[b as usize]);
-                inside.sort_by(|&p, &q| {
-                    let (pp, qq) = (&mesh.points[p as usize], &mesh.points[q as usize]);
-                    // q is after p when it lies on the far side of a plane
-                    // through p that the edge crosses.
-                    match pp.crossing_plane(&start, &end, direction) {
-                        Some(h) if qq.side(&h) == start.side(&h) => std::cmp::Ordering::Greater,
-                        Some(_) => std::cmp::Ordering::Less,
-                        None => std::cmp::Ordering::Equal,
-                    }
-                });
-            }
-            mesh.inserted += inside.len();
-            face.extend(inside);
-        }
+    // Points inside each edge, in order along it: each fragment reads the
+    // points and buckets only, so fragments go in parallel (faces keep
+    // their order).
+    let faces: Vec<(Vec<u32>, usize)> = fragments
+        .par_iter()
+        .zip(outlines)
+        .map_init(Vec::new, |found, (f, outline)| {
+            conforming_face(f, &outline, &mesh, &buckets, found)
+        })
+        .collect();
+    for (face, inserted) in faces {
+        mesh.inserted += inserted;
         mesh.faces.push(face);
     }
     mesh
+}
+
+/// The face of fragment `f` (corners `outline`) with the mesh's points that
+/// lie strictly inside its edges inserted in order; and how many were.
+fn conforming_face(
+    f: &ConvexPolygon,
+    outline: &[u32],
+    mesh: &ConformingMesh,
+    buckets: &Buckets,
+    found: &mut Vec<u32>,
+) -> (Vec<u32>, usize) {
+    let n = f.len();
+    let mut face = Vec::with_capacity(n);
+    let mut inserted = 0;
+    for k in 0..n {
+        let (a, b) = (outline[k], outline[(k + 1) % n]);
+        face.push(a);
+        let (pa, pb) = (mesh.coords[a as usize], mesh.coords[b as usize]);
+        let lo = [0, 1, 2].map(|i| pa[i].min(pb[i]) - MARGIN);
+        let hi = [0, 1, 2].map(|i| pa[i].max(pb[i]) + MARGIN);
+        buckets.query(lo, hi, found);
+        let edge = &f.edges()[k];
+        let (prev, next) = (&f.edges()[(k + n - 1) % n], &f.edges()[(k + 1) % n]);
+        let mut inside: Vec<u32> = found
+            .iter()
+            .copied()
+            .filter(|&id| id != a && id != b)
+            .filter(|&id| near_segment(mesh.coords[id as usize], pa, pb))
+            .filter(|&id| {
+                let p = &mesh.points[id as usize];
+                p.side(f.support()) == Side::On
+                    && p.side(edge) == Side::On
+                    && p.side(prev) == Side::Back
+                    && p.side(next) == Side::Back
+            })
+            .collect();
+        if inside.len() > 1 {
+            let direction = [0, 1, 2].map(|i| pb[i] - pa[i]);
+            let (start, end) = (mesh.points[a as usize], mesh.points[b as usize]);
+            inside.sort_by(|&p, &q| {
+                let (pp, qq) = (&mesh.points[p as usize], &mesh.points[q as usize]);
+                // q is after p when it lies on the far side of a plane
+                // through p that the edge crosses.
+                match pp.crossing_plane(&start, &end, direction) {
+                    Some(h) if qq.side(&h) == start.side(&h) => std::cmp::Ordering::Greater,
+                    Some(_) => std::cmp::Ordering::Less,
+                    None => std::cmp::Ordering::Equal,
+                }
+            });
+        }
+        inserted += inside.len();
+        face.extend(inside);
+    }
+    (face, inserted)
 }
 
 /// Whether `p` is within [`MARGIN`] of the segment `ab` (a candidate
