@@ -253,3 +253,31 @@ fn adaptive_subdivision_refines_where_light_changes() {
     assert_eq!(bad.code, 2);
     assert!(!dir.path().join("c.ply").exists());
 }
+
+#[test]
+fn output_does_not_depend_on_the_thread_count() {
+    // The room demo (two quad lights) with a grid: trees, classification,
+    // conforming mesh and illumination all run in parallel.
+    let dir = folder(&[]);
+    let scene = umbra::Scene::load(umbra::write_demo("room", dir.path()).unwrap()).unwrap();
+    let options = umbra::ShadowOptions {
+        grid: Some(12),
+        adaptive: None,
+    };
+    let run = |threads: usize| {
+        let pool = illum::rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| umbra::shadow_scene_with(&scene, &options).unwrap())
+    };
+    let one = run(1);
+    for threads in [2, 3] {
+        let many = run(threads);
+        assert_eq!(one.mesh, many.mesh, "{threads} threads");
+        assert_eq!(
+            one.light_irradiance, many.light_irradiance,
+            "{threads} threads"
+        );
+    }
+}
