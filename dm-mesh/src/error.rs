@@ -1,0 +1,24 @@
+//! Errors of the discontinuity-mesh library.
+
+use thiserror::Error;
+
+/// What [`DmScene`](crate::DmScene) rejects.
+#[derive(Debug, Clone, PartialEq, Eq, Error)]
+pub enum Error {
+    /// More lights than mask bits.
+    #[error("{0} lights given; at most 32 are supported")]
+    TooManyLights(usize),
+    /// An area light's radiance must be finite and not negative.
+    #[error("light {0}: radiance must be finite and not negative")]
+    BadRadiance(usize),
+    /// Polygons must have grid-point vertices (every discontinuity plane is
+    /// then a plane through three grid points).
+    #[error("polygon {0} of the object has vertices that are not grid points")]
+    ImplicitInput(usize),
+    /// The object handle names no object of the scene (removed already?).
+    #[error("no such object (it was removed, or belongs to another scene)")]
+    UnknownObject,
+    /// The light polygon is not usable for illumination.
+    #[error("light {0}: {1}")]
+    Light(usize, String),
+}

@@ -1,0 +1,326 @@
+//! A scene of objects under area lights, with one DM-tree per receiving
+//! polygon, kept up to date as objects are added, removed and moved.
+
+use crate::error::Error;
+use crate::illuminate::ReceiverIllum;
+use crate::order::unit_order;
+use crate::overlap::Overlap;
+use crate::tree::ReceiverDm;
+use area_shadow::{AreaSource, SourceSide, VolumePlanes, volume_planes};
+use bsp_core::ConvexPolygon;
+use slotmap::{SecondaryMap, SlotMap, new_key_type};
+use std::collections::BTreeSet;
+use svbsp::PieceFlags;
+
+new_key_type! {
+    /// Handle of an object (a group of polygons added, moved and removed
+    /// together).
+    pub struct ObjectId;
+    /// Handle of one convex polygon of an object: a receiver and, if its
+    /// object casts shadows, an occluder.
+    pub struct PieceId;
+}
+
+/// An area light: a convex polygon on the grid and its radiance.
+#[derive(Debug, Clone)]
+pub struct DmLight {
+    pub(crate) source: AreaSource,
+    pub(crate) illum: illum::AreaLight,
+}
+
+impl DmLight {
+    /// A light of `radiance` over `source` (coordinates in grid units, as
+    /// everything else here).
+    pub fn new(source: AreaSource, radiance: f64) -> Result<Self, Error> {
+        let vertices: Vec<[f64; 3]> = source.vertices().map(|g| g.to_f64()).collect();
+        if !(radiance.is_finite() && radiance >= 0.0) {
+            return Err(Error::BadRadiance(0));
+        }
+        let illum = illum::AreaLight::new(&vertices, radiance)
+            .map_err(|e| Error::Light(0, e.to_string()))?;
+        Ok(Self { source, illum })
+    }
+
+    /// The light's polygon.
+    pub fn source(&self) -> &AreaSource {
+        &self.source
+    }
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct Piece {
+    pub(crate) polygon: ConvexPolygon,
+    pub(crate) object: ObjectId,
+    pub(crate) flags: PieceFlags,
+    /// Per light: the penumbra and umbra volume planes (empty when the
+    /// piece casts no shadow of that light).
+    pub(crate) volumes: Vec<VolumePlanes>,
+    /// Grid-unit vertices, for illumination.
+    pub(crate) outline: Vec<[f64; 3]>,
+}
+
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Object {
+    pub(crate) pieces: Vec<PieceId>,
+}
+
+/// Discontinuity meshes of a scene: one DM-tree per receiving polygon,
+/// holding the discontinuities of every area light (occluder lists per
+/// light in each cell).
+#[derive(Debug, Clone)]
+pub struct DmScene {
+    pub(crate) lights: Vec<DmLight>,
+    pub(crate) objects: SlotMap<ObjectId, Object>,
+    pub(crate) pieces: SlotMap<PieceId, Piece>,
+    pub(crate) receivers: SecondaryMap<PieceId, ReceiverDm<PieceId>>,
+    pub(crate) illum: SecondaryMap<PieceId, ReceiverIllum>,
+    pub(crate) overlap: Overlap,
+}
+
+impl DmScene {
+    /// An empty scene under `lights` (at most 32).
+    pub fn new(lights: Vec<DmLight>) -> Result<Self, Error> {
+        if lights.len() > 32 {
+            return Err(Error::TooManyLights(lights.len()));
+        }
+        let overlap = Overlap::new(&lights);
+        Ok(Self {
+            lights,
+            objects: SlotMap::with_key(),
+            pieces: SlotMap::with_key(),
+            receivers: SecondaryMap::new(),
+            illum: SecondaryMap::new(),
+            overlap,
+        })
+    }
+
+    /// A scene built from scratch: every object added at once.
+    pub fn build(
+        lights: Vec<DmLight>,
+        objects: Vec<(Vec<ConvexPolygon>, PieceFlags)>,
+    ) -> Result<(Self, Vec<ObjectId>), Error> {
+        let mut scene = Self::new(lights)?;
+        let mut ids = Vec::with_capacity(objects.len());
+        let mut added = Vec::new();
+        for (polygons, flags) in objects {
+            let id = scene.objects.insert(Object::default());
+            added.extend(scene.attach(id, polygons, flags)?);
+            ids.push(id);
+        }
+        scene.cast(&added);
+        Ok((scene, ids))
+    }
+
+    /// The lights.
+    pub fn lights(&self) -> &[DmLight] {
+        &self.lights
+    }
+
+    /// Adds an object of convex polygons with grid-point vertices (their
+    /// `source` is kept as a tag) and casts its shadows; every receiver
+    /// it reaches gets its discontinuities.
+    pub fn add_object(
+        &mut self,
+        polygons: Vec<ConvexPolygon>,
+        flags: PieceFlags,
+    ) -> Result<ObjectId, Error> {
+        Self::validate(&polygons)?;
+        let id = self.objects.insert(Object::default());
+        let added = self.attach(id, polygons, flags)?;
+        self.cast(&added);
+        Ok(id)
+    }
+
+    /// Removes an object: its receivers go, and its discontinuities leave
+    /// every other receiver's tree.
+    pub fn remove_object(&mut self, id: ObjectId) -> Result<(), Error> {
+        self.detach(id)?;
+        self.objects.remove(id);
+        Ok(())
+    }
+
+    /// Replaces an object's polygons (a move is a delete and an add; the
+    /// handle stays valid).
+    pub fn move_object(&mut self, id: ObjectId, polygons: Vec<ConvexPolygon>) -> Result<(), Error> {
+        Self::validate(&polygons)?;
+        let flags = match self.objects.get(id).and_then(|o| o.pieces.first()) {
+            Some(&p) => self.pieces[p].flags,
+            None if self.objects.contains_key(id) => PieceFlags::default(),
+            None => return Err(Error::UnknownObject),
+        };
+        self.detach(id)?;
+        let added = self.attach(id, polygons, flags)?;
+        self.cast(&added);
+        Ok(())
+    }
+
+    /// The pieces of an object, in the order given.
+    pub fn object_pieces(&self, id: ObjectId) -> Option<&[PieceId]> {
+        self.objects.get(id).map(|o| o.pieces.as_slice())
+    }
+
+    /// The objects.
+    pub fn objects(&self) -> impl Iterator<Item = ObjectId> + '_ {
+        self.objects.keys()
+    }
+
+    /// A receiver's DM-tree.
+    pub fn receiver(&self, piece: PieceId) -> Option<&ReceiverDm<PieceId>> {
+        self.receivers.get(piece)
+    }
+
+    /// Every receiver, objects in insertion order.
+    pub fn receivers(&self) -> impl Iterator<Item = (PieceId, &ReceiverDm<PieceId>)> + '_ {
+        self.objects
+            .values()
+            .flat_map(|o| o.pieces.iter())
+            .map(|&p| (p, &self.receivers[p]))
+    }
+
+    /// The object a piece belongs to.
+    pub fn piece_object(&self, piece: PieceId) -> Option<ObjectId> {
+        self.pieces.get(piece).map(|p| p.object)
+    }
+
+    /// The polygon of a piece.
+    pub fn piece_polygon(&self, piece: PieceId) -> Option<&ConvexPolygon> {
+        self.pieces.get(piece).map(|p| &p.polygon)
+    }
+
+    fn validate(polygons: &[ConvexPolygon]) -> Result<(), Error> {
+        for (k, p) in polygons.iter().enumerate() {
+            if (0..p.len()).any(|i| p.vertex_grid_point(i).is_none()) {
+                return Err(Error::ImplicitInput(k));
+            }
+        }
+        Ok(())
+    }
+
+    /// Creates the pieces and their empty receivers.
+    fn attach(
+        &mut self,
+        id: ObjectId,
+        polygons: Vec<ConvexPolygon>,
+        flags: PieceFlags,
+    ) -> Result<Vec<PieceId>, Error> {
+        Self::validate(&polygons)?;
+        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
+        let mut added = Vec::with_capacity(polygons.len());
+        for polygon in polygons {
+            let volumes = sources
+                .iter()
+                .map(|light| {
+                    let turned_away = flags.closed_surface
+                        && matches!(
+                            light.side_of(polygon.support()),
+                            SourceSide::Back | SourceSide::In
+                        );
+                    if flags.casts_shadows && !turned_away {
+                        volume_planes(&polygon, light)
+                    } else {
+                        VolumePlanes::default()
+                    }
+                })
+                .collect();
+            let outline = polygon.vertices_f64();
+            let receiver = ReceiverDm::new(polygon.clone(), flags.two_sided, &sources);
+            let key = self.pieces.insert(Piece {
+                polygon,
+                object: id,
+                flags,
+                volumes,
+                outline,
+            });
+            self.receivers.insert(key, receiver);
+            self.illum.insert(key, ReceiverIllum::default());
+            self.overlap.insert(key, &self.pieces[key]);
+            added.push(key);
+        }
+        self.objects[id].pieces.extend(&added);
+        Ok(added)
+    }
+
+    /// Casts the shadows of `added` (new pieces) on every receiver, and of
+    /// every occluder on the new receivers.
+    fn cast(&mut self, added: &[PieceId]) {
+        let new: BTreeSet<PieceId> = added.iter().copied().collect();
+        // New receivers: every occluder the overlap structure pairs them with.
+        for &r in added {
+            let candidates = self.overlap.occluders_near(r, &self.pieces);
+            let order = unit_order(&self.lights, &self.pieces, &candidates);
+            let dm = &mut self.receivers[r];
+            for (occluder, light) in order {
+                dm.insert(
+                    occluder,
+                    light,
+                    &self.pieces[occluder].volumes[light as usize],
+                );
+            }
+            self.illum[r].mark_dirty();
+        }
+        // Old receivers: the new occluders, appended.
+        let mut touched: BTreeSet<PieceId> = BTreeSet::new();
+        for &o in added {
+            touched.extend(
+                self.overlap
+                    .receivers_near(o, &self.pieces)
+                    .into_iter()
+                    .filter(|r| !new.contains(r)),
+            );
+        }
+        for r in touched {
+            let candidates: Vec<PieceId> = added
+                .iter()
+                .copied()
+                .filter(|o| self.overlap.may_shadow(*o, r, &self.pieces))
+                .collect();
+            let order = unit_order(&self.lights, &self.pieces, &candidates);
+            let dm = &mut self.receivers[r];
+            for (occluder, light) in order {
+                dm.insert(
+                    occluder,
+                    light,
+                    &self.pieces[occluder].volumes[light as usize],
+                );
+            }
+            self.illum[r].mark_dirty();
+        }
+    }
+
+    /// Removes an object's pieces and their discontinuities.
+    fn detach(&mut self, id: ObjectId) -> Result<(), Error> {
+        let object = self.objects.get_mut(id).ok_or(Error::UnknownObject)?;
+        let gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
+        let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
+        let mut touched: BTreeSet<PieceId> = BTreeSet::new();
+        for &o in &gone_pieces {
+            touched.extend(self.overlap.receivers_near(o, &self.pieces));
+        }
+        for r in touched {
+            if gone.contains(&r) {
+                continue;
+            }
+            let Some(dm) = self.receivers.get_mut(r) else {
+                continue;
+            };
+            let units: BTreeSet<u32> = dm
+                .units()
+                .filter(|(_, (o, _))| gone.contains(o))
+                .map(|(u, _)| u)
+                .collect();
+            if units.is_empty() {
+                continue;
+            }
+            let pieces = &self.pieces;
+            dm.remove_units(&units, |key, light| &pieces[key].volumes[light as usize]);
+            self.illum[r].mark_dirty();
+        }
+        for p in gone_pieces {
+            self.overlap.remove(p);
+            self.receivers.remove(p);
+            self.illum.remove(p);
+            self.pieces.remove(p);
+        }
+        Ok(())
+    }
+}

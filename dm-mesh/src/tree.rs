@@ -1,0 +1,552 @@
+//! One receiver's DM-tree: a 2D BSP whose leaves are the faces of a
+//! winged-edge mesh (Chrysanthou & Slater).
+//!
+//! The root cell is the receiver polygon; its boundary edges bound the
+//! subspace and are no nodes. Each light first splits the receiver by its
+//! own plane (nothing arrives behind it). Then every *unit* (one occluder
+//! under one light) is merged in: its single tree, a linear chain of the
+//! penumbra volume's planes with the umbra chain at its back, is filtered
+//! down the receiver's tree with the unit's region (the receiver clipped by
+//! the penumbra planes) as Naylor's merge filters a linear tree, and at each
+//! leaf it reaches the chain is grown in place: a plane that cuts the cell
+//! becomes a node, the cell part in front keeps its list, and the innermost
+//! part adds the occluder to its list (marked umbra past the umbra chain).
+//! Only the planes that cut a cell make nodes, so every node's line spans
+//! just its own cell (the sub-hyperplane is the mesh edge it made).
+//!
+//! Every path from the root meets units in insertion order, so removing a
+//! unit collapses the subtrees under its topmost nodes back into the cells
+//! they were (merging faces, condensing straight vertices) and re-inserts
+//! the later units into those cells only ([`ReceiverDm::remove_units`]).
+
+use crate::cell::{Cell, CellClass, Entry};
+use area_shadow::{AreaSource, SourceSide, VolumePlanes};
+use bsp_core::predicates::Side;
+use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, Split, VertexKey, WingedMesh};
+use std::collections::{BTreeMap, BTreeSet};
+
+/// The unit number of the light-plane splits made when a receiver is
+/// created (they are never removed).
+pub(crate) const LIGHT_UNIT: u32 = u32::MAX;
+
+/// A node of the 2D BSP.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) enum Node {
+    /// A cell: a face of the mesh.
+    Leaf(FaceKey),
+    /// A split of the node's cell by `line` (the receiver cut by that
+    /// plane): `back` behind it, `front` in front.
+    Split {
+        line: Plane,
+        unit: u32,
+        back: u32,
+        front: u32,
+    },
+    /// A free arena slot.
+    Free,
+}
+
+/// How much of a light can reach a receiver's front (or either side, when
+/// it is two-sided).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Reach {
+    /// None: every cell is in umbra for it.
+    None,
+    /// The receiver's plane cuts the light: unoccluded cells see part.
+    Part,
+    /// All of it, where nothing blocks.
+    All,
+}
+
+/// What the receiver's units are: one occluder key under one light.
+pub(crate) type UnitRef<K> = (K, u8);
+
+/// One receiver's DM-tree and its cells.
+#[derive(Debug, Clone)]
+pub struct ReceiverDm<K> {
+    polygon: ConvexPolygon,
+    mesh: WingedMesh<Cell, ()>,
+    nodes: Vec<Node>,
+    free: Vec<u32>,
+    root: u32,
+    reach: Vec<Reach>,
+    units: BTreeMap<u32, UnitRef<K>>,
+    next_unit: u32,
+}
+
+/// The region of a unit on a receiver: `polygon` clipped by `planes`.
+pub(crate) fn clip(polygon: &ConvexPolygon, planes: &[Plane]) -> Option<ConvexPolygon> {
+    let mut piece = polygon.clone();
+    for plane in planes {
+        piece = match piece.split(plane) {
+            Split::Back => piece,
+            Split::Both(back, _) => back,
+            Split::Front | Split::Coplanar(_) => return None,
+        };
+    }
+    Some(piece)
+}
+
+impl<K: Copy + Ord> ReceiverDm<K> {
+    /// A receiver's tree before any occluder: the light planes' splits.
+    pub(crate) fn new(polygon: ConvexPolygon, two_sided: bool, lights: &[AreaSource]) -> Self {
+        let mesh = WingedMesh::from_polygon(&polygon, Cell::default(), ());
+        let face = mesh.faces().next().map(|(k, _)| k).expect("one face");
+        let mut dm = Self {
+            polygon,
+            mesh,
+            nodes: vec![Node::Leaf(face)],
+            free: Vec::new(),
+            root: 0,
+            reach: Vec::with_capacity(lights.len()),
+            units: BTreeMap::new(),
+            next_unit: 0,
+        };
+        for (i, light) in lights.iter().enumerate() {
+            let reach = match light.side_of(dm.polygon.support()) {
+                SourceSide::In => Reach::None,
+                SourceSide::Front => Reach::All,
+                SourceSide::Back if two_sided => Reach::All,
+                SourceSide::Back => Reach::None,
+                SourceSide::Both => Reach::Part,
+            };
+            dm.reach.push(reach);
+            let bit = 1_u32 << i;
+            let leaves = dm.leaves(dm.root);
+            for leaf in leaves {
+                if reach == Reach::None {
+                    dm.cell_mut(leaf).unreached |= bit;
+                    continue;
+                }
+                match dm.split_leaf(leaf, light.support(), LIGHT_UNIT) {
+                    Some((back, _)) => dm.cell_mut(back).unreached |= bit,
+                    None if dm.leaf_side(leaf, light.support()) == Side::Back => {
+                        dm.cell_mut(leaf).unreached |= bit;
+                    }
+                    None => {}
+                }
+            }
+        }
+        dm
+    }
+
+    /// The receiver polygon.
+    pub fn polygon(&self) -> &ConvexPolygon {
+        &self.polygon
+    }
+
+    /// The winged-edge mesh of the cells.
+    pub fn mesh(&self) -> &WingedMesh<Cell, ()> {
+        &self.mesh
+    }
+
+    /// The cells (faces of the mesh) with their occluder lists.
+    pub fn cells(&self) -> impl Iterator<Item = (FaceKey, &Cell)> + '_ {
+        self.mesh.faces().map(|(k, f)| (k, &f.data))
+    }
+
+    /// What light `light` does to `cell` (a cell of this receiver).
+    pub fn class(&self, cell: &Cell, light: usize) -> CellClass {
+        if cell.in_umbra(light) {
+            CellClass::Umbra
+        } else if cell.occluded(light) || self.reach[light] == Reach::Part {
+            CellClass::Penumbra
+        } else {
+            CellClass::Lit
+        }
+    }
+
+    /// The occluder piece and light of a unit listed in a cell's entries.
+    pub fn unit_source(&self, unit: u32) -> Option<(K, usize)> {
+        self.units.get(&unit).map(|(k, l)| (*k, usize::from(*l)))
+    }
+
+    /// Inner nodes of the tree.
+    pub fn node_count(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| matches!(n, Node::Split { .. }))
+            .count()
+    }
+
+    /// Number of cells.
+    pub fn cell_count(&self) -> usize {
+        self.mesh.counts().2
+    }
+
+    /// The occluder and light of a unit.
+    pub(crate) fn unit(&self, unit: u32) -> Option<UnitRef<K>> {
+        self.units.get(&unit).copied()
+    }
+
+    /// The units, in insertion order.
+    pub(crate) fn units(&self) -> impl Iterator<Item = (u32, UnitRef<K>)> + '_ {
+        self.units.iter().map(|(k, v)| (*k, *v))
+    }
+
+    fn face_of(&self, leaf: u32) -> FaceKey {
+        match self.nodes[leaf as usize] {
+            Node::Leaf(f) => f,
+            _ => unreachable!("not a leaf"),
+        }
+    }
+
+    fn cell_mut(&mut self, leaf: u32) -> &mut Cell {
+        let f = self.face_of(leaf);
+        self.mesh.face_data_mut(f).expect("a leaf's face exists")
+    }
+
+    fn cell(&self, leaf: u32) -> &Cell {
+        &self
+            .mesh
+            .face(self.face_of(leaf))
+            .expect("a leaf's face")
+            .data
+    }
+
+    /// Side of `plane` a leaf's cell lies on when the plane does not cut it.
+    fn leaf_side(&self, leaf: u32, plane: &Plane) -> Side {
+        let f = self.face_of(leaf);
+        self.mesh
+            .face_vertices(f)
+            .into_iter()
+            .filter_map(|v| self.mesh.vertex(v))
+            .map(|v| v.position.side(plane))
+            .find(|s| *s != Side::On)
+            .unwrap_or(Side::On)
+    }
+
+    fn alloc(&mut self, node: Node) -> u32 {
+        match self.free.pop() {
+            Some(k) => {
+                self.nodes[k as usize] = node;
+                k
+            }
+            None => {
+                self.nodes.push(node);
+                (self.nodes.len() - 1) as u32
+            }
+        }
+    }
+
+    /// The leaves under `node`.
+    fn leaves(&self, node: u32) -> Vec<u32> {
+        let mut out = Vec::new();
+        let mut stack = vec![node];
+        while let Some(n) = stack.pop() {
+            match &self.nodes[n as usize] {
+                Node::Leaf(_) => out.push(n),
+                Node::Split { back, front, .. } => {
+                    stack.push(*front);
+                    stack.push(*back);
+                }
+                Node::Free => {}
+            }
+        }
+        out
+    }
+
+    /// Splits a leaf's cell by `plane`; `None` when the plane does not cut
+    /// it. The leaf becomes a node; returns the new back and front leaves.
+    fn split_leaf(&mut self, leaf: u32, plane: &Plane, unit: u32) -> Option<(u32, u32)> {
+        let face = self.face_of(leaf);
+        let FaceSplit::Split { back, front, .. } = self.mesh.split_face(face, plane) else {
+            return None;
+        };
+        let b = self.alloc(Node::Leaf(back));
+        let f = self.alloc(Node::Leaf(front));
+        self.nodes[leaf as usize] = Node::Split {
+            line: *plane,
+            unit,
+            back: b,
+            front: f,
+        };
+        self.cell_mut(b).leaf = b;
+        self.cell_mut(f).leaf = f;
+        Some((b, f))
+    }
+
+    /// Filters `piece` (inside `node`'s cell) down to the leaves it covers
+    /// with area, each with its part.
+    fn descend(&self, node: u32, piece: ConvexPolygon) -> Vec<(u32, ConvexPolygon)> {
+        let mut out = Vec::new();
+        let mut stack = vec![(node, piece)];
+        while let Some((n, piece)) = stack.pop() {
+            match &self.nodes[n as usize] {
+                Node::Leaf(_) => out.push((n, piece)),
+                Node::Split {
+                    line, back, front, ..
+                } => match piece.split(line) {
+                    Split::Back => stack.push((*back, piece)),
+                    Split::Front => stack.push((*front, piece)),
+                    Split::Both(b, f) => {
+                        stack.push((*front, f));
+                        stack.push((*back, b));
+                    }
+                    Split::Coplanar(_) => {}
+                },
+                Node::Free => {}
+            }
+        }
+        out
+    }
+
+    /// Appends a unit (occluder `key` under light `light`, with its volume
+    /// planes) and merges its single tree in. Returns its unit number.
+    pub(crate) fn insert(&mut self, key: K, light: u8, planes: &VolumePlanes) -> u32 {
+        let unit = self.next_unit;
+        self.next_unit += 1;
+        self.units.insert(unit, (key, light));
+        self.merge_unit(self.root, None, unit, light, planes);
+        unit
+    }
+
+    /// Merges unit `unit`'s single tree into the subtree at `node`, whose
+    /// cell is `cell` (`None`: the whole receiver).
+    fn merge_unit(
+        &mut self,
+        node: u32,
+        cell: Option<&ConvexPolygon>,
+        unit: u32,
+        light: u8,
+        planes: &VolumePlanes,
+    ) {
+        if self.reach[usize::from(light)] == Reach::None {
+            return;
+        }
+        for part in &planes.penumbra {
+            // The quick reject: the receiver (or cell) clipped by the
+            // penumbra planes, exactly.
+            let Some(mut region) = clip(&self.polygon, part) else {
+                continue;
+            };
+            if let Some(cell) = cell {
+                let Some(inside) = clip(&region, cell.edges()) else {
+                    continue;
+                };
+                region = inside;
+            }
+            for (leaf, piece) in self.descend(node, region) {
+                let umbra = planes.umbra.as_deref();
+                self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+            }
+        }
+    }
+
+    /// Grows the unit's single tree at one leaf whose cell meets the
+    /// unit's penumbra region in `piece` (with area).
+    fn grow_leaf(
+        &mut self,
+        leaf: u32,
+        piece: &ConvexPolygon,
+        penumbra: &[Plane],
+        umbra: Option<&[Plane]>,
+        unit: u32,
+        light: u8,
+    ) {
+        let cell = self.cell(leaf);
+        if cell.in_umbra(usize::from(light)) || cell.has_unit(unit) {
+            // Umbra already: the occluder changes nothing here.
+            return;
+        }
+        let Some(inner) = self.chain(leaf, penumbra, unit) else {
+            return;
+        };
+        self.cell_mut(inner).add(Entry {
+            unit,
+            light,
+            umbra: false,
+        });
+        let Some(umbra) = umbra else { return };
+        if clip(piece, umbra).is_none() {
+            return;
+        }
+        if let Some(core) = self.chain(inner, umbra, unit) {
+            self.cell_mut(core).add(Entry {
+                unit,
+                light,
+                umbra: true,
+            });
+        }
+    }
+
+    /// Splits the cell at `leaf` by `planes` in turn, following the back;
+    /// the innermost leaf, or `None` if a plane leaves the cell in front.
+    fn chain(&mut self, leaf: u32, planes: &[Plane], unit: u32) -> Option<u32> {
+        let mut cur = leaf;
+        for plane in planes {
+            match self.split_leaf(cur, plane, unit) {
+                Some((back, _)) => cur = back,
+                None if self.leaf_side(cur, plane) == Side::Front => return None,
+                None => {}
+            }
+        }
+        Some(cur)
+    }
+
+    /// Removes the units in `gone`: the subtrees under their topmost nodes
+    /// collapse into the cells they split (faces merged, straight vertices
+    /// condensed), cells listing one of them drop it and every later
+    /// entry, and the later units are re-inserted into just those cells.
+    /// `planes(key, light)` gives a unit's volume planes.
+    pub(crate) fn remove_units<'p>(
+        &mut self,
+        gone: &BTreeSet<u32>,
+        planes: impl Fn(K, u8) -> &'p VolumePlanes,
+    ) {
+        if gone.is_empty() {
+            return;
+        }
+        // Cells to redo, with the first unit to re-insert after.
+        let mut redo: Vec<(u32, u32)> = Vec::new();
+        let mut stack = vec![self.root];
+        while let Some(n) = stack.pop() {
+            match self.nodes[n as usize].clone() {
+                Node::Split {
+                    unit, back, front, ..
+                } => {
+                    if gone.contains(&unit) {
+                        self.collapse(n);
+                        redo.push((n, unit));
+                    } else {
+                        stack.push(front);
+                        stack.push(back);
+                    }
+                }
+                Node::Leaf(f) => {
+                    let cell = &self.mesh.face(f).expect("leaf face").data;
+                    if let Some(e) = cell.entries.iter().find(|e| gone.contains(&e.unit)) {
+                        redo.push((n, e.unit));
+                    }
+                }
+                Node::Free => {}
+            }
+        }
+        for unit in gone {
+            self.units.remove(unit);
+        }
+        for (leaf, after) in redo {
+            let cell = self.cell_mut(leaf);
+            let after = cell
+                .entries
+                .iter()
+                .filter(|e| gone.contains(&e.unit))
+                .map(|e| e.unit)
+                .fold(after, u32::min);
+            cell.entries.retain(|e| e.unit < after);
+            let face = self.face_of(leaf);
+            let Ok(cell) = self.mesh.face_polygon(face, 0) else {
+                continue;
+            };
+            let later: Vec<(u32, UnitRef<K>)> = self
+                .units
+                .range(after + 1..)
+                .map(|(k, v)| (*k, *v))
+                .collect();
+            for (unit, (key, light)) in later {
+                self.merge_unit(leaf, Some(&cell), unit, light, planes(key, light));
+            }
+        }
+    }
+
+    /// Collapses the subtree at `node` into one leaf: children first, each
+    /// pair of sibling cells merged across the edges between them.
+    fn collapse(&mut self, node: u32) {
+        // Post-order of the inner nodes.
+        let mut order = Vec::new();
+        let mut stack = vec![node];
+        while let Some(n) = stack.pop() {
+            if let Node::Split { back, front, .. } = self.nodes[n as usize] {
+                order.push(n);
+                stack.push(back);
+                stack.push(front);
+            }
+        }
+        for &n in order.iter().rev() {
+            let Node::Split { back, front, .. } = self.nodes[n as usize] else {
+                continue;
+            };
+            let (fb, ff) = (self.face_of(back), self.face_of(front));
+            let kept = self.merge_cells(fb, ff);
+            self.nodes[n as usize] = Node::Leaf(kept);
+            self.mesh.face_data_mut(kept).expect("kept face").leaf = n;
+            for child in [back, front] {
+                self.nodes[child as usize] = Node::Free;
+                self.free.push(child);
+            }
+        }
+    }
+
+    /// Merges two adjacent cells (their union is convex: a node's cell);
+    /// returns the face that remains.
+    fn merge_cells(&mut self, a: FaceKey, b: FaceKey) -> FaceKey {
+        let shared: Vec<VertexKey> = {
+            let vb = self.mesh.face_vertices(b);
+            self.mesh
+                .face_vertices(a)
+                .into_iter()
+                .filter(|v| vb.contains(v))
+                .collect()
+        };
+        let edge = self
+            .mesh
+            .face_edges(a)
+            .into_iter()
+            .find(|&e| {
+                let edge = self.mesh.edge(e).expect("face edge");
+                edge.left == Some(b) || edge.right == Some(b)
+            })
+            .expect("sibling cells share an edge");
+        let kept = self
+            .mesh
+            .merge_faces(edge)
+            .expect("sibling cells make their parent's convex cell");
+        for v in shared {
+            self.mesh.remove_vertex_if_collinear(v);
+        }
+        kept
+    }
+
+    /// Checks the tree against the mesh: every leaf's face exists and
+    /// points back at it, every face is a leaf, units on every path come in
+    /// insertion order, and the mesh's own invariants.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        self.mesh.check_invariants()?;
+        let mut leaves = 0;
+        let mut stack = vec![(self.root, 0_u32)];
+        while let Some((n, min)) = stack.pop() {
+            match &self.nodes[n as usize] {
+                Node::Leaf(f) => {
+                    leaves += 1;
+                    let face = self.mesh.face(*f).ok_or("leaf without face")?;
+                    if face.data.leaf != n {
+                        return Err(format!("face of leaf {n} points at {}", face.data.leaf));
+                    }
+                    if face
+                        .data
+                        .entries
+                        .iter()
+                        .any(|e| !self.units.contains_key(&e.unit))
+                    {
+                        return Err(format!("leaf {n} lists a removed unit"));
+                    }
+                }
+                Node::Split {
+                    unit, back, front, ..
+                } => {
+                    let rank = if *unit == LIGHT_UNIT { 0 } else { unit + 1 };
+                    if rank < min {
+                        return Err(format!("node {n}: unit {unit} below a later unit"));
+                    }
+                    stack.push((*back, rank));
+                    stack.push((*front, rank));
+                }
+                Node::Free => return Err(format!("free node {n} in the tree")),
+            }
+        }
+        if leaves != self.cell_count() {
+            return Err(format!("{leaves} leaves, {} faces", self.cell_count()));
+        }
+        Ok(())
+    }
+}

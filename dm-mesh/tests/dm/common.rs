@@ -1,0 +1,206 @@
+//! Random scenes: a floor, objects of a few triangles or a box above it,
+//! and a parallelogram light above those.
+
+use area_shadow::AreaSource;
+use bsp_core::{ConvexPolygon, GridPoint};
+use dm_mesh::{CellClass, DmLight, DmScene, PieceId};
+use proptest::prelude::*;
+use svbsp::PieceFlags;
+
+pub fn gp(x: i64, y: i64, z: i64) -> GridPoint {
+    GridPoint::new(x, y, z).unwrap()
+}
+
+pub fn floor(half: i64) -> ConvexPolygon {
+    let pts = [
+        gp(-half, 0, half),
+        gp(half, 0, half),
+        gp(half, 0, -half),
+        gp(-half, 0, -half),
+    ];
+    ConvexPolygon::from_grid_points(&pts, 0).unwrap()
+}
+
+/// A parallelogram light at height `h`, rising by `tilt` along x, facing
+/// down.
+pub fn light(x0: i64, z0: i64, w: i64, d: i64, h: i64, tilt: i64) -> AreaSource {
+    let pts = [
+        gp(x0, h, z0),
+        gp(x0 + w, h + tilt, z0),
+        gp(x0 + w, h + tilt, z0 + d),
+        gp(x0, h, z0 + d),
+    ];
+    let polygon = ConvexPolygon::from_grid_points(&pts, 0).unwrap();
+    if polygon.support().normal()[1] < 0 {
+        AreaSource::new(polygon).unwrap()
+    } else {
+        AreaSource::new(polygon.flipped()).unwrap()
+    }
+}
+
+/// One object: its polygons and flags.
+pub type Object = (Vec<ConvexPolygon>, PieceFlags);
+
+/// A scene: objects (the floor first) and one light.
+#[derive(Debug, Clone)]
+pub struct TestScene {
+    pub objects: Vec<Object>,
+    pub light: AreaSource,
+}
+
+impl TestScene {
+    pub fn build(&self) -> (DmScene, Vec<dm_mesh::ObjectId>) {
+        let light = DmLight::new(self.light.clone(), 1.0).unwrap();
+        DmScene::build(vec![light], self.objects.clone()).unwrap()
+    }
+
+    /// Every polygon of the scene.
+    pub fn polygons(&self) -> Vec<ConvexPolygon> {
+        self.objects.iter().flat_map(|o| o.0.clone()).collect()
+    }
+}
+
+/// A triangle object: corners offset from a centre; one in three lies in
+/// the common plane y = 100.
+fn triangles(centre: [i64; 3], corners: &[[i64; 3]]) -> Vec<ConvexPolygon> {
+    corners
+        .chunks(3)
+        .filter_map(|tri| {
+            let pts: Vec<GridPoint> = tri
+                .iter()
+                .map(|o| {
+                    let y = if centre[1] % 3 == 0 {
+                        100
+                    } else {
+                        120 + centre[1] / 2 + o[1]
+                    };
+                    gp(centre[0] + o[0], y, centre[2] + o[2])
+                })
+                .collect();
+            ConvexPolygon::from_grid_points(&pts, 0).ok()
+        })
+        .collect()
+}
+
+/// An axis-aligned box `[lo, hi]`, faces outwards.
+pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
+    let [x0, y0, z0] = lo;
+    let [x1, y1, z1] = hi;
+    let faces = [
+        [
+            gp(x0, y0, z0),
+            gp(x1, y0, z0),
+            gp(x1, y0, z1),
+            gp(x0, y0, z1),
+        ],
+        [
+            gp(x0, y1, z0),
+            gp(x0, y1, z1),
+            gp(x1, y1, z1),
+            gp(x1, y1, z0),
+        ],
+        [
+            gp(x0, y0, z0),
+            gp(x0, y0, z1),
+            gp(x0, y1, z1),
+            gp(x0, y1, z0),
+        ],
+        [
+            gp(x1, y0, z0),
+            gp(x1, y1, z0),
+            gp(x1, y1, z1),
+            gp(x1, y0, z1),
+        ],
+        [
+            gp(x0, y0, z0),
+            gp(x0, y1, z0),
+            gp(x1, y1, z0),
+            gp(x1, y0, z0),
+        ],
+        [
+            gp(x0, y0, z1),
+            gp(x1, y0, z1),
+            gp(x1, y1, z1),
+            gp(x0, y1, z1),
+        ],
+    ];
+    faces
+        .iter()
+        .map(|f| ConvexPolygon::from_grid_points(f, 0).unwrap())
+        .collect()
+}
+
+pub fn scene() -> impl Strategy<Value = TestScene> {
+    (
+        prop::collection::vec(
+            (
+                prop::array::uniform3(-200_i64..200),
+                prop::collection::vec(prop::array::uniform3(-60_i64..60), 3..7),
+                any::<bool>(),
+            ),
+            1..5,
+        ),
+        (
+            -120_i64..60,
+            -120_i64..60,
+            20_i64..100,
+            20_i64..100,
+            180_i64..260,
+            -40_i64..40,
+        ),
+    )
+        .prop_map(|(objects, (x0, z0, w, d, h, tilt))| {
+            let mut out = vec![(vec![floor(500)], PieceFlags::default())];
+            for (c, corners, as_box) in objects {
+                if as_box {
+                    let lo = [c[0], 30 + c[1].rem_euclid(60), c[2]];
+                    let size = corners[0].map(|s| 10 + s.abs());
+                    let hi = [lo[0] + size[0], lo[1] + size[1].min(60), lo[2] + size[2]];
+                    let flags = PieceFlags {
+                        closed_surface: true,
+                        ..PieceFlags::default()
+                    };
+                    out.push((cuboid(lo, hi), flags));
+                } else {
+                    let tris = triangles(c, &corners[..corners.len() / 3 * 3]);
+                    if !tris.is_empty() {
+                        let flags = PieceFlags {
+                            two_sided: true,
+                            ..PieceFlags::default()
+                        };
+                        out.push((tris, flags));
+                    }
+                }
+            }
+            TestScene {
+                objects: out,
+                light: light(x0, z0, w, d, h, tilt),
+            }
+        })
+}
+
+/// A polygon moved by `d` grid units.
+pub fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
+    let pts: Vec<GridPoint> = (0..p.len())
+        .map(|k| {
+            let g = p.vertex_grid_point(k).unwrap().to_i64();
+            gp(g[0] + d[0], g[1] + d[1], g[2] + d[2])
+        })
+        .collect();
+    ConvexPolygon::from_grid_points(&pts, p.source()).unwrap()
+}
+
+/// Area of each class (lit, penumbra, umbra) on a receiver for light 0.
+pub fn class_areas(scene: &DmScene, piece: PieceId) -> [f64; 3] {
+    let dm = scene.receiver(piece).unwrap();
+    let mut out = [0.0; 3];
+    for (f, cell) in dm.cells() {
+        let area = dm.mesh().face_polygon(f, 0).unwrap().area();
+        out[match dm.class(cell, 0) {
+            CellClass::Lit => 0,
+            CellClass::Penumbra => 1,
+            CellClass::Umbra => 2,
+        }] += area;
+    }
+    out
+}

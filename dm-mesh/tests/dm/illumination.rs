@@ -1,0 +1,149 @@
+//! Vertex irradiance: the three cases against the visible part of the
+//! light past every occluder of the scene, and against Monte Carlo.
+
+use crate::common::{TestScene, cuboid, floor, gp, light, scene};
+use crate::oracle::{hidden, interior_samples};
+use bsp_core::ConvexPolygon;
+use dm_mesh::{CellClass, DmScene};
+use illum::{Sidedness, VisiblePart, visible_irradiance};
+use proptest::prelude::*;
+use rand::{Rng, SeedableRng};
+use svbsp::PieceFlags;
+
+/// Every vertex's value against `illum` given every caster of the scene.
+fn check_vertices(t: &TestScene, scene: &mut DmScene) -> Result<(), TestCaseError> {
+    let stats = scene.illuminate();
+    prop_assert_eq!(stats.evaluated, stats.vertices);
+    let corners: Vec<[f64; 3]> = t.light.vertices().map(|g| g.to_f64()).collect();
+    let light = illum::AreaLight::new(&corners, 1.0).unwrap();
+    let casters: Vec<(ConvexPolygon, Vec<[f64; 3]>)> = t
+        .objects
+        .iter()
+        .filter(|(_, f)| f.casts_shadows)
+        .flat_map(|(ps, _)| ps.iter().map(|p| (p.clone(), p.vertices_f64())))
+        .collect();
+    let mut scratch = VisiblePart::new();
+    for (r, dm) in scene.receivers() {
+        let own = dm.polygon();
+        let n = own.support().unit_normal_f64();
+        let two_sided = t
+            .objects
+            .iter()
+            .any(|(ps, f)| f.two_sided && ps.iter().any(|p| p == own));
+        let sided = if two_sided {
+            Sidedness::TwoSided
+        } else {
+            Sidedness::OneSided
+        };
+        let occluders: Vec<&[[f64; 3]]> = casters
+            .iter()
+            .filter(|(c, _)| !c.support().is_coincident(own.support()))
+            .map(|(_, o)| o.as_slice())
+            .collect();
+        for (f, _) in dm.cells() {
+            for v in dm.mesh().face_vertices(f) {
+                let position = dm.mesh().vertex(v).unwrap().position;
+                // Where an occluder touches or pierces the receiver the
+                // irradiance jumps (a D0 discontinuity) and has no single
+                // value: a vertex on a caster's plane is left out.
+                let on_caster = casters.iter().any(|(c, _)| {
+                    !c.support().is_coincident(own.support())
+                        && position.side(c.support()) == bsp_core::Side::On
+                });
+                if on_caster {
+                    continue;
+                }
+                let p = position.to_f64();
+                let got = scene.vertex_irradiance(r, v).unwrap();
+                let truth = visible_irradiance(&light, &occluders, p, n, sided, &mut scratch);
+                let full = light.irradiance(p, n, sided);
+                prop_assert!(
+                    (got - truth).abs() <= 1e-9 * full + 1e-15,
+                    "vertex {p:?}: {got} vs {truth} (unoccluded {full})"
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    #[test]
+    fn vertex_irradiance_matches_the_visible_part_past_every_occluder(t in scene()) {
+        let (mut scene, _) = t.build();
+        check_vertices(&t, &mut scene)?;
+    }
+}
+
+/// A box on a floor under a square light: irradiance at penumbra vertices
+/// against a Monte Carlo estimate of `L * integral of cos cos / r^2` over
+/// the light points the oracle says are visible.
+#[test]
+fn penumbra_vertices_agree_with_monte_carlo() {
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(300)], PieceFlags::default()),
+            (
+                cuboid([-40, 60, -30], [40, 90, 50]),
+                PieceFlags {
+                    closed_surface: true,
+                    ..PieceFlags::default()
+                },
+            ),
+        ],
+        light: light(-50, -50, 100, 100, 200, 0),
+    };
+    let (mut scene, ids) = t.build();
+    let stats = scene.illuminate();
+    assert!(stats.visibility > 0);
+    assert!(stats.comparisons_per_vertex() > 0.0);
+    let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+    let dm = scene.receiver(floor_piece).unwrap();
+    let casters = t.objects[1].0.clone();
+    let own = dm.polygon().clone();
+    let lv: Vec<[f64; 3]> = t.light.vertices().map(|g| g.to_f64()).collect();
+    let area = t.light.polygon().area();
+    let ln = t.light.support().unit_normal_f64();
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(7);
+    let mut checked = 0;
+    for (f, cell) in dm.cells() {
+        if dm.class(cell, 0) != CellClass::Penumbra || checked >= 6 {
+            continue;
+        }
+        let v = dm.mesh().face_vertices(f)[0];
+        let p = dm.mesh().vertex(v).unwrap().position.to_f64();
+        let n = 40_000;
+        let (mut sum, mut sum2) = (0.0, 0.0);
+        for _ in 0..n {
+            // Uniform on the parallelogram light.
+            let (s, u): (f64, f64) = (rng.random(), rng.random());
+            let x: [f64; 3] = std::array::from_fn(|k| {
+                lv[0][k] + s * (lv[1][k] - lv[0][k]) + u * (lv[3][k] - lv[0][k])
+            });
+            let d: [f64; 3] = std::array::from_fn(|k| x[k] - p[k]);
+            let r2 = d.iter().map(|c| c * c).sum::<f64>();
+            let cos_r = d[1] / r2.sqrt();
+            let cos_l = -(ln[0] * d[0] + ln[1] * d[1] + ln[2] * d[2]) / r2.sqrt();
+            let value = if hidden(p, x, &casters, &own) {
+                0.0
+            } else {
+                area * cos_r.max(0.0) * cos_l.max(0.0) / r2
+            };
+            sum += value;
+            sum2 += value * value;
+        }
+        let mean = sum / f64::from(n);
+        let sigma = ((sum2 / f64::from(n) - mean * mean).max(0.0) / f64::from(n)).sqrt();
+        let got = scene.vertex_irradiance(floor_piece, v).unwrap();
+        assert!(
+            (got - mean).abs() <= 5.0 * sigma + 1e-6,
+            "vertex {p:?}: {got} vs Monte Carlo {mean} +- {sigma}"
+        );
+        checked += 1;
+    }
+    assert!(checked > 0);
+    let _ = interior_samples;
+    let _ = gp;
+}

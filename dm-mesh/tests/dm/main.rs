@@ -1,0 +1,7 @@
+//! Integration tests of dm-mesh, one binary.
+
+mod classes;
+mod common;
+mod illumination;
+mod oracle;
+mod updates;

@@ -1,0 +1,218 @@
+//! Incremental updates against from-scratch builds: after random moves,
+//! removals and additions every receiver has the same lit, penumbra and
+//! umbra areas as a build of the final scene, the same class at random
+//! points, and the same irradiance at vertices both meshes have; the trees
+//! keep their invariants after every operation.
+
+use crate::common::{Object, TestScene, class_areas, scene, translated};
+use crate::oracle::interior_samples;
+use bsp_core::{ConvexPolygon, Side};
+use dm_mesh::{DmLight, DmScene, ObjectId, PieceId};
+use proptest::prelude::*;
+use std::collections::BTreeMap;
+
+#[derive(Debug, Clone)]
+enum Op {
+    Move(usize, [i64; 3]),
+    Remove(usize),
+    ReAdd(usize),
+}
+
+fn ops() -> impl Strategy<Value = Vec<Op>> {
+    prop::collection::vec(
+        prop_oneof![
+            3 => (1_usize..8, prop::array::uniform3(-40_i64..40)).prop_map(|(k, d)| Op::Move(k, d)),
+            1 => (1_usize..8).prop_map(Op::Remove),
+            1 => (1_usize..8).prop_map(Op::ReAdd),
+        ],
+        1..6,
+    )
+}
+
+/// The scene's objects as they are now (`None`: removed).
+struct Model {
+    objects: Vec<Option<(Object, ObjectId)>>,
+    removed: Vec<Option<Object>>,
+}
+
+fn check_all(scene: &DmScene) -> Result<(), TestCaseError> {
+    for (_, dm) in scene.receivers() {
+        dm.check_invariants().map_err(TestCaseError::fail)?;
+    }
+    Ok(())
+}
+
+fn apply(scene: &mut DmScene, model: &mut Model, op: &Op) -> Result<(), TestCaseError> {
+    let n = model.objects.len();
+    match *op {
+        Op::Move(k, d) => {
+            let k = 1 + (k - 1) % (n - 1);
+            if let Some(((polys, flags), id)) = model.objects[k].clone() {
+                let moved: Vec<ConvexPolygon> = polys.iter().map(|p| translated(p, d)).collect();
+                scene.move_object(id, moved.clone()).unwrap();
+                model.objects[k] = Some(((moved, flags), id));
+            }
+        }
+        Op::Remove(k) => {
+            let k = 1 + (k - 1) % (n - 1);
+            if let Some((object, id)) = model.objects[k].take() {
+                scene.remove_object(id).unwrap();
+                prop_assert!(scene.remove_object(id).is_err());
+                model.removed[k] = Some(object);
+            }
+        }
+        Op::ReAdd(k) => {
+            let k = 1 + (k - 1) % (n - 1);
+            if let Some(object) = model.removed[k].take() {
+                let id = scene.add_object(object.0.clone(), object.1).unwrap();
+                model.objects[k] = Some((object, id));
+            }
+        }
+    }
+    check_all(scene)
+}
+
+/// Receivers of the live objects, in model order, piece by piece.
+fn pieces(scene: &DmScene, ids: &[ObjectId]) -> Vec<PieceId> {
+    ids.iter()
+        .flat_map(|id| scene.object_pieces(*id).unwrap().to_vec())
+        .collect()
+}
+
+fn compare(
+    a: &mut DmScene,
+    ids_a: &[ObjectId],
+    b: &mut DmScene,
+    ids_b: &[ObjectId],
+) -> Result<(), TestCaseError> {
+    a.illuminate();
+    b.illuminate();
+    let (pa, pb) = (pieces(a, ids_a), pieces(b, ids_b));
+    prop_assert_eq!(pa.len(), pb.len());
+    for (&ra, &rb) in pa.iter().zip(&pb) {
+        let (da, db) = (a.receiver(ra).unwrap(), b.receiver(rb).unwrap());
+        prop_assert!(da.polygon() == db.polygon());
+        let scale = da.polygon().area();
+        let (xa, xb) = (class_areas(a, ra), class_areas(b, rb));
+        for c in 0..3 {
+            prop_assert!(
+                (xa[c] - xb[c]).abs() <= 1e-9 * scale,
+                "class {c}: {} vs {}",
+                xa[c],
+                xb[c]
+            );
+        }
+        // Class of sample points of each cell of one, located exactly in
+        // the other (by the cell planes, at points strictly inside).
+        for (f, cell) in da.cells() {
+            let polygon = da.mesh().face_polygon(f, 0).unwrap();
+            let class = da.class(cell, 0);
+            for (g, other) in db.cells() {
+                let q = db.mesh().face_polygon(g, 0).unwrap();
+                // Overlap with area: clip one by the other's edge planes.
+                let mut piece = Some(polygon.clone());
+                for e in q.edges() {
+                    piece = piece.and_then(|p| match p.split(e) {
+                        bsp_core::Split::Back => Some(p),
+                        bsp_core::Split::Both(back, _) => Some(back),
+                        _ => None,
+                    });
+                }
+                if piece.is_some() {
+                    prop_assert_eq!(
+                        class,
+                        db.class(other, 0),
+                        "cells overlap with different classes"
+                    );
+                }
+            }
+        }
+        // Irradiance where both have a vertex.
+        let mut at: BTreeMap<[u64; 3], f64> = BTreeMap::new();
+        for (f, _) in db.cells() {
+            for v in db.mesh().face_vertices(f) {
+                let p = db.mesh().vertex(v).unwrap().position.to_f64();
+                at.insert(p.map(f64::to_bits), b.vertex_irradiance(rb, v).unwrap());
+            }
+        }
+        for (f, _) in da.cells() {
+            for v in da.mesh().face_vertices(f) {
+                let position = da.mesh().vertex(v).unwrap().position;
+                let p = position.to_f64();
+                if let Some(eb) = at.get(&p.map(f64::to_bits)) {
+                    let ea = a.vertex_irradiance(ra, v).unwrap();
+                    prop_assert!(
+                        (ea - eb).abs() <= 1e-9 * ea.abs().max(eb.abs()) + 1e-15,
+                        "{p:?}: {ea} vs {eb}"
+                    );
+                }
+                let _ = Side::On;
+            }
+        }
+    }
+    Ok(())
+}
+
+fn run(t: &TestScene, ops: &[Op]) -> Result<(), TestCaseError> {
+    let (mut scene, ids) = t.build();
+    scene.illuminate();
+    check_all(&scene)?;
+    let mut model = Model {
+        objects: t.objects.iter().cloned().zip(ids).map(Some).collect(),
+        removed: vec![None; t.objects.len()],
+    };
+    if model.objects.len() < 2 {
+        return Ok(());
+    }
+    for op in ops {
+        apply(&mut scene, &mut model, op)?;
+    }
+    let live: Vec<(Object, ObjectId)> = model.objects.iter().flatten().cloned().collect();
+    let light = DmLight::new(t.light.clone(), 1.0).unwrap();
+    let (mut fresh, fresh_ids) =
+        DmScene::build(vec![light], live.iter().map(|(o, _)| o.clone()).collect()).unwrap();
+    let ids: Vec<ObjectId> = live.iter().map(|(_, id)| *id).collect();
+    compare(&mut scene, &ids, &mut fresh, &fresh_ids)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(40))]
+
+    #[test]
+    fn updates_agree_with_a_rebuild(t in scene(), ops in ops()) {
+        run(&t, &ops)?;
+    }
+
+    /// Removing an object and adding it back gives the regions it had.
+    #[test]
+    fn remove_then_re_add_restores_the_regions(t in scene(), k in 1_usize..8) {
+        let (mut scene, ids) = t.build();
+        if ids.len() < 2 {
+            return Ok(());
+        }
+        let k = 1 + (k - 1) % (ids.len() - 1);
+        let before: Vec<[f64; 3]> = pieces(&scene, &ids).iter().map(|p| class_areas(&scene, *p)).collect();
+        scene.remove_object(ids[k]).unwrap();
+        check_all(&scene)?;
+        let again = scene.add_object(t.objects[k].0.clone(), t.objects[k].1).unwrap();
+        check_all(&scene)?;
+        let mut order = ids.clone();
+        order[k] = again;
+        let after: Vec<[f64; 3]> = pieces(&scene, &order).iter().map(|p| class_areas(&scene, *p)).collect();
+        for (x, y) in before.iter().zip(&after) {
+            for c in 0..3 {
+                prop_assert!((x[c] - y[c]).abs() <= 1e-9 * (x[0] + x[1] + x[2]));
+            }
+        }
+    }
+}
+
+#[test]
+fn samples_helper_is_inside() {
+    let p = crate::common::floor(10);
+    assert!(
+        interior_samples(&p, 4)
+            .iter()
+            .all(|q| q[0].abs() < 10.0 && q[2].abs() < 10.0)
+    );
+}
