@@ -177,6 +177,11 @@ impl DmScene {
             .map(|&p| (p, &self.receivers[p]))
     }
 
+    /// The flags a piece was added with.
+    pub fn piece_flags(&self, piece: PieceId) -> Option<PieceFlags> {
+        self.pieces.get(piece).map(|p| p.flags)
+    }
+
     /// The object a piece belongs to.
     pub fn piece_object(&self, piece: PieceId) -> Option<ObjectId> {
         self.pieces.get(piece).map(|p| p.object)
