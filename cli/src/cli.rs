@@ -175,7 +175,7 @@ pub struct CsgArgs {
 /// Options of `umbra demo`.
 #[derive(Debug, Args)]
 pub struct DemoArgs {
-    /// The scene: `room` or `tetra`.
+    /// The scene: `room`, `room1`, `tetra`, `window`, `office` or `cubes`.
     #[arg(default_value = "room")]
     pub name: String,
     /// Folder to write into [default: a folder named after the scene].
@@ -449,6 +449,14 @@ pub fn run(cli: Cli) -> Result<()> {
             let mut out = std::io::stdout().lock();
             let _ = writeln!(out, "wrote the `{}` scene: {}", args.name, path.display());
             drop(out);
+            if files.runs_dm() {
+                return run_dm(&DmArgs {
+                    scene: path.clone(),
+                    output: path.with_extension("ply"),
+                    stats: Some(path.with_extension("json")),
+                    ascii: false,
+                });
+            }
             // ... and run it, as `umbra shadow` would.
             run_shadow(&ShadowArgs {
                 scene: path.clone(),

@@ -48,6 +48,7 @@ mod atomic;
 mod csg;
 mod decompose;
 mod demo;
+mod demo_dm;
 mod demo_room;
 mod dm;
 mod error;
