@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    DemoFiles, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg,
+    DemoFiles, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene,
     render_scene, save_csg_obj, save_obj, save_ply, shadow_scene, shadow_scene_with,
 };
 
@@ -115,6 +115,13 @@ pub struct DmArgs {
     /// Output PLY file (same layout as `umbra shadow`; one face per cell).
     #[arg(short, long, value_name = "OUT.ply")]
     pub output: PathBuf,
+    /// Write run statistics as JSON (FORMATS.md §3 fields, plus `dm`: tree
+    /// nodes, cells, comparisons per vertex, build phases).
+    #[arg(long, value_name = "S.json")]
+    pub stats: Option<PathBuf>,
+    /// Write ASCII PLY instead of binary little-endian.
+    #[arg(long)]
+    pub ascii: bool,
 }
 
 /// Options of `umbra update`.
@@ -134,6 +141,13 @@ pub struct UpdateArgs {
     /// Output PLY file (the final state).
     #[arg(short, long, value_name = "OUT.ply")]
     pub output: PathBuf,
+    /// Write run statistics as JSON, with `update.update_seconds` and
+    /// `update.rebuild_seconds` (one entry per step).
+    #[arg(long, value_name = "S.json")]
+    pub stats: Option<PathBuf>,
+    /// Write ASCII PLY instead of binary little-endian.
+    #[arg(long)]
+    pub ascii: bool,
 }
 
 /// Options of `umbra csg`.
@@ -161,7 +175,7 @@ pub struct CsgArgs {
 /// Options of `umbra demo`.
 #[derive(Debug, Args)]
 pub struct DemoArgs {
-    /// The scene: `room` or `tetra`.
+    /// The scene: `room`, `room1`, `tetra`, `window`, `office` or `cubes`.
     #[arg(default_value = "room")]
     pub name: String,
     /// Folder to write into [default: a folder named after the scene].
@@ -312,32 +326,100 @@ fn run_render(args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
+fn encoding(ascii: bool) -> PlyEncoding {
+    if ascii {
+        PlyEncoding::Ascii
+    } else {
+        PlyEncoding::BinaryLittleEndian
+    }
+}
+
+/// `umbra dm`: outputs are written only once everything succeeded.
+fn run_dm(args: &DmArgs) -> Result<()> {
+    let progress = Progress::start("loading the scene");
+    let scene = Scene::load(&args.scene)?;
+    progress.say("building discontinuity meshes");
+    let run = dm_scene(&scene)?;
+    progress.say("writing");
+    save_ply(&args.output, &run.mesh(), encoding(args.ascii))?;
+    if let Some(stats) = &args.stats {
+        run.stats.save(stats)?;
+    }
+    progress.finish();
+    let s = &run.stats;
+    let mut out = std::io::stdout().lock();
+    let _ = writeln!(
+        out,
+        "{}: {} input polygons, {} cells, {} tree nodes, {:.2} comparisons per vertex, {:.3} s",
+        args.output.display(),
+        s.stats.input_polygons,
+        s.dm.cells,
+        s.dm.tree_nodes,
+        s.dm.comparisons_per_vertex,
+        s.stats.seconds.total
+    );
+    Ok(())
+}
+
+/// `umbra update`: moves the object step by step; writes the final state.
+fn run_update(args: &UpdateArgs) -> Result<()> {
+    let progress = Progress::start("loading the scene");
+    let scene = Scene::load(&args.scene)?;
+    if !scene.objects.iter().any(|o| o.name == args.object) {
+        return Err(Error::Field {
+            path: scene.path.clone(),
+            field: "object".into(),
+            message: format!("no object is named `{}` (from --move)", args.object),
+        });
+    }
+    progress.say("building discontinuity meshes");
+    let mut run = dm_scene(&scene)?;
+    progress.say("moving");
+    let mut lines = Vec::new();
+    let figures = run.move_steps(
+        &scene,
+        &args.object,
+        args.by,
+        args.steps,
+        |k, update, rebuild| {
+            lines.push(format!(
+                "step {k}: update {:.3} ms, rebuild {:.3} ms ({:.1} %)",
+                update * 1e3,
+                rebuild * 1e3,
+                100.0 * update / rebuild.max(1e-12)
+            ));
+        },
+    )?;
+    run.refresh_figures();
+    run.stats.update = Some(figures);
+    progress.say("writing");
+    save_ply(&args.output, &run.mesh(), encoding(args.ascii))?;
+    if let Some(stats) = &args.stats {
+        run.stats.save(stats)?;
+    }
+    progress.finish();
+    let mut out = std::io::stdout().lock();
+    for line in lines {
+        let _ = writeln!(out, "{line}");
+    }
+    let _ = writeln!(
+        out,
+        "{}: `{}` moved {} times, {} cells",
+        args.output.display(),
+        args.object,
+        args.steps,
+        run.stats.dm.cells
+    );
+    Ok(())
+}
+
 /// Runs one command.
 pub fn run(cli: Cli) -> Result<()> {
     match cli.command {
         Command::Shadow(args) => run_shadow(&args),
         Command::Render(args) => run_render(&args),
-        Command::Dm(args) => {
-            Pieces::from_scene(&Scene::load(&args.scene)?)?;
-            Err(Error::NotImplemented {
-                command: "dm",
-                reason: "discontinuity meshes (dm-mesh) are not wired into the command yet",
-            })
-        }
-        Command::Update(args) => {
-            let scene = Scene::load(&args.scene)?;
-            if !scene.objects.iter().any(|o| o.name == args.object) {
-                return Err(Error::Field {
-                    path: scene.path.clone(),
-                    field: "object".into(),
-                    message: format!("no object is named `{}` (from --move)", args.object),
-                });
-            }
-            Err(Error::NotImplemented {
-                command: "update",
-                reason: "discontinuity meshes (dm-mesh) are not wired into the command yet",
-            })
-        }
+        Command::Dm(args) => run_dm(&args),
+        Command::Update(args) => run_update(&args),
         Command::Csg(args) => {
             let a = ObjMesh::load(&args.a)?;
             let b = ObjMesh::load(&args.b)?;
@@ -367,6 +449,14 @@ pub fn run(cli: Cli) -> Result<()> {
             let mut out = std::io::stdout().lock();
             let _ = writeln!(out, "wrote the `{}` scene: {}", args.name, path.display());
             drop(out);
+            if files.runs_dm() {
+                return run_dm(&DmArgs {
+                    scene: path.clone(),
+                    output: path.with_extension("ply"),
+                    stats: Some(path.with_extension("json")),
+                    ascii: false,
+                });
+            }
             // ... and run it, as `umbra shadow` would.
             run_shadow(&ShadowArgs {
                 scene: path.clone(),

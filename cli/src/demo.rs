@@ -5,7 +5,9 @@
 //! - `room` and `room1`: a furnished room (151 input polygons) under two
 //!   or one square ceiling lights, like the 1992 paper's plates 3-6;
 //! - `window`: the same room with a window, two boxes, a point light under
-//!   the ceiling and sunlight coming through the window.
+//!   the ceiling and sunlight coming through the window;
+//! - `office` and `cubes`: the discontinuity-mesh scenes (`umbra dm`), see
+//!   `demo_dm`.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -15,7 +17,7 @@ use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
 
 /// The names of the built-in scenes.
-pub const DEMOS: &[&str] = &["room", "room1", "tetra", "window"];
+pub const DEMOS: &[&str] = &["room", "room1", "tetra", "window", "office", "cubes"];
 
 /// Recursion depth of the `tetra` demo: 4 gives 256 triangles.
 pub const TETRA_DEPTH: u32 = 4;
@@ -89,6 +91,16 @@ impl DemoFiles {
     pub fn named(name: &str) -> Result<Self> {
         match name {
             "tetra" => Ok(tetra_files(TETRA_DEPTH)),
+            "office" | "cubes" => Ok(DemoFiles {
+                name: name.to_string(),
+                scene: if name == "office" {
+                    crate::demo_dm::office_scene()
+                } else {
+                    crate::demo_dm::cubes_scene()
+                },
+                meshes: window_files().meshes,
+                grid: None,
+            }),
             "window" => Ok(window_files()),
             "room" | "room1" => {
                 let lights = if name == "room" { 2 } else { 1 };
@@ -105,6 +117,12 @@ impl DemoFiles {
                 known: DEMOS.join(", "),
             }),
         }
+    }
+
+    /// Whether the demo is run with `umbra dm` (discontinuity meshes)
+    /// rather than `umbra shadow`.
+    pub fn runs_dm(&self) -> bool {
+        matches!(self.name.as_str(), "office" | "cubes")
     }
 
     /// Writes the files into `dir` (created if needed; each file written

@@ -101,6 +101,9 @@ pub enum Error {
         /// The names that exist, comma-separated.
         known: String,
     },
+    /// The discontinuity meshes could not be built or updated.
+    #[error("discontinuity meshes: {0}")]
+    Dm(String),
     /// A command that is parsed but not implemented yet.
     #[error("`umbra {command}` is not implemented yet: {reason}")]
     NotImplemented {

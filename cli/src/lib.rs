@@ -48,7 +48,9 @@ mod atomic;
 mod csg;
 mod decompose;
 mod demo;
+mod demo_dm;
 mod demo_room;
+mod dm;
 mod error;
 mod illuminate;
 mod mesh;
@@ -69,6 +71,7 @@ pub use decompose::{
     DIRECTION_SCALE, GRID_MARGIN, Pieces, SnappedLight, convex_pieces, integer_direction,
 };
 pub use demo::{DEMOS, DemoFiles, TETRA_DEPTH, tetra_triangles, write_demo};
+pub use dm::{DmFigures, DmRun, DmStats, UpdateFigures, dm_scene};
 pub use error::{Error, Result};
 pub use mesh::{OutputFace, OutputMesh};
 pub use obj::{ObjFace, ObjMesh};

@@ -239,7 +239,7 @@ fn scene_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<SceneLight>> {
 /// Per piece: casts, two-sided, and whether its object is a closed surface
 /// (every directed edge between grid points matched by its reverse exactly
 /// once), which lets faces turned away from a light skip the shadow pass.
-fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
+pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
     let object_of_input: Vec<usize> = scene.input_polygons().map(|(object, _)| object).collect();
     let object_of = |k: usize| object_of_input[pieces.input_of[k] as usize];
     let mut edges: HashMap<(usize, GridPoint, GridPoint), u32> = HashMap::new();

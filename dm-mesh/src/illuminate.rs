@@ -23,7 +23,7 @@
 
 use crate::cell::Cell;
 use crate::scene::{DmScene, PieceId};
-use bsp_core::VertexKey;
+use bsp_core::{FaceKey, VertexKey};
 use illum::{Sidedness, VisiblePart, visible_irradiance};
 use slotmap::SecondaryMap;
 use smallvec::SmallVec;
@@ -48,15 +48,9 @@ struct VertexValue {
 /// A receiver's vertex irradiance cache.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct ReceiverIllum {
-    dirty: bool,
+    /// Whether every vertex has been evaluated once.
     fresh: bool,
     values: SecondaryMap<VertexKey, VertexValue>,
-}
-
-impl ReceiverIllum {
-    pub(crate) fn mark_dirty(&mut self) {
-        self.dirty = true;
-    }
 }
 
 /// Figures of one [`DmScene::illuminate`] call.
@@ -121,8 +115,10 @@ impl DmScene {
         let mut scratch = VisiblePart::new();
         let keys: Vec<PieceId> = self.receivers.keys().collect();
         for r in keys {
+            let touched = self.receivers[r].take_touched();
             let state = &self.illum[r];
-            if state.fresh && !state.dirty {
+            let everything = !state.fresh;
+            if !everything && touched.is_empty() {
                 continue;
             }
             let dm = &self.receivers[r];
@@ -134,66 +130,72 @@ impl DmScene {
                 Sidedness::OneSided
             };
             let mesh = dm.mesh();
-            let mut values = SecondaryMap::new();
-            let old = &self.illum[r].values;
-            let vertex_keys: Vec<VertexKey> = mesh
-                .faces()
-                .flat_map(|(f, _)| mesh.face_vertices(f))
-                .collect();
-            for v in vertex_keys {
-                if values.contains_key(v) {
-                    continue;
+            let faces: Vec<FaceKey> = if everything {
+                mesh.faces().map(|(f, _)| f).collect()
+            } else {
+                touched
+            };
+            let mut values = std::mem::take(&mut self.illum[r].values);
+            let mut seen: SecondaryMap<VertexKey, ()> = SecondaryMap::new();
+            for f in faces {
+                for v in mesh.face_vertices(f) {
+                    if seen.insert(v, ()).is_some() {
+                        continue;
+                    }
+                    stats.vertices += 1;
+                    let cells: SmallVec<[&Cell; 6]> = mesh
+                        .vertex_faces(v)
+                        .into_iter()
+                        .flatten()
+                        .filter_map(|f| mesh.face(f).map(|face| &face.data))
+                        .collect();
+                    let covers: SmallVec<[Cover; 1]> =
+                        (0..self.lights.len()).map(|i| cover(&cells, i)).collect();
+                    if values.get(v).is_some_and(|value| value.covers == covers) {
+                        continue;
+                    }
+                    stats.evaluated += 1;
+                    let p = mesh.vertex(v).expect("face vertex").position.to_f64();
+                    let mut irradiance = 0.0;
+                    for (light, cover) in self.lights.iter().zip(&covers) {
+                        irradiance += match cover {
+                            Cover::Dark => {
+                                stats.dark += 1;
+                                0.0
+                            }
+                            Cover::Free => {
+                                stats.unoccluded += 1;
+                                light.illum.irradiance(p, normal, sided)
+                            }
+                            Cover::Occluders(units) => {
+                                stats.visibility += 1;
+                                stats.comparisons += units.len();
+                                let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
+                                    .iter()
+                                    .filter_map(|u| dm.unit(*u))
+                                    .map(|(o, _)| self.pieces[o].outline.as_slice())
+                                    .collect();
+                                visible_irradiance(
+                                    &light.illum,
+                                    &outlines,
+                                    p,
+                                    normal,
+                                    sided,
+                                    &mut scratch,
+                                )
+                            }
+                        };
+                    }
+                    values.insert(v, VertexValue { covers, irradiance });
                 }
-                stats.vertices += 1;
-                let cells: SmallVec<[&Cell; 6]> = mesh
-                    .vertex_faces(v)
-                    .into_iter()
-                    .flatten()
-                    .filter_map(|f| mesh.face(f).map(|face| &face.data))
-                    .collect();
-                let covers: SmallVec<[Cover; 1]> =
-                    (0..self.lights.len()).map(|i| cover(&cells, i)).collect();
-                if let Some(value) = old.get(v).filter(|value| value.covers == covers) {
-                    values.insert(v, value.clone());
-                    continue;
-                }
-                stats.evaluated += 1;
-                let p = mesh.vertex(v).expect("face vertex").position.to_f64();
-                let mut irradiance = 0.0;
-                for (light, cover) in self.lights.iter().zip(&covers) {
-                    irradiance += match cover {
-                        Cover::Dark => {
-                            stats.dark += 1;
-                            0.0
-                        }
-                        Cover::Free => {
-                            stats.unoccluded += 1;
-                            light.illum.irradiance(p, normal, sided)
-                        }
-                        Cover::Occluders(units) => {
-                            stats.visibility += 1;
-                            stats.comparisons += units.len();
-                            let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
-                                .iter()
-                                .filter_map(|u| dm.unit(*u))
-                                .map(|(o, _)| self.pieces[o].outline.as_slice())
-                                .collect();
-                            visible_irradiance(
-                                &light.illum,
-                                &outlines,
-                                p,
-                                normal,
-                                sided,
-                                &mut scratch,
-                            )
-                        }
-                    };
-                }
-                values.insert(v, VertexValue { covers, irradiance });
+            }
+            // Values of vertices gone since are dropped now and then.
+            let (live, _, _) = mesh.counts();
+            if values.len() > 2 * live + 64 {
+                values.retain(|v, _| mesh.vertex(v).is_some());
             }
             let state = &mut self.illum[r];
             state.values = values;
-            state.dirty = false;
             state.fresh = true;
         }
         stats

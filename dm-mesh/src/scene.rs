@@ -177,6 +177,11 @@ impl DmScene {
             .map(|&p| (p, &self.receivers[p]))
     }
 
+    /// The flags a piece was added with.
+    pub fn piece_flags(&self, piece: PieceId) -> Option<PieceFlags> {
+        self.pieces.get(piece).map(|p| p.flags)
+    }
+
     /// The object a piece belongs to.
     pub fn piece_object(&self, piece: PieceId) -> Option<ObjectId> {
         self.pieces.get(piece).map(|p| p.object)
@@ -246,6 +251,9 @@ impl DmScene {
         let new: BTreeSet<PieceId> = added.iter().copied().collect();
         // New receivers: every occluder the overlap structure pairs them with.
         for &r in added {
+            if self.receivers[r].in_the_dark() {
+                continue;
+            }
             let candidates = self.overlap.occluders_near(r, &self.pieces);
             let order = unit_order(&self.lights, &self.pieces, &candidates);
             let dm = &mut self.receivers[r];
@@ -256,7 +264,6 @@ impl DmScene {
                     &self.pieces[occluder].volumes[light as usize],
                 );
             }
-            self.illum[r].mark_dirty();
         }
         // Old receivers: the new occluders, appended.
         let mut touched: BTreeSet<PieceId> = BTreeSet::new();
@@ -269,6 +276,9 @@ impl DmScene {
             );
         }
         for r in touched {
+            if self.receivers[r].in_the_dark() {
+                continue;
+            }
             let candidates: Vec<PieceId> = added
                 .iter()
                 .copied()
@@ -283,7 +293,6 @@ impl DmScene {
                     &self.pieces[occluder].volumes[light as usize],
                 );
             }
-            self.illum[r].mark_dirty();
         }
     }
 
@@ -313,7 +322,6 @@ impl DmScene {
             }
             let pieces = &self.pieces;
             dm.remove_units(&units, |key, light| &pieces[key].volumes[light as usize]);
-            self.illum[r].mark_dirty();
         }
         for p in gone_pieces {
             self.overlap.remove(p);

@@ -72,6 +72,9 @@ pub struct ReceiverDm<K> {
     reach: Vec<Reach>,
     units: BTreeMap<u32, UnitRef<K>>,
     next_unit: u32,
+    /// Faces whose shape or list changed since [`Self::take_touched`]
+    /// (some may be gone since).
+    touched: Vec<FaceKey>,
 }
 
 /// The region of a unit on a receiver: `polygon` clipped by `planes`.
@@ -101,6 +104,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             reach: Vec::with_capacity(lights.len()),
             units: BTreeMap::new(),
             next_unit: 0,
+            touched: Vec::new(),
         };
         for (i, light) in lights.iter().enumerate() {
             let reach = match light.side_of(dm.polygon.support()) {
@@ -128,6 +132,22 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             }
         }
         dm
+    }
+
+    /// Whether no light reaches the receiver at all (no occluder can
+    /// change anything on it).
+    pub(crate) fn in_the_dark(&self) -> bool {
+        self.reach.iter().all(|r| *r == Reach::None)
+    }
+
+    /// The faces changed since the last call (each once, those still
+    /// there), and forgets them.
+    pub(crate) fn take_touched(&mut self) -> Vec<FaceKey> {
+        let mut out = std::mem::take(&mut self.touched);
+        out.sort_unstable();
+        out.dedup();
+        out.retain(|f| self.mesh.face(*f).is_some());
+        out
     }
 
     /// The receiver polygon.
@@ -193,6 +213,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     fn cell_mut(&mut self, leaf: u32) -> &mut Cell {
         let f = self.face_of(leaf);
+        self.touched.push(f);
         self.mesh.face_data_mut(f).expect("a leaf's face exists")
     }
 
@@ -469,7 +490,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             let (fb, ff) = (self.face_of(back), self.face_of(front));
             let kept = self.merge_cells(fb, ff);
             self.nodes[n as usize] = Node::Leaf(kept);
-            self.mesh.face_data_mut(kept).expect("kept face").leaf = n;
+            self.cell_mut(n).leaf = n;
             for child in [back, front] {
                 self.nodes[child as usize] = Node::Free;
                 self.free.push(child);

@@ -1,5 +1,5 @@
 //! The commands: `demo` writes scenes and runs them, `check` summarises,
-//! the ones still to come validate their input and say so honestly.
+//! the discontinuity-mesh commands refuse what they cannot do.
 
 use crate::{TRIANGLE, folder, umbra};
 
@@ -26,16 +26,17 @@ fn demo_writes_the_scene_and_prints_its_path() {
 
     let run = umbra(dir.path(), &["demo", "nowhere"]);
     assert_eq!(run.code, 2);
-    assert!(
-        run.stderr
-            .contains("unknown demo scene `nowhere` (known: room, room1, tetra, window)")
-    );
+    assert!(run.stderr.contains(
+        "unknown demo scene `nowhere` (known: room, room1, tetra, window, office, cubes)"
+    ));
 }
 
 #[test]
-fn unwired_commands_say_so_with_exit_2_and_write_nothing() {
+fn dm_commands_refuse_bad_input_with_exit_2_and_write_nothing() {
+    // A scene without area lights: nothing for discontinuity meshes.
+    let scene = format!("{TRIANGLE}[[light]]\ntype = \"point\"\nposition = [0, 3, 0]\n");
     let dir = folder(&[
-        ("scene.toml", TRIANGLE),
+        ("scene.toml", scene.as_str()),
         ("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
     ]);
     let runs: [&[&str]; 2] = [
@@ -56,11 +57,7 @@ fn unwired_commands_say_so_with_exit_2_and_write_nothing() {
     for args in runs {
         let run = umbra(dir.path(), args);
         assert_eq!(run.code, 2, "{args:?}");
-        assert!(
-            run.stderr.contains("is not implemented yet"),
-            "{}",
-            run.stderr
-        );
+        assert!(run.stderr.contains("need area lights"), "{}", run.stderr);
     }
     assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
     let run = umbra(
@@ -97,8 +94,13 @@ fn help_documents_every_option() {
             "render",
             &["--output", "--view", "shaded", "classes", "fragments"],
         ),
-        ("dm", &["--output"]),
-        ("update", &["--move", "--by", "--steps", "--output"]),
+        ("dm", &["--output", "--stats", "--ascii"]),
+        (
+            "update",
+            &[
+                "--move", "--by", "--steps", "--output", "--stats", "--ascii",
+            ],
+        ),
         ("csg", &["--union", "--intersect", "--subtract", "--output"]),
         ("demo", &["--output", "room", "tetra"]),
         ("check", &["SCENE"]),

@@ -92,3 +92,25 @@ fn room_has_the_plate_6_polygon_count_under_two_quad_lights() {
         );
     }
 }
+
+#[test]
+fn dm_demos_have_their_sizes_and_run_with_umbra_dm() {
+    let dir = folder(&[]);
+    let office = Scene::load(write_demo("office", dir.path()).unwrap()).unwrap();
+    let polygons = office.input_polygons().count();
+    assert!((100..=200).contains(&polygons), "{polygons}");
+    assert!(matches!(office.lights[0].kind, LightKind::Area { .. }));
+    let cubes = Scene::load(write_demo("cubes", dir.path()).unwrap()).unwrap();
+    let names: Vec<&str> = cubes.objects.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names.iter().filter(|n| n.starts_with("cube_")).count(), 15);
+    // The same text every time (a fixed seed).
+    let again = folder(&[]);
+    let a = std::fs::read_to_string(write_demo("cubes", again.path()).unwrap()).unwrap();
+    let b = std::fs::read_to_string(dir.path().join("cubes.toml")).unwrap();
+    assert_eq!(a, b);
+    let run = crate::umbra(dir.path(), &["demo", "office", "-o", "o"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("cells"), "{}", run.stdout);
+    let json = std::fs::read_to_string(dir.path().join("o/office.json")).unwrap();
+    assert!(json.contains("\"dm\""), "{json}");
+}

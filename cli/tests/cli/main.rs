@@ -5,6 +5,7 @@ mod commands;
 mod csg;
 mod decomposition;
 mod demos;
+mod dm;
 mod errors;
 mod ply_files;
 mod properties;

@@ -1,0 +1,401 @@
+//! `umbra dm` and `umbra update`: discontinuity meshes (dm-mesh) of a
+//! scene's receivers under its area lights, written as PLY (one face per
+//! DM cell), and objects moved step by step with incremental updates timed
+//! against full rebuilds.
+
+use std::time::Instant;
+
+use area_shadow::AreaSource;
+use bsp_core::{ConvexPolygon, GridPoint};
+use dm_mesh::{CellClass, DmLight, DmScene, IllumStats, ObjectId};
+use serde::Serialize;
+use svbsp::PieceFlags;
+
+use crate::decompose::{Pieces, SnappedLight};
+use crate::error::{Error, Result};
+use crate::mesh::{OutputFace, OutputMesh};
+use crate::scene::Scene;
+use crate::shadow::piece_flags;
+use crate::stats::{LightStats, Seconds, Stats};
+
+/// Figures of the DM-trees (beside FORMATS.md §3's fields).
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct DmFigures {
+    /// Receivers (convex pieces), one DM-tree each.
+    pub receivers: u64,
+    /// Inner nodes of all DM-trees.
+    pub tree_nodes: u64,
+    /// Cells (leaves) of all DM-trees.
+    pub cells: u64,
+    /// Distinct cell vertices (per receiver).
+    pub vertices: u64,
+    /// Vertex-light pairs whose visible part of the light was computed.
+    pub visibility_vertices: u64,
+    /// Light/occluder comparisons those computations made.
+    pub comparisons: u64,
+    /// Comparisons per vertex (the paper: 1.3 to 2.1).
+    pub comparisons_per_vertex: f64,
+    /// Comparisons per vertex that needed a visibility computation.
+    pub comparisons_per_visibility_vertex: f64,
+    /// Seconds building the trees (casting and merging shadows).
+    pub build_seconds: f64,
+    /// Seconds illuminating vertices.
+    pub illum_seconds: f64,
+}
+
+/// Per-step figures of `umbra update`.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct UpdateFigures {
+    /// The object moved.
+    pub object: String,
+    /// Its share of the scene's input polygons.
+    pub object_fraction: f64,
+    /// Seconds of each incremental step (delete, add, re-illuminate).
+    pub update_seconds: Vec<f64>,
+    /// Seconds of a full rebuild (build and illuminate) after each step.
+    pub rebuild_seconds: Vec<f64>,
+    /// Vertices re-evaluated by each step.
+    pub reilluminated_vertices: Vec<u64>,
+}
+
+/// What `umbra dm` / `umbra update` write with `--stats`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct DmStats {
+    /// The fields of FORMATS.md §3 (`shadow` holds the DM build, `bsp` and
+    /// `grid` are zero).
+    #[serde(flatten)]
+    pub stats: Stats,
+    /// DM-tree figures.
+    pub dm: DmFigures,
+    /// `umbra update` only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub update: Option<UpdateFigures>,
+}
+
+impl DmStats {
+    /// Writes the JSON to `path`, atomically.
+    pub fn save(&self, path: &std::path::Path) -> Result<()> {
+        let json = serde_json::to_string_pretty(self).unwrap_or_default();
+        crate::atomic::write_atomic(path, |w| {
+            w.write_all(json.as_bytes())?;
+            w.write_all(b"\n")
+        })
+    }
+}
+
+/// A scene's DM-trees, built.
+pub struct DmRun {
+    /// The scene on the grid.
+    pub pieces: Pieces,
+    /// The discontinuity meshes.
+    pub dm: DmScene,
+    /// Per scene object: its handle and its pieces' indices.
+    pub objects: Vec<(ObjectId, Vec<usize>)>,
+    /// Figures of the build.
+    pub stats: DmStats,
+}
+
+fn area_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<DmLight>> {
+    let mut out = Vec::new();
+    for (i, (light, snapped)) in scene.lights.iter().zip(&pieces.lights).enumerate() {
+        let field = |message: String| Error::Field {
+            path: scene.path.clone(),
+            field: format!("light[{i}]"),
+            message,
+        };
+        let SnappedLight::Area(polygon) = snapped else {
+            return Err(field(
+                "discontinuity meshes need area lights; use `umbra shadow` for point and directional lights".into(),
+            ));
+        };
+        let source = AreaSource::new(polygon.clone()).map_err(|e| field(e.to_string()))?;
+        out.push(DmLight::new(source, light.intensity).map_err(|e| field(e.to_string()))?);
+    }
+    Ok(out)
+}
+
+/// The pieces of each scene object, with the object's flags.
+fn grouped(scene: &Scene, pieces: &Pieces) -> Vec<(Vec<usize>, PieceFlags)> {
+    let flags = piece_flags(scene, pieces);
+    let object_of: Vec<usize> = scene.input_polygons().map(|(o, _)| o).collect();
+    let mut out: Vec<(Vec<usize>, PieceFlags)> = scene
+        .objects
+        .iter()
+        .map(|o| {
+            let f = PieceFlags {
+                casts_shadows: o.casts_shadows,
+                two_sided: o.two_sided,
+                closed_surface: false,
+            };
+            (Vec::new(), f)
+        })
+        .collect();
+    for k in 0..pieces.polygons.len() {
+        let o = object_of[pieces.input_of[k] as usize];
+        out[o].0.push(k);
+        out[o].1 = flags[k];
+    }
+    out
+}
+
+/// Builds and illuminates the DM-trees of a loaded scene.
+pub fn dm_scene(scene: &Scene) -> Result<DmRun> {
+    let started = Instant::now();
+    let pieces = Pieces::from_scene(scene)?;
+    let lights = area_lights(scene, &pieces)?;
+    let groups = grouped(scene, &pieces);
+    let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = groups
+        .iter()
+        .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
+        .collect();
+    let build_started = Instant::now();
+    let (mut dm, ids) = DmScene::build(lights, objects).map_err(|e| Error::Dm(e.to_string()))?;
+    let build = build_started.elapsed().as_secs_f64();
+    let illum_started = Instant::now();
+    let illum = dm.illuminate();
+    let illum_seconds = illum_started.elapsed().as_secs_f64();
+    let objects = ids
+        .into_iter()
+        .zip(groups.into_iter().map(|g| g.0))
+        .collect();
+    let mut run = DmRun {
+        pieces,
+        dm,
+        objects,
+        stats: DmStats {
+            stats: Stats::default(),
+            dm: DmFigures::default(),
+            update: None,
+        },
+    };
+    run.stats = run.figures(
+        build,
+        illum_seconds,
+        &illum,
+        started.elapsed().as_secs_f64(),
+    );
+    Ok(run)
+}
+
+impl DmRun {
+    /// The cells as an output mesh (world units; one face per cell).
+    pub fn mesh(&self) -> OutputMesh {
+        let mut mesh = OutputMesh::default();
+        let lights = self.dm.lights().len();
+        for (id, ks) in &self.objects {
+            let Some(handles) = self.dm.object_pieces(*id) else {
+                continue;
+            };
+            for (&k, &piece) in ks.iter().zip(handles) {
+                let Some(receiver) = self.dm.receiver(piece) else {
+                    continue;
+                };
+                let mut index = std::collections::HashMap::new();
+                for (face, cell) in receiver.cells() {
+                    let mut vertices = Vec::new();
+                    for v in receiver.mesh().face_vertices(face) {
+                        let next = mesh.vertices.len() as u32;
+                        let slot = *index.entry(v).or_insert_with(|| {
+                            let p = receiver.mesh().vertex(v).map(|x| x.position.to_f64());
+                            let e = self.dm.vertex_irradiance(piece, v).unwrap_or(0.0);
+                            let p = self.pieces.grid.grid_to_world(p.unwrap_or([0.0; 3]));
+                            mesh.vertices.push((p, e as f32));
+                            next
+                        });
+                        vertices.push(slot);
+                    }
+                    let (mut lit_mask, mut umbra_mask) = (0, 0);
+                    for i in 0..lights {
+                        match receiver.class(cell, i) {
+                            CellClass::Lit => lit_mask |= 1 << i,
+                            CellClass::Umbra => umbra_mask |= 1 << i,
+                            CellClass::Penumbra => {}
+                        }
+                    }
+                    mesh.faces.push(OutputFace {
+                        vertices,
+                        source: self.pieces.input_of[k],
+                        lit_mask,
+                        umbra_mask,
+                    });
+                }
+            }
+        }
+        mesh
+    }
+
+    fn figures(&self, build: f64, illum_seconds: f64, illum: &IllumStats, total: f64) -> DmStats {
+        let lights = self.dm.lights();
+        let mut light_stats = vec![LightStats::default(); lights.len()];
+        let (mut nodes, mut cells, mut receivers) = (0, 0, 0);
+        for (_, dm) in self.dm.receivers() {
+            receivers += 1;
+            nodes += dm.node_count() as u64;
+            cells += dm.cell_count() as u64;
+            for (i, s) in light_stats.iter_mut().enumerate() {
+                if lights[i].source().reaches_front_of(dm.polygon().support()) {
+                    s.front_facing_polygons += 1;
+                    s.front_facing_edges += dm.polygon().len() as u64;
+                }
+                for (_, cell) in dm.cells() {
+                    match dm.class(cell, i) {
+                        CellClass::Lit => s.lit += 1,
+                        CellClass::Penumbra => s.penumbra += 1,
+                        CellClass::Umbra => s.umbra += 1,
+                    }
+                }
+            }
+        }
+        let per = |n: usize| {
+            if n == 0 {
+                0.0
+            } else {
+                illum.comparisons as f64 / n as f64
+            }
+        };
+        DmStats {
+            stats: Stats {
+                input_polygons: self.pieces.input_polygons as u64,
+                output_fragments: cells,
+                seconds: Seconds {
+                    bsp: 0.0,
+                    shadow: build,
+                    grid: 0.0,
+                    illum: illum_seconds,
+                    total,
+                },
+                lights: light_stats,
+            },
+            dm: DmFigures {
+                receivers,
+                tree_nodes: nodes,
+                cells,
+                vertices: illum.vertices as u64,
+                visibility_vertices: illum.visibility as u64,
+                comparisons: illum.comparisons as u64,
+                comparisons_per_vertex: per(illum.vertices),
+                comparisons_per_visibility_vertex: per(illum.visibility),
+                build_seconds: build,
+                illum_seconds,
+            },
+            update: None,
+        }
+    }
+
+    /// Moves scene object `name` by `by` (world units, snapped to a whole
+    /// number of grid cells) `steps` times, updating incrementally; after
+    /// each step, times a full rebuild of the same state for comparison.
+    /// `on_step(k, update, rebuild)` is called after each step.
+    pub fn move_steps(
+        &mut self,
+        scene: &Scene,
+        name: &str,
+        by: [f64; 3],
+        steps: u32,
+        mut on_step: impl FnMut(u32, f64, f64),
+    ) -> Result<UpdateFigures> {
+        let field = |message: String| Error::Field {
+            path: scene.path.clone(),
+            field: "--move".into(),
+            message,
+        };
+        let index = scene
+            .objects
+            .iter()
+            .position(|o| o.name == name)
+            .ok_or_else(|| field(format!("no object is named `{name}`")))?;
+        let scale = self.pieces.grid.scale();
+        let step: [i64; 3] = by.map(|x| (x * scale).round() as i64);
+        let (id, ks) = self.objects[index].clone();
+        let original: Vec<ConvexPolygon> = ks
+            .iter()
+            .map(|&k| self.pieces.polygons[k].clone())
+            .collect();
+        let mut figures = UpdateFigures {
+            object: name.to_string(),
+            object_fraction: ks.len() as f64 / self.pieces.polygons.len().max(1) as f64,
+            ..UpdateFigures::default()
+        };
+        for s in 1..=steps {
+            let offset = step.map(|c| c * i64::from(s));
+            let moved = original
+                .iter()
+                .map(|p| translate(p, offset))
+                .collect::<Option<Vec<_>>>()
+                .ok_or_else(|| field(format!("step {s} moves `{name}` off the scene's grid")))?;
+            let started = Instant::now();
+            self.dm
+                .move_object(id, moved.clone())
+                .map_err(|e| field(e.to_string()))?;
+            let illum = self.dm.illuminate();
+            let update = started.elapsed().as_secs_f64();
+            for (&k, p) in ks.iter().zip(&moved) {
+                self.pieces.polygons[k] = p.clone();
+            }
+            let rebuild = self.rebuild_seconds()?;
+            on_step(s, update, rebuild);
+            figures.update_seconds.push(update);
+            figures.rebuild_seconds.push(rebuild);
+            figures.reilluminated_vertices.push(illum.evaluated as u64);
+        }
+        Ok(figures)
+    }
+
+    /// Seconds a from-scratch build and illumination of the current state
+    /// takes.
+    fn rebuild_seconds(&self) -> Result<f64> {
+        let started = Instant::now();
+        let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = self
+            .objects
+            .iter()
+            .map(|(id, ks)| {
+                let flags = self
+                    .dm
+                    .object_pieces(*id)
+                    .and_then(|ps| ps.first())
+                    .and_then(|p| self.dm.piece_flags(*p))
+                    .unwrap_or_default();
+                (
+                    ks.iter()
+                        .map(|&k| self.pieces.polygons[k].clone())
+                        .collect(),
+                    flags,
+                )
+            })
+            .collect();
+        let (mut fresh, _) = DmScene::build(self.dm.lights().to_vec(), objects)
+            .map_err(|e| Error::Dm(e.to_string()))?;
+        fresh.illuminate();
+        Ok(started.elapsed().as_secs_f64())
+    }
+
+    /// Recomputes the figures after updates (timings of the build kept).
+    pub fn refresh_figures(&mut self) {
+        let s = self.stats.dm.clone();
+        let illum = IllumStats {
+            vertices: s.vertices as usize,
+            evaluated: s.vertices as usize,
+            visibility: s.visibility_vertices as usize,
+            comparisons: s.comparisons as usize,
+            ..IllumStats::default()
+        };
+        let update = self.stats.update.take();
+        self.stats = self.figures(
+            s.build_seconds,
+            s.illum_seconds,
+            &illum,
+            self.stats.stats.seconds.total,
+        );
+        self.stats.update = update;
+    }
+}
+
+fn translate(p: &ConvexPolygon, d: [i64; 3]) -> Option<ConvexPolygon> {
+    let points: Option<Vec<GridPoint>> = (0..p.len())
+        .map(|k| {
+            let g = p.vertex_grid_point(k)?.to_i64();
+            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).ok()
+        })
+        .collect();
+    ConvexPolygon::from_grid_points(&points?, p.source()).ok()
+}

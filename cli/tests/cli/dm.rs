@@ -1,0 +1,194 @@
+//! `umbra dm` and `umbra update` end to end: cells partition every input
+//! polygon, classes have the exact areas of a square under a square light,
+//! vertex irradiance matches `umbra shadow` where both have a vertex, the
+//! stats carry the contract's fields and the update arrays, and moving an
+//! object step by step ends where a scene built at the final place does.
+
+use crate::{folder, umbra};
+use umbra::{OutputMesh, load_ply};
+
+/// Floor 20 x 20 at y = 0, a 4 x 4 square at y = 5, a 2 x 2 light at
+/// y = 10 facing down: umbra |x|, |z| <= 3, penumbra out to 5.
+fn scene(square_x: f64) -> String {
+    format!(
+        r#"
+[[object]]
+name = "floor"
+polygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]
+
+[[object]]
+name = "square"
+polygons = [[[-2, 5, 2], [2, 5, 2], [2, 5, -2], [-2, 5, -2]]]
+translate = [{square_x}, 0, 0]
+
+[[light]]
+type = "area"
+vertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]
+intensity = 2.0
+"#
+    )
+}
+
+fn area(points: &[[f64; 3]]) -> f64 {
+    let mut n = [0.0; 3];
+    for i in 1..points.len() - 1 {
+        let (a, b, c) = (points[0], points[i], points[i + 1]);
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        n[0] += u[1] * v[2] - u[2] * v[1];
+        n[1] += u[2] * v[0] - u[0] * v[2];
+        n[2] += u[0] * v[1] - u[1] * v[0];
+    }
+    0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+}
+
+/// Area per (source, class) with class 0 lit, 1 penumbra, 2 umbra.
+fn class_areas(mesh: &OutputMesh, source: u32) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for f in mesh.faces.iter().filter(|f| f.source == source) {
+        let pts: Vec<[f64; 3]> = f
+            .vertices
+            .iter()
+            .map(|&v| mesh.vertices[v as usize].0)
+            .collect();
+        let class = if f.lit_mask & 1 != 0 {
+            0
+        } else if f.umbra_mask & 1 != 0 {
+            2
+        } else {
+            1
+        };
+        out[class] += area(&pts);
+    }
+    out
+}
+
+#[test]
+fn dm_cells_have_the_exact_shadow_areas_and_stats() {
+    let text = scene(0.0);
+    let dir = folder(&[("scene.toml", text.as_str())]);
+    let run = umbra(
+        dir.path(),
+        &["dm", "scene.toml", "-o", "out.ply", "--stats", "s.json"],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+    let floor = class_areas(&mesh, 0);
+    assert!((floor[2] - 36.0).abs() < 1e-9, "{floor:?}");
+    assert!((floor[1] - (100.0 - 36.0)).abs() < 1e-9, "{floor:?}");
+    assert!((floor[0] - (400.0 - 100.0)).abs() < 1e-9, "{floor:?}");
+    let square = class_areas(&mesh, 1);
+    assert!((square.iter().sum::<f64>() - 16.0).abs() < 1e-9);
+    // Vertex irradiance against `umbra shadow` at the points both have.
+    let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "shadow.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let shadow = load_ply(&dir.path().join("shadow.ply")).unwrap();
+    let mut matched = 0;
+    for (p, e) in &mesh.vertices {
+        if let Some((_, f)) = shadow.vertices.iter().find(|(q, _)| q == p) {
+            assert!(
+                (e - f).abs() <= 1e-5 * e.abs().max(f.abs()) + 1e-7,
+                "{p:?}: {e} vs {f}"
+            );
+            matched += 1;
+        }
+    }
+    assert!(matched >= 8, "{matched}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    for key in [
+        "input_polygons",
+        "output_fragments",
+        "seconds",
+        "lights",
+        "dm",
+    ] {
+        assert!(json.get(key).is_some(), "{key}");
+    }
+    assert_eq!(json["output_fragments"], json["dm"]["cells"]);
+    assert!(json["dm"]["tree_nodes"].as_u64().unwrap() >= 8);
+    // One occluder: every cell vertex lies on the penumbra's outer
+    // boundary (unoccluded) or in the umbra's closure (dark), so no vertex
+    // needs a visibility computation.
+    assert_eq!(json["dm"]["comparisons_per_vertex"].as_f64(), Some(0.0));
+    assert_eq!(json["dm"]["visibility_vertices"].as_u64(), Some(0));
+}
+
+#[test]
+fn update_ends_where_a_scene_built_there_does() {
+    let text = scene(0.0);
+    let moved = scene(3.0);
+    let dir = folder(&[
+        ("scene.toml", text.as_str()),
+        ("moved.toml", moved.as_str()),
+    ]);
+    let args = [
+        "update",
+        "scene.toml",
+        "--move",
+        "square",
+        "--by",
+        "1,0,0",
+        "--steps",
+        "3",
+        "-o",
+        "out.ply",
+        "--stats",
+        "s.json",
+    ];
+    let run = umbra(dir.path(), &args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert_eq!(
+        run.stdout
+            .lines()
+            .filter(|l| l.starts_with("step "))
+            .count(),
+        3
+    );
+    let run = umbra(dir.path(), &["dm", "moved.toml", "-o", "moved.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let a = load_ply(&dir.path().join("out.ply")).unwrap();
+    let b = load_ply(&dir.path().join("moved.ply")).unwrap();
+    for source in [0, 1] {
+        let (x, y) = (class_areas(&a, source), class_areas(&b, source));
+        for c in 0..3 {
+            assert!(
+                (x[c] - y[c]).abs() < 1e-9,
+                "source {source}: {x:?} vs {y:?}"
+            );
+        }
+    }
+    // The umbra moved with the square: [0, 6] x [-3, 3].
+    assert!((class_areas(&a, 0)[2] - 36.0).abs() < 1e-9);
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    assert_eq!(
+        json["update"]["update_seconds"].as_array().unwrap().len(),
+        3
+    );
+    assert_eq!(
+        json["update"]["rebuild_seconds"].as_array().unwrap().len(),
+        3
+    );
+    // Moving off the grid is an error, and nothing is written.
+    let run = umbra(
+        dir.path(),
+        &[
+            "update",
+            "scene.toml",
+            "--move",
+            "square",
+            "--by",
+            "1000,0,0",
+            "-o",
+            "far.ply",
+        ],
+    );
+    assert_eq!(run.code, 2);
+    assert!(
+        run.stderr.contains("off the scene's grid"),
+        "{}",
+        run.stderr
+    );
+    assert!(!dir.path().join("far.ply").exists());
+}

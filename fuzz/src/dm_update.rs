@@ -1,0 +1,345 @@
+//! Target `dm_update`: a small scene under an area light kept as
+//! discontinuity meshes (dm-mesh) through a sequence of moves, removals and
+//! re-additions.
+//!
+//! [`DmCase::arbitrary`] decodes a floor, up to four objects of one or two
+//! triangles with small coordinates (they touch, share planes and cross
+//! the light's plane), a parallelogram light and up to six operations.
+//! [`check_dm_update`] applies them and checks the trees' invariants after
+//! every one, then that every receiver has the lit, penumbra and umbra
+//! areas of a from-scratch build of the final scene and of area-shadow's
+//! independent classification.
+
+use arbitrary::{Arbitrary, Unstructured};
+use area_shadow::{AreaSource, Class, SceneLight, compute_shadows};
+use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
+use dm_mesh::{CellClass, DmLight, DmScene, ObjectId, PieceId};
+use svbsp::PieceFlags;
+
+/// One operation on object `object % objects`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Op {
+    /// Moves it by a small offset (kept on the grid).
+    Move(u8, [i8; 3]),
+    /// Removes it (if present).
+    Remove(u8),
+    /// Adds it back (if removed).
+    ReAdd(u8),
+}
+
+/// One decoded input of the `dm_update` target; its `Debug` output is Rust
+/// code.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct DmCase {
+    /// Objects of one or two triangles over the floor.
+    pub objects: Vec<Vec<[[i64; 3]; 3]>>,
+    /// The light: corner, extents along x and z, rise along x.
+    pub light: ([i64; 3], [i64; 2], i64),
+    /// The operations, in order.
+    pub ops: Vec<Op>,
+}
+
+fn coordinate(u: &mut Unstructured<'_>, lo: i8, hi: i8) -> arbitrary::Result<i64> {
+    Ok(i64::from(u.int_in_range(lo..=hi)?))
+}
+
+impl<'a> Arbitrary<'a> for DmCase {
+    fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
+        let n = u.int_in_range(1_usize..=4)?;
+        let mut objects = Vec::with_capacity(n);
+        for _ in 0..n {
+            let k = u.int_in_range(1_usize..=2)?;
+            let mut triangles = Vec::with_capacity(k);
+            for _ in 0..k {
+                let mut t = [[0_i64; 3]; 3];
+                for p in &mut t {
+                    *p = [
+                        coordinate(u, -8, 8)?,
+                        coordinate(u, 1, 14)?,
+                        coordinate(u, -8, 8)?,
+                    ];
+                }
+                triangles.push(t);
+            }
+            objects.push(triangles);
+        }
+        let corner = [
+            coordinate(u, -6, 4)?,
+            coordinate(u, 9, 12)?,
+            coordinate(u, -6, 4)?,
+        ];
+        let size = [coordinate(u, 1, 5)?, coordinate(u, 1, 5)?];
+        let rise = coordinate(u, -3, 3)?;
+        let m = u.int_in_range(0_usize..=6)?;
+        let mut ops = Vec::with_capacity(m);
+        for _ in 0..m {
+            let object = u.arbitrary::<u8>()?;
+            ops.push(match u.int_in_range(0_u8..=3)? {
+                0 | 1 => Op::Move(
+                    object,
+                    [
+                        u.int_in_range(-3_i8..=3)?,
+                        u.int_in_range(-2_i8..=2)?,
+                        u.int_in_range(-3_i8..=3)?,
+                    ],
+                ),
+                2 => Op::Remove(object),
+                _ => Op::ReAdd(object),
+            });
+        }
+        Ok(Self {
+            objects,
+            light: (corner, size, rise),
+            ops,
+        })
+    }
+}
+
+/// Decodes fuzzer bytes.
+pub fn decode(data: &[u8]) -> Option<DmCase> {
+    DmCase::arbitrary_take_rest(Unstructured::new(data)).ok()
+}
+
+/// The body of the `dm_update` fuzz target.
+pub fn run(data: &[u8]) {
+    let Some(case) = decode(data) else { return };
+    if let Err(problem) = check_dm_update(&case) {
+        panic!("dm_update invariant violated: {problem}\n{case:?}");
+    }
+}
+
+fn gp(p: [i64; 3]) -> Option<GridPoint> {
+    GridPoint::new(p[0], p[1], p[2]).ok()
+}
+
+fn triangles(ts: &[[[i64; 3]; 3]], offset: [i64; 3]) -> Vec<ConvexPolygon> {
+    ts.iter()
+        .filter_map(|t| {
+            let pts: Option<Vec<GridPoint>> = t
+                .iter()
+                .map(|p| gp([p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]]))
+                .collect();
+            ConvexPolygon::from_grid_points(&pts?, 0).ok()
+        })
+        .collect()
+}
+
+fn two_sided() -> PieceFlags {
+    PieceFlags {
+        two_sided: true,
+        ..PieceFlags::default()
+    }
+}
+
+/// Area per class (lit, penumbra, umbra) of each receiver, objects in
+/// order.
+fn areas(scene: &DmScene, ids: &[ObjectId]) -> Result<Vec<[f64; 3]>, String> {
+    let mut out = Vec::new();
+    for id in ids {
+        let pieces: &[PieceId] = scene.object_pieces(*id).ok_or("object lost")?;
+        for &p in pieces {
+            let dm = scene.receiver(p).ok_or("receiver lost")?;
+            let mut a = [0.0; 3];
+            for (f, cell) in dm.cells() {
+                let area = dm
+                    .mesh()
+                    .face_polygon(f, 0)
+                    .map_err(|e| e.to_string())?
+                    .area();
+                a[match dm.class(cell, 0) {
+                    CellClass::Lit => 0,
+                    CellClass::Penumbra => 1,
+                    CellClass::Umbra => 2,
+                }] += area;
+            }
+            out.push(a);
+        }
+    }
+    Ok(out)
+}
+
+/// Applies the operations and checks; `Err` describes the first violated
+/// invariant.
+pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
+    let corners = [[-20, 0, 20], [20, 0, 20], [20, 0, -20], [-20, 0, -20]];
+    let floor: Vec<GridPoint> = corners.iter().filter_map(|&c| gp(c)).collect();
+    let floor = ConvexPolygon::from_grid_points(&floor, 0).map_err(|e| e.to_string())?;
+    let ([x, y, z], [w, d], rise) = case.light;
+    let quad: Vec<GridPoint> = [
+        [x, y, z],
+        [x + w, y + rise, z],
+        [x + w, y + rise, z + d],
+        [x, y, z + d],
+    ]
+    .iter()
+    .filter_map(|&p| gp(p))
+    .collect();
+    let polygon = ConvexPolygon::from_grid_points(&quad, 0).map_err(|e| e.to_string())?;
+    let polygon = if polygon.support().normal()[1] < 0 {
+        polygon
+    } else {
+        polygon.flipped()
+    };
+    let source = AreaSource::new(polygon).map_err(|e| e.to_string())?;
+    let light = DmLight::new(source.clone(), 1.0).map_err(|e| e.to_string())?;
+
+    let mut objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> =
+        vec![(vec![floor], PieceFlags::default())];
+    objects.extend(
+        case.objects
+            .iter()
+            .map(|ts| (triangles(ts, [0; 3]), two_sided())),
+    );
+    let (mut scene, ids) =
+        DmScene::build(vec![light.clone()], objects.clone()).map_err(|e| e.to_string())?;
+    // The model: per object its offset and whether it is present.
+    let mut state: Vec<(Option<ObjectId>, [i64; 3])> =
+        ids.iter().map(|id| (Some(*id), [0; 3])).collect();
+    let check = |scene: &DmScene, what: &str| -> Result<(), String> {
+        for (_, dm) in scene.receivers() {
+            dm.check_invariants()
+                .map_err(|e| format!("after {what}: {e}"))?;
+        }
+        Ok(())
+    };
+    check(&scene, "the build")?;
+    let movable = case.objects.len();
+    for op in &case.ops {
+        let k = |o: u8| 1 + usize::from(o) % movable;
+        match *op {
+            Op::Move(o, by) => {
+                let k = k(o);
+                if let (Some(id), offset) = state[k] {
+                    let next = [0, 1, 2].map(|i| offset[i] + i64::from(by[i]));
+                    let moved = triangles(&case.objects[k - 1], next);
+                    scene.move_object(id, moved).map_err(|e| e.to_string())?;
+                    state[k].1 = next;
+                }
+            }
+            Op::Remove(o) => {
+                let k = k(o);
+                if let Some(id) = state[k].0.take() {
+                    scene.remove_object(id).map_err(|e| e.to_string())?;
+                }
+            }
+            Op::ReAdd(o) => {
+                let k = k(o);
+                if state[k].0.is_none() {
+                    let polygons = triangles(&case.objects[k - 1], state[k].1);
+                    state[k].0 = Some(
+                        scene
+                            .add_object(polygons, two_sided())
+                            .map_err(|e| e.to_string())?,
+                    );
+                }
+            }
+        }
+        check(&scene, &format!("{op:?}"))?;
+    }
+    scene.illuminate();
+
+    // The final scene from scratch, and area-shadow's classification of it.
+    let mut live_ids = Vec::new();
+    let mut live = Vec::new();
+    for (k, (id, offset)) in state.iter().enumerate() {
+        let Some(id) = id else { continue };
+        live_ids.push(*id);
+        live.push(if k == 0 {
+            objects[0].clone()
+        } else {
+            (triangles(&case.objects[k - 1], *offset), two_sided())
+        });
+    }
+    let (fresh, fresh_ids) =
+        DmScene::build(vec![light], live.clone()).map_err(|e| e.to_string())?;
+    let got = areas(&scene, &live_ids)?;
+    let want = areas(&fresh, &fresh_ids)?;
+    let polygons: Vec<ConvexPolygon> = live
+        .iter()
+        .flat_map(|(ps, _)| ps.iter().cloned())
+        .enumerate()
+        .map(|(k, p)| p.with_source(k as u32))
+        .collect();
+    let flags: Vec<PieceFlags> = live
+        .iter()
+        .flat_map(|(ps, f)| std::iter::repeat_n(*f, ps.len()))
+        .collect();
+    let shadows = compute_shadows(
+        &polygons,
+        &flags,
+        &[SceneLight::Area(source)],
+        &BuildOptions::default(),
+    )
+    .map_err(|e| e.to_string())?;
+    let mut truth = vec![[0.0; 3]; polygons.len()];
+    for f in &shadows.fragments {
+        let c = match Class::of(f, 0) {
+            Class::Lit => 0,
+            Class::Penumbra => 1,
+            Class::Umbra => 2,
+        };
+        truth[f.polygon.source() as usize][c] += f.polygon.area();
+    }
+    if got.len() != want.len() || got.len() != polygons.len() {
+        return Err(format!("{} receivers, rebuilt {}", got.len(), want.len()));
+    }
+    for (k, p) in polygons.iter().enumerate() {
+        let scale = p.area();
+        for c in 0..3 {
+            if (got[k][c] - want[k][c]).abs() > 1e-9 * scale {
+                return Err(format!(
+                    "receiver {k} class {c}: updated {} vs rebuilt {}",
+                    got[k][c], want[k][c]
+                ));
+            }
+            if (got[k][c] - truth[k][c]).abs() > 1e-9 * scale {
+                return Err(format!(
+                    "receiver {k} class {c}: updated {} vs area-shadow {}",
+                    got[k][c], truth[k][c]
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pseudo_random_bytes as bytes;
+
+    #[test]
+    fn seed_corpus_replays() {
+        let files = crate::corpus_files("dm_update").expect("corpus/dm_update is readable");
+        assert!(files.len() >= 8, "only {} seed files", files.len());
+        for (name, data) in files {
+            let case = decode(&data).expect("decodes");
+            if let Err(problem) = check_dm_update(&case) {
+                panic!("corpus/dm_update/{name}: {problem}\n{case:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn pseudo_random_inputs_pass() {
+        for seed in 0..400 {
+            let data = bytes(seed, 30 + (seed % 50) as usize);
+            let Some(case) = decode(&data) else { continue };
+            if let Err(problem) = check_dm_update(&case) {
+                panic!("seed {seed}: {problem}\n{case:?}");
+            }
+        }
+    }
+
+    /// Writes the seed corpus (run by hand when the decoder changes).
+    #[test]
+    #[ignore = "rewrites corpus/dm_update; run by hand"]
+    fn regenerate_seed_corpus() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/dm_update");
+        std::fs::create_dir_all(&dir).unwrap();
+        for seed in 0..12_u64 {
+            let data = bytes(2000 + seed, 64);
+            std::fs::write(dir.join(format!("seed-{seed:02}")), data).unwrap();
+        }
+    }
+}
