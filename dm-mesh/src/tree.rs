@@ -366,8 +366,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         light: u8,
     ) {
         let cell = self.cell(leaf);
-        if cell.in_umbra(usize::from(light)) || cell.has_unit(unit) {
-            // Umbra already: the occluder changes nothing here.
+        if cell.has_unit(unit) || cell.unreached(usize::from(light)) {
+            return;
+        }
+        if cell.in_umbra(usize::from(light)) {
+            // Umbra already: the occluder changes nothing here, unless the
+            // occluder making the umbra goes; remember it for then.
+            self.cell_mut(leaf).culled.push(unit);
             return;
         }
         let Some(inner) = self.chain(leaf, penumbra, unit) else {
@@ -418,8 +423,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         if gone.is_empty() {
             return;
         }
-        // Cells to redo, with the first unit to re-insert after.
-        let mut redo: Vec<(u32, u32)> = Vec::new();
+        // Cells to redo, with the first unit to re-insert after and the
+        // units that reached them (node owners, listed and culled units).
+        let mut redo: Vec<(u32, u32, BTreeSet<u32>)> = Vec::new();
         let mut stack = vec![self.root];
         while let Some(n) = stack.pop() {
             match self.nodes[n as usize].clone() {
@@ -427,17 +433,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     unit, back, front, ..
                 } => {
                     if gone.contains(&unit) {
+                        let reached = self.units_under(n);
                         self.collapse(n);
-                        redo.push((n, unit));
+                        redo.push((n, unit, reached));
                     } else {
                         stack.push(front);
                         stack.push(back);
                     }
                 }
-                Node::Leaf(f) => {
-                    let cell = &self.mesh.face(f).expect("leaf face").data;
+                Node::Leaf(_) => {
+                    let cell = self.cell(n);
                     if let Some(e) = cell.entries.iter().find(|e| gone.contains(&e.unit)) {
-                        redo.push((n, e.unit));
+                        redo.push((n, e.unit, self.units_under(n)));
                     }
                 }
                 Node::Free => {}
@@ -446,7 +453,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         for unit in gone {
             self.units.remove(unit);
         }
-        for (leaf, after) in redo {
+        for (leaf, after, reached) in redo {
             let cell = self.cell_mut(leaf);
             let after = cell
                 .entries
@@ -455,19 +462,46 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 .map(|e| e.unit)
                 .fold(after, u32::min);
             cell.entries.retain(|e| e.unit < after);
+            cell.culled.retain(|u| *u < after);
             let face = self.face_of(leaf);
             let Ok(cell) = self.mesh.face_polygon(face, 0) else {
                 continue;
             };
-            let later: Vec<(u32, UnitRef<K>)> = self
-                .units
+            // Only units that reached the region can reach it again: the
+            // rest missed it (their regions do not meet it).
+            let later: Vec<(u32, UnitRef<K>)> = reached
                 .range(after + 1..)
-                .map(|(k, v)| (*k, *v))
+                .filter_map(|u| self.units.get(u).map(|v| (*u, *v)))
                 .collect();
             for (unit, (key, light)) in later {
                 self.merge_unit(leaf, Some(&cell), unit, light, planes(key, light));
             }
         }
+    }
+
+    /// The units that reached the subtree at `node`: owners of its nodes,
+    /// and the units listed or culled in its cells.
+    fn units_under(&self, node: u32) -> BTreeSet<u32> {
+        let mut out = BTreeSet::new();
+        let mut stack = vec![node];
+        while let Some(n) = stack.pop() {
+            match &self.nodes[n as usize] {
+                Node::Split {
+                    unit, back, front, ..
+                } => {
+                    out.insert(*unit);
+                    stack.push(*back);
+                    stack.push(*front);
+                }
+                Node::Leaf(_) => {
+                    let cell = self.cell(n);
+                    out.extend(cell.entries.iter().map(|e| e.unit));
+                    out.extend(cell.culled.iter().copied());
+                }
+                Node::Free => {}
+            }
+        }
+        out
     }
 
     /// Collapses the subtree at `node` into one leaf: children first, each
