@@ -54,11 +54,21 @@ fn check_vertices(t: &TestScene, scene: &mut DmScene) -> Result<(), TestCaseErro
                     continue;
                 }
                 let p = position.to_f64();
+                if position.side(t.light.support()) == bsp_core::Side::On {
+                    // Edge-on to the light: nothing arrives (f64 is
+                    // ill-conditioned here where the receiver pierces the
+                    // light, so `illum` is no oracle).
+                    prop_assert_eq!(scene.vertex_irradiance(r, v), Some(0.0));
+                    continue;
+                }
                 let got = scene.vertex_irradiance(r, v).unwrap();
                 let truth = visible_irradiance(&light, &occluders, p, n, sided, &mut scratch);
                 let full = light.irradiance(p, n, sided);
+                // The contour integral sums terms of order pi (radiance 1)
+                // that cancel at grazing angles: its absolute error is
+                // some ulps of pi, whatever the value.
                 prop_assert!(
-                    (got - truth).abs() <= 1e-9 * full + 1e-15,
+                    (got - truth).abs() <= 1e-9 * full + 1e-12,
                     "vertex {p:?}: {got} vs {truth} (unoccluded {full})"
                 );
             }
