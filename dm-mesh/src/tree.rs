@@ -67,7 +67,13 @@ pub struct ReceiverDm<K> {
     polygon: ConvexPolygon,
     mesh: WingedMesh<Cell, ()>,
     nodes: Vec<Node>,
+    /// The parent of each node (the root's is itself).
+    parent: Vec<u32>,
     free: Vec<u32>,
+    /// Per unit, the leaves where its single tree was grown (its topmost
+    /// nodes, or cells it only listed or was culled in). Entries go stale
+    /// when a collapse frees them and are checked before use.
+    roots: BTreeMap<u32, Vec<u32>>,
     root: u32,
     reach: Vec<Reach>,
     units: BTreeMap<u32, UnitRef<K>>,
@@ -99,7 +105,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             polygon,
             mesh,
             nodes: vec![Node::Leaf(face)],
+            parent: vec![0],
             free: Vec::new(),
+            roots: BTreeMap::new(),
             root: 0,
             reach: Vec::with_capacity(lights.len()),
             units: BTreeMap::new(),
@@ -237,14 +245,16 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             .unwrap_or(Side::On)
     }
 
-    fn alloc(&mut self, node: Node) -> u32 {
+    fn alloc(&mut self, node: Node, parent: u32) -> u32 {
         match self.free.pop() {
             Some(k) => {
                 self.nodes[k as usize] = node;
+                self.parent[k as usize] = parent;
                 k
             }
             None => {
                 self.nodes.push(node);
+                self.parent.push(parent);
                 (self.nodes.len() - 1) as u32
             }
         }
@@ -274,8 +284,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         let FaceSplit::Split { back, front, .. } = self.mesh.split_face(face, plane) else {
             return None;
         };
-        let b = self.alloc(Node::Leaf(back));
-        let f = self.alloc(Node::Leaf(front));
+        let b = self.alloc(Node::Leaf(back), leaf);
+        let f = self.alloc(Node::Leaf(front), leaf);
         self.nodes[leaf as usize] = Node::Split {
             line: *plane,
             unit,
@@ -369,7 +379,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         if cell.has_unit(unit) || cell.unreached(usize::from(light)) {
             return;
         }
-        if cell.in_umbra(usize::from(light)) {
+        let in_umbra = cell.in_umbra(usize::from(light));
+        self.roots.entry(unit).or_default().push(leaf);
+        if in_umbra {
             // Umbra already: the occluder changes nothing here, unless the
             // occluder making the umbra goes; remember it for then.
             self.cell_mut(leaf).culled.push(unit);
@@ -410,11 +422,12 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         Some(cur)
     }
 
-    /// Removes the units in `gone`: the subtrees under their topmost nodes
-    /// collapse into the cells they split (faces merged, straight vertices
-    /// condensed), cells listing one of them drop it and every later
-    /// entry, and the later units are re-inserted into just those cells.
-    /// `planes(key, light)` gives a unit's volume planes.
+    /// Removes the units in `gone`. Every subtree such a unit grew (found
+    /// from its recorded roots) collapses into the cell it split (faces
+    /// merged, straight vertices condensed); that cell keeps the entries
+    /// every one of its parts had, and the other units that reached it are
+    /// merged in again, in order, restricted to it. `planes(key, light)`
+    /// gives a unit's volume planes.
     pub(crate) fn remove_units<'p>(
         &mut self,
         gone: &BTreeSet<u32>,
@@ -423,85 +436,125 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         if gone.is_empty() {
             return;
         }
-        // Cells to redo, with the first unit to re-insert after and the
-        // units that reached them (node owners, listed and culled units).
-        let mut redo: Vec<(u32, u32, BTreeSet<u32>)> = Vec::new();
-        let mut stack = vec![self.root];
-        while let Some(n) = stack.pop() {
-            match self.nodes[n as usize].clone() {
-                Node::Split {
-                    unit, back, front, ..
-                } => {
-                    if gone.contains(&unit) {
-                        let reached = self.units_under(n);
-                        self.collapse(n);
-                        redo.push((n, unit, reached));
-                    } else {
-                        stack.push(front);
-                        stack.push(back);
-                    }
-                }
-                Node::Leaf(_) => {
-                    let cell = self.cell(n);
-                    if let Some(e) = cell.entries.iter().find(|e| gone.contains(&e.unit)) {
-                        redo.push((n, e.unit, self.units_under(n)));
-                    }
-                }
-                Node::Free => {}
-            }
-        }
+        let recorded: Vec<u32> = gone
+            .iter()
+            .filter_map(|u| self.roots.remove(u))
+            .flatten()
+            .collect();
+        let mut starts: Vec<u32> = recorded
+            .into_iter()
+            .filter(|&n| self.reached_by(n, gone))
+            .collect();
+        starts.sort_unstable();
+        starts.dedup();
+        // Only the topmost: a start below another goes with it.
+        let all: BTreeSet<u32> = starts.iter().copied().collect();
+        starts.retain(|&n| {
+            !self
+                .ancestors(n)
+                .any(|a| all.contains(&a) || self.owned_by(a, gone))
+        });
         for unit in gone {
             self.units.remove(unit);
         }
-        for (leaf, after, reached) in redo {
-            let cell = self.cell_mut(leaf);
-            let after = cell
-                .entries
-                .iter()
-                .filter(|e| gone.contains(&e.unit))
-                .map(|e| e.unit)
-                .fold(after, u32::min);
-            cell.entries.retain(|e| e.unit < after);
-            cell.culled.retain(|u| *u < after);
-            let face = self.face_of(leaf);
-            let Ok(cell) = self.mesh.face_polygon(face, 0) else {
+        for n in starts {
+            let (kept, redo) = self.units_under(n, gone);
+            self.collapse(n);
+            let cell = self.cell_mut(n);
+            cell.entries = kept.iter().copied().collect();
+            cell.culled.clear();
+            for e in &kept {
+                self.roots.entry(e.unit).or_default().push(n);
+            }
+            let face = self.face_of(n);
+            let Ok(region) = self.mesh.face_polygon(face, 0) else {
                 continue;
             };
-            // Only units that reached the region can reach it again: the
-            // rest missed it (their regions do not meet it).
-            let later: Vec<(u32, UnitRef<K>)> = reached
-                .range(after + 1..)
-                .filter_map(|u| self.units.get(u).map(|v| (*u, *v)))
-                .collect();
-            for (unit, (key, light)) in later {
-                self.merge_unit(leaf, Some(&cell), unit, light, planes(key, light));
+            for unit in redo {
+                if let Some(&(key, light)) = self.units.get(&unit) {
+                    self.merge_unit(n, Some(&region), unit, light, planes(key, light));
+                }
             }
         }
     }
 
-    /// The units that reached the subtree at `node`: owners of its nodes,
-    /// and the units listed or culled in its cells.
-    fn units_under(&self, node: u32) -> BTreeSet<u32> {
-        let mut out = BTreeSet::new();
+    /// Whether node `n` is a node of a unit in `gone`.
+    fn owned_by(&self, n: u32, gone: &BTreeSet<u32>) -> bool {
+        matches!(self.nodes[n as usize], Node::Split { unit, .. } if gone.contains(&unit))
+    }
+
+    /// Whether node `n` (a recorded root) is still something a unit in
+    /// `gone` made or reached: its node, or a cell listing or culling it
+    /// (split since by later units: its first leaf tells, as a unit that
+    /// grew in a cell without splitting it is in every part of it).
+    fn reached_by(&self, n: u32, gone: &BTreeSet<u32>) -> bool {
+        let mut at = n;
+        loop {
+            match self.nodes.get(at as usize) {
+                Some(Node::Split { unit, back, .. }) => {
+                    if gone.contains(unit) {
+                        return true;
+                    }
+                    at = *back;
+                }
+                Some(Node::Leaf(_)) => {
+                    let cell = self.cell(at);
+                    return cell.entries.iter().any(|e| gone.contains(&e.unit))
+                        || cell.culled.iter().any(|u| gone.contains(u));
+                }
+                _ => return false,
+            }
+        }
+    }
+
+    /// The proper ancestors of `n`, nearest first.
+    fn ancestors(&self, n: u32) -> impl Iterator<Item = u32> + '_ {
+        let mut at = n;
+        std::iter::from_fn(move || {
+            if at == self.root {
+                return None;
+            }
+            at = self.parent[at as usize];
+            Some(at)
+        })
+    }
+
+    /// For the subtree at `node`, leaving out units in `gone`: the entries
+    /// every one of its cells has (in order), and the other units that
+    /// reached it (node owners, listed or culled somewhere), in order.
+    fn units_under(&self, node: u32, gone: &BTreeSet<u32>) -> (Vec<Entry>, BTreeSet<u32>) {
+        let mut reached = BTreeSet::new();
+        let mut common: Option<Vec<Entry>> = None;
         let mut stack = vec![node];
         while let Some(n) = stack.pop() {
             match &self.nodes[n as usize] {
                 Node::Split {
                     unit, back, front, ..
                 } => {
-                    out.insert(*unit);
+                    reached.insert(*unit);
                     stack.push(*back);
                     stack.push(*front);
                 }
                 Node::Leaf(_) => {
                     let cell = self.cell(n);
-                    out.extend(cell.entries.iter().map(|e| e.unit));
-                    out.extend(cell.culled.iter().copied());
+                    reached.extend(cell.entries.iter().map(|e| e.unit));
+                    reached.extend(cell.culled.iter().copied());
+                    match &mut common {
+                        None => common = Some(cell.entries.to_vec()),
+                        Some(c) => c.retain(|e| cell.entries.contains(e)),
+                    }
                 }
                 Node::Free => {}
             }
         }
-        out
+        let mut kept = common.unwrap_or_default();
+        kept.retain(|e| !gone.contains(&e.unit));
+        kept.sort_by_key(|e| e.unit);
+        for e in &kept {
+            reached.remove(&e.unit);
+        }
+        reached.retain(|u| !gone.contains(u) && *u != LIGHT_UNIT);
+        (kept, reached)
     }
 
     /// Collapses the subtree at `node` into one leaf: children first, each
