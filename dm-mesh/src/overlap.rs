@@ -52,7 +52,8 @@ impl Overlap {
             return false;
         };
         pieces[o].volumes.iter().any(|v| {
-            v.penumbra
+            v.volumes
+                .penumbra
                 .iter()
                 .any(|planes| planes.iter().all(|p| !box_in_front(bx, p.approx())))
         })

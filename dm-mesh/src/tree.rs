@@ -20,7 +20,8 @@
 //! the later units into those cells only ([`ReceiverDm::remove_units`]).
 
 use crate::cell::{Cell, CellClass, Entry};
-use area_shadow::{AreaSource, SourceSide, VolumePlanes};
+use crate::critical::{Critical, UnitPlanes};
+use area_shadow::{AreaSource, SourceSide};
 use bsp_core::predicates::Side;
 use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, Split, VertexKey, WingedMesh};
 use std::collections::{BTreeMap, BTreeSet};
@@ -324,7 +325,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// Appends a unit (occluder `key` under light `light`, with its volume
     /// planes) and merges its single tree in. Returns its unit number.
-    pub(crate) fn insert(&mut self, key: K, light: u8, planes: &VolumePlanes) -> u32 {
+    pub(crate) fn insert(&mut self, key: K, light: u8, planes: &UnitPlanes) -> u32 {
         let unit = self.next_unit;
         self.next_unit += 1;
         self.units.insert(unit, (key, light));
@@ -340,12 +341,12 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         cell: Option<&ConvexPolygon>,
         unit: u32,
         light: u8,
-        planes: &VolumePlanes,
+        planes: &UnitPlanes,
     ) {
         if self.reach[usize::from(light)] == Reach::None {
             return;
         }
-        for part in &planes.penumbra {
+        for part in &planes.volumes.penumbra {
             // The quick reject: the receiver (or cell) clipped by the
             // penumbra planes, exactly.
             let Some(mut region) = clip(&self.polygon, part) else {
@@ -358,8 +359,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 region = inside;
             }
             for (leaf, piece) in self.descend(node, region) {
-                let umbra = planes.umbra.as_deref();
+                let umbra = planes.volumes.umbra.as_deref();
                 self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+                if !planes.internal.is_empty() {
+                    self.grow_internal(leaf, &planes.internal, unit);
+                }
             }
         }
     }
@@ -408,6 +412,56 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         }
     }
 
+    /// Splits the cells of the subtree at `node` that list `unit` outside
+    /// its umbra by its internal discontinuities, each where its wedge
+    /// crosses the cell.
+    fn grow_internal(&mut self, node: u32, internal: &[Critical], unit: u32) {
+        let mut cells: Vec<(u32, ConvexPolygon)> = self
+            .leaves(node)
+            .into_iter()
+            .filter(|&n| {
+                self.cell(n)
+                    .entries
+                    .iter()
+                    .any(|e| e.unit == unit && !e.umbra)
+            })
+            .filter_map(|n| {
+                let polygon = self.mesh.face_polygon(self.face_of(n), 0).ok()?;
+                Some((n, polygon))
+            })
+            .collect();
+        for critical in internal {
+            let mut next = Vec::with_capacity(cells.len());
+            for (leaf, polygon) in cells {
+                let crosses = clip(&polygon, &critical.wedge)
+                    .is_some_and(|part| matches!(part.split(&critical.plane), Split::Both(..)));
+                if !crosses {
+                    next.push((leaf, polygon));
+                    continue;
+                }
+                // The cell's polygon and its face split alike (the same
+                // exact predicates on the same vertices).
+                match (
+                    polygon.split(&critical.plane),
+                    self.split_leaf(leaf, &critical.plane, unit),
+                ) {
+                    (Split::Both(b, f), Some((back, front))) => {
+                        next.extend([(back, b), (front, f)])
+                    }
+                    (_, Some((back, front))) => {
+                        for n in [back, front] {
+                            if let Ok(p) = self.mesh.face_polygon(self.face_of(n), 0) {
+                                next.push((n, p));
+                            }
+                        }
+                    }
+                    (_, None) => next.push((leaf, polygon)),
+                }
+            }
+            cells = next;
+        }
+    }
+
     /// Splits the cell at `leaf` by `planes` in turn, following the back;
     /// the innermost leaf, or `None` if a plane leaves the cell in front.
     fn chain(&mut self, leaf: u32, planes: &[Plane], unit: u32) -> Option<u32> {
@@ -431,7 +485,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     pub(crate) fn remove_units<'p>(
         &mut self,
         gone: &BTreeSet<u32>,
-        planes: impl Fn(K, u8) -> &'p VolumePlanes,
+        planes: impl Fn(K, u8) -> &'p UnitPlanes,
     ) {
         if gone.is_empty() {
             return;

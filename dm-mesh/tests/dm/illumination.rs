@@ -157,3 +157,43 @@ fn penumbra_vertices_agree_with_monte_carlo() {
     let _ = interior_samples;
     let _ = gp;
 }
+
+/// A turned triangle under a square light: the internal EV / VE edges cut
+/// the floor's penumbra into more cells than its outer and umbra
+/// boundaries make (3 + 3 edges: at most 8 cells around them), and no
+/// vertex needs the visible part past occluders that all its cells do not
+/// list.
+#[test]
+fn internal_discontinuities_cut_the_penumbra() {
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(300)], PieceFlags::default()),
+            (
+                vec![
+                    ConvexPolygon::from_grid_points(
+                        &[gp(-30, 50, -10), gp(30, 50, -20), gp(0, 50, 40)],
+                        0,
+                    )
+                    .unwrap(),
+                ],
+                PieceFlags::default(),
+            ),
+        ],
+        light: light(-20, -20, 40, 40, 100, 0),
+    };
+    let (mut scene, ids) = t.build();
+    let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+    let dm = scene.receiver(floor_piece).unwrap();
+    dm.check_invariants().unwrap();
+    let penumbra = dm
+        .cells()
+        .filter(|(_, c)| dm.class(c, 0) == CellClass::Penumbra)
+        .count();
+    assert!(penumbra > 8, "{penumbra} penumbra cells");
+    let stats = scene.illuminate();
+    assert!(
+        stats.visibility > 0,
+        "interior penumbra vertices need a visible part"
+    );
+    check_vertices(&t, &mut scene).unwrap();
+}
