@@ -4,7 +4,7 @@
 
 use std::path::Path;
 use std::time::Instant;
-use umbra::{DmRun, Scene, dm_scene, write_demo};
+use umbra::{DmOptions, DmRun, Scene, dm_scene, dm_scene_with, write_demo};
 
 /// A demo written into `dir` and loaded.
 pub fn demo(dir: &Path, name: &str) -> Scene {
@@ -18,10 +18,10 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 /// The fastest of `runs` builds (with illumination).
-fn best_build(scene: &Scene, runs: usize) -> DmRun {
+fn best_build(scene: &Scene, runs: usize, options: DmOptions) -> DmRun {
     let mut best: Option<DmRun> = None;
     for _ in 0..runs {
-        let run = dm_scene(scene).expect("the scene builds");
+        let run = dm_scene_with(scene, options).expect("the scene builds");
         if best
             .as_ref()
             .is_none_or(|b| run.stats.stats.seconds.total < b.stats.stats.seconds.total)
@@ -62,7 +62,7 @@ pub fn print() {
         "  paper: 92-184 polygons built and illuminated in 0.77-2.24 s; deleting a moving object of 5-30 % of the scene never above 4 % of a rebuild, usually about 1 %"
     );
     println!(
-        "{:<10} {:>6} {:>9} {:>7} {:>7} {:>8} {:>8}",
+        "{:<22} {:>6} {:>9} {:>7} {:>7} {:>8} {:>8}",
         "scene", "input", "build ms", "cells", "nodes", "cmp/v", "cmp/vis"
     );
     let dir = std::env::temp_dir().join(format!("umbra-dm-table-{}", std::process::id()));
@@ -74,18 +74,28 @@ pub fn print() {
     let mut rows = Vec::new();
     for name in ["office", "cubes"] {
         let scene = demo(&dir, name);
-        let run = best_build(&scene, 10);
-        let s = &run.stats;
-        println!(
-            "{:<10} {:>6} {:>9.2} {:>7} {:>7} {:>8.2} {:>8.2}",
-            name,
-            s.stats.input_polygons,
-            1e3 * s.stats.seconds.total,
-            s.dm.cells,
-            s.dm.tree_nodes,
-            s.dm.comparisons_per_vertex,
-            s.dm.comparisons_per_visibility_vertex
+        let outer = best_build(
+            &scene,
+            10,
+            DmOptions {
+                internal_discontinuities: false,
+            },
         );
+        let run = best_build(&scene, 10, DmOptions::default());
+        for (label, r) in [("outer only", &outer), ("with EV/VE", &run)] {
+            let s = &r.stats;
+            println!(
+                "{:<22} {:>6} {:>9.2} {:>7} {:>7} {:>8.2} {:>8.2}",
+                format!("{name}, {label}"),
+                s.stats.input_polygons,
+                1e3 * s.stats.seconds.total,
+                s.dm.cells,
+                s.dm.tree_nodes,
+                s.dm.comparisons_per_vertex,
+                s.dm.comparisons_per_visibility_vertex
+            );
+        }
+        let s = &run.stats;
         for (scene_name, object, by) in moves.iter().filter(|m| m.0 == name) {
             let delete = delete_seconds(&run, &scene, object, 11);
             let mut moving = dm_scene(&scene).expect("builds");
@@ -127,13 +137,16 @@ pub fn print() {
     }
     let hall = crate::rooms::box_hall(&dir, 1665, 7);
     let start = Instant::now();
-    let mut run = dm_scene(&hall).expect("the hall builds");
+    let outer = DmOptions {
+        internal_discontinuities: false,
+    };
+    let mut run = dm_scene_with(&hall, outer).expect("the hall builds");
     let build = start.elapsed().as_secs_f64();
     let figures = run
         .move_steps(&hall, "box0", [0.05, 0.0, 0.0], 3, |_, _, _| {})
         .expect("moves");
     println!(
-        "hall of boxes: {} polygons, 2 lights: built and illuminated in {:.2} s ({} cells); moving one box: {:.2} ms (rebuild {:.2} s)",
+        "hall of boxes (outer only): {} polygons, 2 lights: built and illuminated in {:.2} s ({} cells); moving one box: {:.2} ms (rebuild {:.2} s)",
         run.stats.stats.input_polygons,
         build,
         run.stats.dm.cells,
