@@ -297,6 +297,7 @@ impl DmScene {
     /// Casts the shadows of `added` (new pieces) on every receiver, and of
     /// every occluder on the new receivers.
     fn cast(&mut self, added: &[PieceId]) {
+        self.overlap.refresh(&self.pieces);
         let new: BTreeSet<PieceId> = added.iter().copied().collect();
         // New receivers: every occluder the overlap structure pairs them with.
         for &r in added {
@@ -350,6 +351,7 @@ impl DmScene {
         let object = self.objects.get_mut(id).ok_or(Error::UnknownObject)?;
         let gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
         let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
+        self.overlap.refresh(&self.pieces);
         let mut touched: BTreeSet<PieceId> = BTreeSet::new();
         for &o in &gone_pieces {
             touched.extend(self.overlap.receivers_near(o, &self.pieces));
