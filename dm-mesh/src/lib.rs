@@ -24,8 +24,10 @@
 //! Inside each penumbra the internal EV and VE discontinuities (a light
 //! vertex crossing an occluder edge, an occluder vertex crossing a light
 //! edge) split the cells too, where their wedges cross them, so that the
-//! irradiance is smooth inside every cell. Not (yet) here: the paper's
-//! shadow overlap cube (pairs are found by a conservative linear scan).
+//! irradiance is smooth inside every cell. Which occluders can shadow which
+//! receivers is found through a uniform grid of receiver boxes and penumbra
+//! boxes rather than the paper's shadow overlap cube (a linear scan of all
+//! pairs took a fifth of a 10k-polygon build; the grid removes it).
 //!
 //! # Example
 //!
