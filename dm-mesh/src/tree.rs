@@ -132,11 +132,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     continue;
                 }
                 match dm.split_leaf(leaf, light.support(), LIGHT_UNIT) {
-                    Some((back, _)) => dm.cell_mut(back).unreached |= bit,
-                    None if dm.leaf_side(leaf, light.support()) == Side::Back => {
-                        dm.cell_mut(leaf).unreached |= bit;
-                    }
-                    None => {}
+                    Ok((back, _)) => dm.cell_mut(back).unreached |= bit,
+                    Err(Side::Back) => dm.cell_mut(leaf).unreached |= bit,
+                    Err(_) => {}
                 }
             }
         }
@@ -234,18 +232,6 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             .data
     }
 
-    /// Side of `plane` a leaf's cell lies on when the plane does not cut it.
-    fn leaf_side(&self, leaf: u32, plane: &Plane) -> Side {
-        let f = self.face_of(leaf);
-        self.mesh
-            .face_vertices(f)
-            .into_iter()
-            .filter_map(|v| self.mesh.vertex(v))
-            .map(|v| v.position.side(plane))
-            .find(|s| *s != Side::On)
-            .unwrap_or(Side::On)
-    }
-
     fn alloc(&mut self, node: Node, parent: u32) -> u32 {
         match self.free.pop() {
             Some(k) => {
@@ -278,12 +264,14 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         out
     }
 
-    /// Splits a leaf's cell by `plane`; `None` when the plane does not cut
-    /// it. The leaf becomes a node; returns the new back and front leaves.
-    fn split_leaf(&mut self, leaf: u32, plane: &Plane, unit: u32) -> Option<(u32, u32)> {
+    /// Splits a leaf's cell by `plane`: the leaf becomes a node, and the
+    /// new back and front leaves come back; `Err(side)` when the plane does
+    /// not cut the cell, which lies on that side of it.
+    fn split_leaf(&mut self, leaf: u32, plane: &Plane, unit: u32) -> Result<(u32, u32), Side> {
         let face = self.face_of(leaf);
-        let FaceSplit::Split { back, front, .. } = self.mesh.split_face(face, plane) else {
-            return None;
+        let (back, front) = match self.mesh.split_face(face, plane) {
+            FaceSplit::Split { back, front, .. } => (back, front),
+            FaceSplit::NotSplit(side) => return Err(side),
         };
         let b = self.alloc(Node::Leaf(back), leaf);
         let f = self.alloc(Node::Leaf(front), leaf);
@@ -295,7 +283,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         };
         self.cell_mut(b).leaf = b;
         self.cell_mut(f).leaf = f;
-        Some((b, f))
+        Ok((b, f))
     }
 
     /// Filters `piece` (inside `node`'s cell) down to the leaves it covers
@@ -443,7 +431,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 // exact predicates on the same vertices).
                 match (
                     polygon.split(&critical.plane),
-                    self.split_leaf(leaf, &critical.plane, unit),
+                    self.split_leaf(leaf, &critical.plane, unit).ok(),
                 ) {
                     (Split::Both(b, f), Some((back, front))) => {
                         next.extend([(back, b), (front, f)])
@@ -468,9 +456,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         let mut cur = leaf;
         for plane in planes {
             match self.split_leaf(cur, plane, unit) {
-                Some((back, _)) => cur = back,
-                None if self.leaf_side(cur, plane) == Side::Front => return None,
-                None => {}
+                Ok((back, _)) => cur = back,
+                Err(Side::Front) => return None,
+                Err(_) => {}
             }
         }
         Some(cur)
