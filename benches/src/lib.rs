@@ -5,6 +5,7 @@
 //! implicit-point queries, quads, triangle soups); [`scene`] and [`tetra`]
 //! build the scenes of the papers.
 
+pub mod dm_table;
 pub mod random;
 pub mod rooms;
 pub mod scene;

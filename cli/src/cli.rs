@@ -8,8 +8,8 @@ use std::path::PathBuf;
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    DemoFiles, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene,
-    render_scene, save_csg_obj, save_obj, save_ply, shadow_scene, shadow_scene_with,
+    DemoFiles, DmOptions, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg,
+    dm_scene_with, render_scene, save_csg_obj, save_obj, save_ply, shadow_scene, shadow_scene_with,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -119,6 +119,11 @@ pub struct DmArgs {
     /// nodes, cells, comparisons per vertex, build phases).
     #[arg(long, value_name = "S.json")]
     pub stats: Option<PathBuf>,
+    /// Leave out the internal EV / VE discontinuities inside penumbrae
+    /// (cells bounded by penumbra and umbra edges only: fewer cells,
+    /// faster; vertex irradiance stays exact).
+    #[arg(long)]
+    pub outer_only: bool,
     /// Write ASCII PLY instead of binary little-endian.
     #[arg(long)]
     pub ascii: bool,
@@ -145,6 +150,11 @@ pub struct UpdateArgs {
     /// `update.rebuild_seconds` (one entry per step).
     #[arg(long, value_name = "S.json")]
     pub stats: Option<PathBuf>,
+    /// Leave out the internal EV / VE discontinuities inside penumbrae
+    /// (cells bounded by penumbra and umbra edges only: fewer cells,
+    /// faster; vertex irradiance stays exact).
+    #[arg(long)]
+    pub outer_only: bool,
     /// Write ASCII PLY instead of binary little-endian.
     #[arg(long)]
     pub ascii: bool,
@@ -334,12 +344,18 @@ fn encoding(ascii: bool) -> PlyEncoding {
     }
 }
 
+fn dm_options(outer_only: bool) -> DmOptions {
+    DmOptions {
+        internal_discontinuities: !outer_only,
+    }
+}
+
 /// `umbra dm`: outputs are written only once everything succeeded.
 fn run_dm(args: &DmArgs) -> Result<()> {
     let progress = Progress::start("loading the scene");
     let scene = Scene::load(&args.scene)?;
     progress.say("building discontinuity meshes");
-    let run = dm_scene(&scene)?;
+    let run = dm_scene_with(&scene, dm_options(args.outer_only))?;
     progress.say("writing");
     save_ply(&args.output, &run.mesh(), encoding(args.ascii))?;
     if let Some(stats) = &args.stats {
@@ -373,7 +389,7 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
         });
     }
     progress.say("building discontinuity meshes");
-    let mut run = dm_scene(&scene)?;
+    let mut run = dm_scene_with(&scene, dm_options(args.outer_only))?;
     progress.say("moving");
     let mut lines = Vec::new();
     let figures = run.move_steps(
@@ -455,6 +471,7 @@ pub fn run(cli: Cli) -> Result<()> {
                     output: path.with_extension("ply"),
                     stats: Some(path.with_extension("json")),
                     ascii: false,
+                    outer_only: false,
                 });
             }
             // ... and run it, as `umbra shadow` would.

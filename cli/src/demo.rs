@@ -91,16 +91,21 @@ impl DemoFiles {
     pub fn named(name: &str) -> Result<Self> {
         match name {
             "tetra" => Ok(tetra_files(TETRA_DEPTH)),
-            "office" | "cubes" => Ok(DemoFiles {
-                name: name.to_string(),
-                scene: if name == "office" {
+            "office" | "cubes" => {
+                let mut meshes = window_files().meshes;
+                let scene = if name == "office" {
+                    meshes.push(("meshes/desk.obj".into(), crate::demo_dm::desk_obj()));
                     crate::demo_dm::office_scene()
                 } else {
                     crate::demo_dm::cubes_scene()
-                },
-                meshes: window_files().meshes,
-                grid: None,
-            }),
+                };
+                Ok(DemoFiles {
+                    name: name.to_string(),
+                    scene,
+                    meshes,
+                    grid: None,
+                })
+            }
             "window" => Ok(window_files()),
             "room" | "room1" => {
                 let lights = if name == "room" { 2 } else { 1 };
@@ -153,7 +158,7 @@ pub fn write_demo(name: &str, dir: &Path) -> Result<PathBuf> {
 
 /// OBJ text of triangles or polygons, with shared vertices and one group
 /// per named part.
-fn obj_text(comment: &str, parts: &[(&str, Vec<Vec<[f64; 3]>>)]) -> String {
+pub(crate) fn obj_text(comment: &str, parts: &[(&str, Vec<Vec<[f64; 3]>>)]) -> String {
     let mut index: HashMap<[u64; 3], usize> = HashMap::new();
     let mut vertices = String::new();
     let mut faces = String::new();

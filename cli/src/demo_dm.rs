@@ -1,8 +1,9 @@
 //! The discontinuity-mesh demos, run with `umbra dm`:
 //!
-//! - `office`: a closed room with four desks (top and four legs each), a
-//!   monitor on each desk and a filing cabinet under one square ceiling
-//!   light: 156 input polygons, the size of the Chrysanthou-Slater scenes;
+//! - `office`: a closed room with four desks (`meshes/desk.obj`: a top on
+//!   four legs, one object each), a monitor on each desk and a filing
+//!   cabinet under one square ceiling light: 156 input polygons, the size
+//!   of the Chrysanthou-Slater scenes;
 //! - `cubes`: fifteen cubes placed and turned at random (a fixed seed) in
 //!   the same room under the same light.
 
@@ -42,12 +43,72 @@ fn cuboid(s: &mut String, name: &str, centre: [f64; 3], size: [f64; 3], turn: [f
     );
 }
 
+/// The faces of the box `centre ± size / 2`, facing outward.
+fn box_faces(centre: [f64; 3], size: [f64; 3]) -> Vec<Vec<[f64; 3]>> {
+    let corner = |i: usize, j: usize, k: usize| -> [f64; 3] {
+        let pick = |axis: usize, high: usize| centre[axis] + (high as f64 - 0.5) * size[axis];
+        [pick(0, i), pick(1, j), pick(2, k)]
+    };
+    // Each face counter-clockwise seen from outside.
+    vec![
+        vec![
+            corner(0, 0, 0),
+            corner(0, 0, 1),
+            corner(0, 1, 1),
+            corner(0, 1, 0),
+        ],
+        vec![
+            corner(1, 0, 0),
+            corner(1, 1, 0),
+            corner(1, 1, 1),
+            corner(1, 0, 1),
+        ],
+        vec![
+            corner(0, 0, 0),
+            corner(1, 0, 0),
+            corner(1, 0, 1),
+            corner(0, 0, 1),
+        ],
+        vec![
+            corner(0, 1, 0),
+            corner(0, 1, 1),
+            corner(1, 1, 1),
+            corner(1, 1, 0),
+        ],
+        vec![
+            corner(0, 0, 0),
+            corner(0, 1, 0),
+            corner(1, 1, 0),
+            corner(1, 0, 0),
+        ],
+        vec![
+            corner(0, 0, 1),
+            corner(1, 0, 1),
+            corner(1, 1, 1),
+            corner(0, 1, 1),
+        ],
+    ]
+}
+
+/// A desk at the origin (top 1.6 x 0.8 at height 0.74, four legs): 30
+/// faces, one object.
+pub(crate) fn desk_obj() -> String {
+    let mut parts = vec![("top", box_faces([0.0, 0.74, 0.0], [1.6, 0.04, 0.8]))];
+    let mut legs = Vec::new();
+    for (dx, dz) in [(-0.75, -0.35), (0.75, -0.35), (0.75, 0.35), (-0.75, 0.35)] {
+        legs.extend(box_faces([dx, 0.36, dz], [0.05, 0.72, 0.05]));
+    }
+    parts.push(("legs", legs));
+    crate::demo::obj_text("desk: a top on four legs, facing outward", &parts)
+}
+
 /// The `office` scene text.
 pub(crate) fn office_scene() -> String {
     let mut s = String::from(
-        "# An office under one square ceiling light: four desks with monitors and a\n\
-         # filing cabinet, 156 input polygons. Run with `umbra dm`; move a desk\n\
-         # with `umbra update office.toml --move desk_1_top --by 0.1,0,0`.\n\
+        "# An office under one square ceiling light: four desks (30 polygons each)\n\
+         # with a monitor on each and a filing cabinet, 156 input polygons. Run\n\
+         # with `umbra dm`; move a desk (19 % of the scene) with\n\
+         # `umbra update office.toml --move desk_1 --by 0.1,0,0 --steps 5`.\n\
          ambient = 0.03\n\n",
     );
     s.push_str(SHELL);
@@ -56,25 +117,10 @@ pub(crate) fn office_scene() -> String {
         .enumerate()
     {
         let d = k + 1;
-        cuboid(
-            &mut s,
-            &format!("desk_{d}_top"),
-            [x, 0.74, z],
-            [1.6, 0.04, 0.8],
-            [0.0; 3],
+        let _ = writeln!(
+            s,
+            "[[object]]\nname = \"desk_{d}\"\nmesh = \"meshes/desk.obj\"\ntranslate = [{x}, 0.0, {z}]\n"
         );
-        for (leg, (dx, dz)) in [(-0.75, -0.35), (0.75, -0.35), (0.75, 0.35), (-0.75, 0.35)]
-            .into_iter()
-            .enumerate()
-        {
-            cuboid(
-                &mut s,
-                &format!("desk_{d}_leg_{}", leg + 1),
-                [x + dx, 0.36, z + dz],
-                [0.05, 0.72, 0.05],
-                [0.0; 3],
-            );
-        }
         cuboid(
             &mut s,
             &format!("monitor_{d}"),

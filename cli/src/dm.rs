@@ -7,7 +7,7 @@ use std::time::Instant;
 
 use area_shadow::AreaSource;
 use bsp_core::{ConvexPolygon, GridPoint};
-use dm_mesh::{CellClass, DmLight, DmScene, IllumStats, ObjectId};
+use dm_mesh::{CellClass, DmLight, DmOptions, DmScene, IllumStats, ObjectId};
 use serde::Serialize;
 use svbsp::PieceFlags;
 
@@ -138,8 +138,14 @@ fn grouped(scene: &Scene, pieces: &Pieces) -> Vec<(Vec<usize>, PieceFlags)> {
     out
 }
 
-/// Builds and illuminates the DM-trees of a loaded scene.
+/// Builds and illuminates the DM-trees of a loaded scene (internal EV / VE
+/// discontinuities included).
 pub fn dm_scene(scene: &Scene) -> Result<DmRun> {
+    dm_scene_with(scene, DmOptions::default())
+}
+
+/// Builds and illuminates the DM-trees of a loaded scene.
+pub fn dm_scene_with(scene: &Scene, options: DmOptions) -> Result<DmRun> {
     let started = Instant::now();
     let pieces = Pieces::from_scene(scene)?;
     let lights = area_lights(scene, &pieces)?;
@@ -149,7 +155,8 @@ pub fn dm_scene(scene: &Scene) -> Result<DmRun> {
         .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
         .collect();
     let build_started = Instant::now();
-    let (mut dm, ids) = DmScene::build(lights, objects).map_err(|e| Error::Dm(e.to_string()))?;
+    let (mut dm, ids) =
+        DmScene::build_with(lights, objects, options).map_err(|e| Error::Dm(e.to_string()))?;
     let build = build_started.elapsed().as_secs_f64();
     let illum_started = Instant::now();
     let illum = dm.illuminate();
@@ -363,8 +370,9 @@ impl DmRun {
                 )
             })
             .collect();
-        let (mut fresh, _) = DmScene::build(self.dm.lights().to_vec(), objects)
-            .map_err(|e| Error::Dm(e.to_string()))?;
+        let (mut fresh, _) =
+            DmScene::build_with(self.dm.lights().to_vec(), objects, self.dm.options())
+                .map_err(|e| Error::Dm(e.to_string()))?;
         fresh.illuminate();
         Ok(started.elapsed().as_secs_f64())
     }

@@ -24,6 +24,9 @@ pub struct Cell {
     pub(crate) leaf: u32,
     /// Occluders blocking some of a light from the cell, in insertion order.
     pub(crate) entries: SmallVec<[Entry; 4]>,
+    /// Units not merged into the cell because it was in another's umbra
+    /// for their light (they must be merged again if that one goes).
+    pub(crate) culled: SmallVec<[u32; 2]>,
     /// Bit `i`: light `i` does not reach the cell at all (behind the light's
     /// plane, or the receiver faces away from it).
     pub(crate) unreached: u32,

@@ -13,6 +13,8 @@
 //!    nothing of positive area): `illum` computes the visible part of the
 //!    light past exactly those.
 //!
+//! A vertex in a light's plane sees that light edge-on and gets none of
+//! it, whatever its cells say (decided exactly, before the cases).
 //! Irradiance is continuous except where an occluder touches or pierces
 //! the receiver; a vertex on such a line gets its own value, the light it
 //! sees past occluders it lies on (so case 1 comes first, as in the paper).
@@ -23,7 +25,7 @@
 
 use crate::cell::Cell;
 use crate::scene::{DmScene, PieceId};
-use bsp_core::{FaceKey, VertexKey};
+use bsp_core::{FaceKey, Side, VertexKey};
 use illum::{Sidedness, VisiblePart, visible_irradiance};
 use slotmap::SecondaryMap;
 use smallvec::SmallVec;
@@ -149,13 +151,27 @@ impl DmScene {
                         .flatten()
                         .filter_map(|f| mesh.face(f).map(|face| &face.data))
                         .collect();
-                    let covers: SmallVec<[Cover; 1]> =
-                        (0..self.lights.len()).map(|i| cover(&cells, i)).collect();
+                    let position = mesh.vertex(v).expect("face vertex").position;
+                    let covers: SmallVec<[Cover; 1]> = self
+                        .lights
+                        .iter()
+                        .enumerate()
+                        .map(|(i, light)| {
+                            // In the light's plane the light is seen edge-on
+                            // (exactly decided; f64 would be ill-conditioned
+                            // where a receiver pierces the light).
+                            if position.side(light.source.support()) == Side::On {
+                                Cover::Dark
+                            } else {
+                                cover(&cells, i)
+                            }
+                        })
+                        .collect();
                     if values.get(v).is_some_and(|value| value.covers == covers) {
                         continue;
                     }
                     stats.evaluated += 1;
-                    let p = mesh.vertex(v).expect("face vertex").position.to_f64();
+                    let p = position.to_f64();
                     let mut irradiance = 0.0;
                     for (light, cover) in self.lights.iter().zip(&covers) {
                         irradiance += match cover {

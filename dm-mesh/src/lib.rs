@@ -21,10 +21,13 @@
 //! occluders there, and re-illumination evaluates only vertices whose
 //! covering occluders changed.
 //!
-//! Not (yet) here: the internal EV / VE discontinuities inside penumbrae
-//! (cells are bounded by penumbra and umbra edges only; irradiance at their
-//! vertices is exact all the same), and the paper's shadow overlap cube
-//! (pairs are found by a conservative linear scan).
+//! Inside each penumbra the internal EV and VE discontinuities (a light
+//! vertex crossing an occluder edge, an occluder vertex crossing a light
+//! edge) split the cells too, where their wedges cross them, so that the
+//! irradiance is smooth inside every cell. Which occluders can shadow which
+//! receivers is found through a uniform grid of receiver boxes and penumbra
+//! boxes rather than the paper's shadow overlap cube (a linear scan of all
+//! pairs took a fifth of a 10k-polygon build; the grid removes it).
 //!
 //! # Example
 //!
@@ -59,6 +62,7 @@
 //! ```
 
 mod cell;
+mod critical;
 mod error;
 mod illuminate;
 mod order;
@@ -71,5 +75,5 @@ pub use bsp_core;
 pub use cell::{Cell, CellClass, Entry};
 pub use error::Error;
 pub use illuminate::IllumStats;
-pub use scene::{DmLight, DmScene, ObjectId, PieceId};
+pub use scene::{DmLight, DmOptions, DmScene, ObjectId, PieceId};
 pub use tree::ReceiverDm;

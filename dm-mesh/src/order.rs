@@ -25,7 +25,7 @@ pub(crate) fn unit_order(
         let mut list: Vec<(f64, usize)> = candidates
             .iter()
             .enumerate()
-            .filter(|(_, k)| !pieces[**k].volumes[i].penumbra.is_empty())
+            .filter(|(_, k)| !pieces[**k].volumes[i].volumes.penumbra.is_empty())
             .map(|(n, k)| (distance2(pieces[*k].polygon.centroid(), centre), n))
             .collect();
         list.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));

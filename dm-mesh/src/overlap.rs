@@ -1,41 +1,303 @@
-//! Which occluders can shadow which receivers: a conservative
-//! floating-point reject before any tree is touched.
+//! Which occluders can shadow which receivers, without looking at every
+//! pair: a uniform grid over the scene holding each receiver's bounding box
+//! and each occluder's *penumbra box*, a box around its penumbra volumes
+//! within the scene.
 //!
-//! A receiver is paired with an occluder under a light unless its bounding
-//! box lies strictly in front of one of the occluder's penumbra-volume
-//! planes by more than the rounding error of the test; the exact clip of
-//! the receiver by those planes (in the tree) decides the rest. This is a
-//! linear scan per added or removed piece: the paper's shadow overlap cube,
-//! or a hierarchy of penumbra volumes, would make it sublinear.
+//! The penumbra box: every point `p` of a penumbra volume lies on a ray from
+//! a light point `x` through an occluder point `y`, `p = x + t (y - x)` with
+//! `t >= 1`. If the occluder is at least `h > 0` in front of the light's
+//! plane, `p` is at least `t h` in front of it, so a `p` inside the scene's
+//! box (with the light), whose corners are at most `depth` in front, has
+//! `t <= depth / h`. For a fixed `t`, `p` is a convex
+//! combination of the points `l_i + t (o_j - l_i)` over the light's and the
+//! occluder's vertices, and those are linear in `t`: so the volume within
+//! the scene lies in the box of those points at `t = 1` and `t = depth / h`.
+//! An occluder touching or crossing the light's plane gets the whole scene.
+//!
+//! Pairs the grid finds are filtered by a conservative floating-point test
+//! (the receiver's box strictly in front of a penumbra plane by more than
+//! the rounding error); the exact clip of the receiver by those planes, in
+//! the tree, decides the rest. Lists of pieces are returned in key order,
+//! so results do not depend on the grid.
 
 use crate::scene::{DmLight, Piece, PieceId};
 use slotmap::{SecondaryMap, SlotMap};
+use std::collections::{BTreeSet, HashMap};
 
-/// Bounding boxes of the receivers.
+type Box3 = [[f64; 3]; 2];
+
+/// A box spanning more grid cells than this is kept in a list of its own.
+const BIG: i64 = 4096;
+
+/// The grid of receivers' boxes and occluders' penumbra boxes.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Overlap {
-    boxes: SecondaryMap<PieceId, [[f64; 3]; 2]>,
+    /// Light vertices, grid units.
+    lights: Vec<Vec<[f64; 3]>>,
+    /// Box of every piece and light so far (it only grows).
+    bounds: Option<Box3>,
+    /// Side of a grid cell (grid units), fixed at the first refresh.
+    cell: f64,
+    boxes: SecondaryMap<PieceId, Box3>,
+    shadow_boxes: SecondaryMap<PieceId, Box3>,
+    receivers: HashMap<[i64; 3], Vec<PieceId>>,
+    shadows: HashMap<[i64; 3], Vec<PieceId>>,
+    big_receivers: BTreeSet<PieceId>,
+    big_shadows: BTreeSet<PieceId>,
+    /// Pieces whose penumbra box is still to be made.
+    pending: Vec<PieceId>,
+    /// Whether the bounds grew since the penumbra boxes were made.
+    stale: bool,
+}
+
+fn grow(b: &mut Option<Box3>, p: [f64; 3]) -> bool {
+    match b {
+        None => {
+            *b = Some([p, p]);
+            true
+        }
+        Some([lo, hi]) => {
+            let mut grew = false;
+            for a in 0..3 {
+                if p[a] < lo[a] {
+                    lo[a] = p[a];
+                    grew = true;
+                }
+                if p[a] > hi[a] {
+                    hi[a] = p[a];
+                    grew = true;
+                }
+            }
+            grew
+        }
+    }
 }
 
 impl Overlap {
-    pub(crate) fn new(_lights: &[DmLight]) -> Self {
-        Self::default()
+    pub(crate) fn new(lights: &[DmLight]) -> Self {
+        let lights: Vec<Vec<[f64; 3]>> = lights
+            .iter()
+            .map(|l| l.source.vertices().map(|g| g.to_f64()).collect())
+            .collect();
+        let mut bounds = None;
+        for p in lights.iter().flatten() {
+            grow(&mut bounds, *p);
+        }
+        Self {
+            lights,
+            bounds,
+            ..Self::default()
+        }
     }
 
+    /// Registers a new piece's receiver box; its penumbra box is made at
+    /// the next [`refresh`](Self::refresh).
     pub(crate) fn insert(&mut self, key: PieceId, piece: &Piece) {
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
+        let mut b = None;
         for v in &piece.outline {
-            for a in 0..3 {
-                lo[a] = lo[a].min(v[a]);
-                hi[a] = hi[a].max(v[a]);
+            grow(&mut b, *v);
+            self.stale |= grow(&mut self.bounds, *v);
+        }
+        let b = b.unwrap_or_default();
+        self.boxes.insert(key, b);
+        if self.cell > 0.0 {
+            self.place(key, b, false);
+        }
+        self.pending.push(key);
+    }
+
+    /// Forgets a piece.
+    pub(crate) fn remove(&mut self, key: PieceId) {
+        if let Some(b) = self.boxes.remove(key) {
+            self.unplace(key, b, false);
+        }
+        if let Some(b) = self.shadow_boxes.remove(key) {
+            self.unplace(key, b, true);
+        }
+        self.pending.retain(|k| *k != key);
+    }
+
+    /// Makes the penumbra boxes of new pieces (all of them, and the grid
+    /// anew, when the scene grew).
+    pub(crate) fn refresh(&mut self, pieces: &SlotMap<PieceId, Piece>) {
+        let Some(bounds) = self.bounds else { return };
+        if self.cell == 0.0 || self.stale {
+            if self.cell == 0.0 {
+                let extent = (0..3)
+                    .map(|a| bounds[1][a] - bounds[0][a])
+                    .fold(1.0, f64::max);
+                self.cell = (extent / 32.0).max(1.0);
+            }
+            self.receivers.clear();
+            self.shadows.clear();
+            self.big_receivers.clear();
+            self.big_shadows.clear();
+            self.shadow_boxes.clear();
+            let boxes: Vec<(PieceId, Box3)> = self.boxes.iter().map(|(k, b)| (k, *b)).collect();
+            for (k, b) in boxes {
+                self.place(k, b, false);
+            }
+            self.pending = pieces.keys().collect();
+            self.stale = false;
+        }
+        for key in std::mem::take(&mut self.pending) {
+            let Some(piece) = pieces.get(key) else {
+                continue;
+            };
+            if let Some(b) = self.penumbra_box(piece, bounds) {
+                self.shadow_boxes.insert(key, b);
+                self.place(key, b, true);
             }
         }
-        self.boxes.insert(key, [lo, hi]);
     }
 
-    pub(crate) fn remove(&mut self, key: PieceId) {
-        self.boxes.remove(key);
+    /// The box around `piece`'s penumbra volumes within `bounds`, if it
+    /// casts any.
+    fn penumbra_box(&self, piece: &Piece, bounds: Box3) -> Option<Box3> {
+        let diagonal = (0..3)
+            .map(|a| (bounds[1][a] - bounds[0][a]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let mut out: Option<Box3> = None;
+        for (i, unit) in piece.volumes.iter().enumerate() {
+            if unit.volumes.penumbra.is_empty() {
+                continue;
+            }
+            let light = &self.lights[i];
+            // The occluder's least distance in front of the light's plane.
+            let plane = light_plane(light);
+            let h = piece
+                .outline
+                .iter()
+                .map(|v| plane[0] * v[0] + plane[1] * v[1] + plane[2] * v[2] + plane[3])
+                .fold(f64::INFINITY, f64::min);
+            if h.is_nan() || h <= 1e-6 * diagonal {
+                return Some(bounds);
+            }
+            // A point of the scene is at most `depth` in front of the
+            // light's plane, and a point on a ray at `t` is at least
+            // `t h` in front: `t <= depth / h` (a little beyond, against
+            // rounding).
+            let depth = (0..8)
+                .map(|k| {
+                    let c: [f64; 3] = std::array::from_fn(|a| bounds[(k >> a) & 1][a]);
+                    plane[0] * c[0] + plane[1] * c[1] + plane[2] * c[2] + plane[3]
+                })
+                .fold(h, f64::max);
+            let t_far = depth / h * (1.0 + 1e-9) + 1e-9;
+            for l in light {
+                for o in &piece.outline {
+                    for t in [1.0, t_far] {
+                        grow(&mut out, std::array::from_fn(|a| l[a] + t * (o[a] - l[a])));
+                    }
+                }
+            }
+        }
+        let [lo, hi] = out?;
+        let pad = 1e-9 * diagonal + 1.0;
+        let clipped: Box3 = [
+            std::array::from_fn(|a| (lo[a] - pad).max(bounds[0][a] - pad)),
+            std::array::from_fn(|a| (hi[a] + pad).min(bounds[1][a] + pad)),
+        ];
+        (0..3)
+            .all(|a| clipped[0][a] <= clipped[1][a])
+            .then_some(clipped)
+    }
+
+    fn range(&self, b: Box3) -> ([i64; 3], [i64; 3]) {
+        let lo = b[0].map(|x| (x / self.cell).floor() as i64);
+        let hi = b[1].map(|x| (x / self.cell).floor() as i64);
+        (lo, hi)
+    }
+
+    fn cells(&self, b: Box3) -> Option<Vec<[i64; 3]>> {
+        let (lo, hi) = self.range(b);
+        let span: i64 = (0..3).map(|a| hi[a] - lo[a] + 1).product();
+        if span > BIG {
+            return None;
+        }
+        let mut out = Vec::with_capacity(span as usize);
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    out.push([x, y, z]);
+                }
+            }
+        }
+        Some(out)
+    }
+
+    fn place(&mut self, key: PieceId, b: Box3, shadow: bool) {
+        match self.cells(b) {
+            None if shadow => {
+                self.big_shadows.insert(key);
+            }
+            None => {
+                self.big_receivers.insert(key);
+            }
+            Some(cells) => {
+                let map = if shadow {
+                    &mut self.shadows
+                } else {
+                    &mut self.receivers
+                };
+                for c in cells {
+                    map.entry(c).or_default().push(key);
+                }
+            }
+        }
+    }
+
+    fn unplace(&mut self, key: PieceId, b: Box3, shadow: bool) {
+        if self.cell == 0.0 {
+            return;
+        }
+        match self.cells(b) {
+            None if shadow => {
+                self.big_shadows.remove(&key);
+            }
+            None => {
+                self.big_receivers.remove(&key);
+            }
+            Some(cells) => {
+                let map = if shadow {
+                    &mut self.shadows
+                } else {
+                    &mut self.receivers
+                };
+                for c in cells {
+                    if let Some(list) = map.get_mut(&c) {
+                        list.retain(|k| *k != key);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The pieces registered (as receivers or as shadows) in the cells `b`
+    /// covers, and the big ones.
+    fn near(&self, b: Box3, shadow: bool) -> BTreeSet<PieceId> {
+        let (map, big) = if shadow {
+            (&self.shadows, &self.big_shadows)
+        } else {
+            (&self.receivers, &self.big_receivers)
+        };
+        let mut out = big.clone();
+        match self.cells(b) {
+            Some(cells) => {
+                for c in cells {
+                    if let Some(list) = map.get(&c) {
+                        out.extend(list.iter().copied());
+                    }
+                }
+            }
+            None => {
+                for list in map.values() {
+                    out.extend(list.iter().copied());
+                }
+            }
+        }
+        out
     }
 
     /// Whether occluder `o` may shadow receiver `r` under some light.
@@ -52,40 +314,72 @@ impl Overlap {
             return false;
         };
         pieces[o].volumes.iter().any(|v| {
-            v.penumbra
+            v.volumes
+                .penumbra
                 .iter()
                 .any(|planes| planes.iter().all(|p| !box_in_front(bx, p.approx())))
         })
     }
 
-    /// Occluders that may shadow receiver `r`, in the pieces' order.
+    /// Occluders that may shadow receiver `r`, in key order (call
+    /// [`refresh`](Self::refresh) first).
     pub(crate) fn occluders_near(
         &self,
         r: PieceId,
         pieces: &SlotMap<PieceId, Piece>,
     ) -> Vec<PieceId> {
-        pieces
-            .keys()
+        let Some(b) = self.boxes.get(r) else {
+            return Vec::new();
+        };
+        self.near(*b, true)
+            .into_iter()
             .filter(|&o| self.may_shadow(o, r, pieces))
             .collect()
     }
 
-    /// Receivers that occluder `o` may shadow, in the pieces' order.
+    /// Receivers that occluder `o` may shadow, in key order (call
+    /// [`refresh`](Self::refresh) first).
     pub(crate) fn receivers_near(
         &self,
         o: PieceId,
         pieces: &SlotMap<PieceId, Piece>,
     ) -> Vec<PieceId> {
-        pieces
-            .keys()
+        let Some(b) = self.shadow_boxes.get(o) else {
+            return Vec::new();
+        };
+        self.near(*b, false)
+            .into_iter()
             .filter(|&r| self.may_shadow(o, r, pieces))
             .collect()
     }
 }
 
+/// The light's plane `(a, b, c, d)` with a unit normal towards where it
+/// emits, from its first three vertices (a convex light's vertices are
+/// counter-clockwise seen from the front).
+fn light_plane(v: &[[f64; 3]]) -> [f64; 4] {
+    let u: [f64; 3] = std::array::from_fn(|a| v[1][a] - v[0][a]);
+    let w: [f64; 3] = std::array::from_fn(|a| v[2][a] - v[0][a]);
+    let n = [
+        u[1] * w[2] - u[2] * w[1],
+        u[2] * w[0] - u[0] * w[2],
+        u[0] * w[1] - u[1] * w[0],
+    ];
+    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
+        .sqrt()
+        .max(f64::MIN_POSITIVE);
+    let n = n.map(|c| c / len);
+    [
+        n[0],
+        n[1],
+        n[2],
+        -(n[0] * v[0][0] + n[1] * v[0][1] + n[2] * v[0][2]),
+    ]
+}
+
 /// Whether every corner of the box is strictly in front of the plane
 /// `(a, b, c, d)` by more than the evaluation's rounding error.
-fn box_in_front(bx: &[[f64; 3]; 2], [a, b, c, d]: [f64; 4]) -> bool {
+fn box_in_front(bx: &Box3, [a, b, c, d]: [f64; 4]) -> bool {
     // The corner that minimises the plane's value.
     let pick = |n: f64, axis: usize| if n >= 0.0 { bx[0][axis] } else { bx[1][axis] };
     let (x, y, z) = (pick(a, 0), pick(b, 1), pick(c, 2));

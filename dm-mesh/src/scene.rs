@@ -1,12 +1,13 @@
 //! A scene of objects under area lights, with one DM-tree per receiving
 //! polygon, kept up to date as objects are added, removed and moved.
 
+use crate::critical::{UnitPlanes, internal_planes};
 use crate::error::Error;
 use crate::illuminate::ReceiverIllum;
 use crate::order::unit_order;
 use crate::overlap::Overlap;
 use crate::tree::ReceiverDm;
-use area_shadow::{AreaSource, SourceSide, VolumePlanes, volume_planes};
+use area_shadow::{AreaSource, SourceSide, volume_planes};
 use bsp_core::ConvexPolygon;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use std::collections::BTreeSet;
@@ -52,9 +53,10 @@ pub(crate) struct Piece {
     pub(crate) polygon: ConvexPolygon,
     pub(crate) object: ObjectId,
     pub(crate) flags: PieceFlags,
-    /// Per light: the penumbra and umbra volume planes (empty when the
-    /// piece casts no shadow of that light).
-    pub(crate) volumes: Vec<VolumePlanes>,
+    /// Per light: the penumbra and umbra volume planes and the internal
+    /// discontinuities (empty when the piece casts no shadow of that
+    /// light).
+    pub(crate) volumes: Vec<UnitPlanes>,
     /// Grid-unit vertices, for illumination.
     pub(crate) outline: Vec<[f64; 3]>,
 }
@@ -62,6 +64,25 @@ pub(crate) struct Piece {
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Object {
     pub(crate) pieces: Vec<PieceId>,
+}
+
+/// How the discontinuity meshes are built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct DmOptions {
+    /// Whether the internal EV / VE discontinuities inside each penumbra
+    /// cut the cells too (default); without them cells are bounded by
+    /// penumbra and umbra edges only (fewer cells, faster; vertex
+    /// irradiance is exact either way, but inside a cell it is no longer
+    /// smooth).
+    pub internal_discontinuities: bool,
+}
+
+impl Default for DmOptions {
+    fn default() -> Self {
+        Self {
+            internal_discontinuities: true,
+        }
+    }
 }
 
 /// Discontinuity meshes of a scene: one DM-tree per receiving polygon,
@@ -75,11 +96,17 @@ pub struct DmScene {
     pub(crate) receivers: SecondaryMap<PieceId, ReceiverDm<PieceId>>,
     pub(crate) illum: SecondaryMap<PieceId, ReceiverIllum>,
     pub(crate) overlap: Overlap,
+    pub(crate) options: DmOptions,
 }
 
 impl DmScene {
-    /// An empty scene under `lights` (at most 32).
+    /// An empty scene under `lights` (at most 32), default options.
     pub fn new(lights: Vec<DmLight>) -> Result<Self, Error> {
+        Self::with_options(lights, DmOptions::default())
+    }
+
+    /// An empty scene under `lights` (at most 32).
+    pub fn with_options(lights: Vec<DmLight>, options: DmOptions) -> Result<Self, Error> {
         if lights.len() > 32 {
             return Err(Error::TooManyLights(lights.len()));
         }
@@ -91,15 +118,26 @@ impl DmScene {
             receivers: SecondaryMap::new(),
             illum: SecondaryMap::new(),
             overlap,
+            options,
         })
     }
 
-    /// A scene built from scratch: every object added at once.
+    /// A scene built from scratch: every object added at once, default
+    /// options.
     pub fn build(
         lights: Vec<DmLight>,
         objects: Vec<(Vec<ConvexPolygon>, PieceFlags)>,
     ) -> Result<(Self, Vec<ObjectId>), Error> {
-        let mut scene = Self::new(lights)?;
+        Self::build_with(lights, objects, DmOptions::default())
+    }
+
+    /// A scene built from scratch: every object added at once.
+    pub fn build_with(
+        lights: Vec<DmLight>,
+        objects: Vec<(Vec<ConvexPolygon>, PieceFlags)>,
+        options: DmOptions,
+    ) -> Result<(Self, Vec<ObjectId>), Error> {
+        let mut scene = Self::with_options(lights, options)?;
         let mut ids = Vec::with_capacity(objects.len());
         let mut added = Vec::new();
         for (polygons, flags) in objects {
@@ -109,6 +147,11 @@ impl DmScene {
         }
         scene.cast(&added);
         Ok((scene, ids))
+    }
+
+    /// The options the scene was made with.
+    pub fn options(&self) -> DmOptions {
+        self.options
     }
 
     /// The lights.
@@ -221,9 +264,15 @@ impl DmScene {
                             SourceSide::Back | SourceSide::In
                         );
                     if flags.casts_shadows && !turned_away {
-                        volume_planes(&polygon, light)
+                        let volumes = volume_planes(&polygon, light);
+                        let internal = if self.options.internal_discontinuities {
+                            internal_planes(&polygon, light, &volumes)
+                        } else {
+                            Vec::new()
+                        };
+                        UnitPlanes { volumes, internal }
                     } else {
-                        VolumePlanes::default()
+                        UnitPlanes::default()
                     }
                 })
                 .collect();
@@ -248,6 +297,7 @@ impl DmScene {
     /// Casts the shadows of `added` (new pieces) on every receiver, and of
     /// every occluder on the new receivers.
     fn cast(&mut self, added: &[PieceId]) {
+        self.overlap.refresh(&self.pieces);
         let new: BTreeSet<PieceId> = added.iter().copied().collect();
         // New receivers: every occluder the overlap structure pairs them with.
         for &r in added {
@@ -301,6 +351,7 @@ impl DmScene {
         let object = self.objects.get_mut(id).ok_or(Error::UnknownObject)?;
         let gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
         let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
+        self.overlap.refresh(&self.pieces);
         let mut touched: BTreeSet<PieceId> = BTreeSet::new();
         for &o in &gone_pieces {
             touched.extend(self.overlap.receivers_near(o, &self.pieces));

@@ -20,7 +20,8 @@
 //! the later units into those cells only ([`ReceiverDm::remove_units`]).
 
 use crate::cell::{Cell, CellClass, Entry};
-use area_shadow::{AreaSource, SourceSide, VolumePlanes};
+use crate::critical::{Critical, UnitPlanes};
+use area_shadow::{AreaSource, SourceSide};
 use bsp_core::predicates::Side;
 use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, Split, VertexKey, WingedMesh};
 use std::collections::{BTreeMap, BTreeSet};
@@ -67,7 +68,13 @@ pub struct ReceiverDm<K> {
     polygon: ConvexPolygon,
     mesh: WingedMesh<Cell, ()>,
     nodes: Vec<Node>,
+    /// The parent of each node (the root's is itself).
+    parent: Vec<u32>,
     free: Vec<u32>,
+    /// Per unit, the leaves where its single tree was grown (its topmost
+    /// nodes, or cells it only listed or was culled in). Entries go stale
+    /// when a collapse frees them and are checked before use.
+    roots: BTreeMap<u32, Vec<u32>>,
     root: u32,
     reach: Vec<Reach>,
     units: BTreeMap<u32, UnitRef<K>>,
@@ -99,7 +106,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             polygon,
             mesh,
             nodes: vec![Node::Leaf(face)],
+            parent: vec![0],
             free: Vec::new(),
+            roots: BTreeMap::new(),
             root: 0,
             reach: Vec::with_capacity(lights.len()),
             units: BTreeMap::new(),
@@ -123,11 +132,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     continue;
                 }
                 match dm.split_leaf(leaf, light.support(), LIGHT_UNIT) {
-                    Some((back, _)) => dm.cell_mut(back).unreached |= bit,
-                    None if dm.leaf_side(leaf, light.support()) == Side::Back => {
-                        dm.cell_mut(leaf).unreached |= bit;
-                    }
-                    None => {}
+                    Ok((back, _)) => dm.cell_mut(back).unreached |= bit,
+                    Err(Side::Back) => dm.cell_mut(leaf).unreached |= bit,
+                    Err(_) => {}
                 }
             }
         }
@@ -225,26 +232,16 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             .data
     }
 
-    /// Side of `plane` a leaf's cell lies on when the plane does not cut it.
-    fn leaf_side(&self, leaf: u32, plane: &Plane) -> Side {
-        let f = self.face_of(leaf);
-        self.mesh
-            .face_vertices(f)
-            .into_iter()
-            .filter_map(|v| self.mesh.vertex(v))
-            .map(|v| v.position.side(plane))
-            .find(|s| *s != Side::On)
-            .unwrap_or(Side::On)
-    }
-
-    fn alloc(&mut self, node: Node) -> u32 {
+    fn alloc(&mut self, node: Node, parent: u32) -> u32 {
         match self.free.pop() {
             Some(k) => {
                 self.nodes[k as usize] = node;
+                self.parent[k as usize] = parent;
                 k
             }
             None => {
                 self.nodes.push(node);
+                self.parent.push(parent);
                 (self.nodes.len() - 1) as u32
             }
         }
@@ -267,15 +264,17 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         out
     }
 
-    /// Splits a leaf's cell by `plane`; `None` when the plane does not cut
-    /// it. The leaf becomes a node; returns the new back and front leaves.
-    fn split_leaf(&mut self, leaf: u32, plane: &Plane, unit: u32) -> Option<(u32, u32)> {
+    /// Splits a leaf's cell by `plane`: the leaf becomes a node, and the
+    /// new back and front leaves come back; `Err(side)` when the plane does
+    /// not cut the cell, which lies on that side of it.
+    fn split_leaf(&mut self, leaf: u32, plane: &Plane, unit: u32) -> Result<(u32, u32), Side> {
         let face = self.face_of(leaf);
-        let FaceSplit::Split { back, front, .. } = self.mesh.split_face(face, plane) else {
-            return None;
+        let (back, front) = match self.mesh.split_face(face, plane) {
+            FaceSplit::Split { back, front, .. } => (back, front),
+            FaceSplit::NotSplit(side) => return Err(side),
         };
-        let b = self.alloc(Node::Leaf(back));
-        let f = self.alloc(Node::Leaf(front));
+        let b = self.alloc(Node::Leaf(back), leaf);
+        let f = self.alloc(Node::Leaf(front), leaf);
         self.nodes[leaf as usize] = Node::Split {
             line: *plane,
             unit,
@@ -284,7 +283,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         };
         self.cell_mut(b).leaf = b;
         self.cell_mut(f).leaf = f;
-        Some((b, f))
+        Ok((b, f))
     }
 
     /// Filters `piece` (inside `node`'s cell) down to the leaves it covers
@@ -314,7 +313,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// Appends a unit (occluder `key` under light `light`, with its volume
     /// planes) and merges its single tree in. Returns its unit number.
-    pub(crate) fn insert(&mut self, key: K, light: u8, planes: &VolumePlanes) -> u32 {
+    pub(crate) fn insert(&mut self, key: K, light: u8, planes: &UnitPlanes) -> u32 {
         let unit = self.next_unit;
         self.next_unit += 1;
         self.units.insert(unit, (key, light));
@@ -330,12 +329,12 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         cell: Option<&ConvexPolygon>,
         unit: u32,
         light: u8,
-        planes: &VolumePlanes,
+        planes: &UnitPlanes,
     ) {
         if self.reach[usize::from(light)] == Reach::None {
             return;
         }
-        for part in &planes.penumbra {
+        for part in &planes.volumes.penumbra {
             // The quick reject: the receiver (or cell) clipped by the
             // penumbra planes, exactly.
             let Some(mut region) = clip(&self.polygon, part) else {
@@ -348,8 +347,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 region = inside;
             }
             for (leaf, piece) in self.descend(node, region) {
-                let umbra = planes.umbra.as_deref();
+                let umbra = planes.volumes.umbra.as_deref();
                 self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+                if !planes.internal.is_empty() {
+                    self.grow_internal(leaf, &planes.internal, unit);
+                }
             }
         }
     }
@@ -366,8 +368,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         light: u8,
     ) {
         let cell = self.cell(leaf);
-        if cell.in_umbra(usize::from(light)) || cell.has_unit(unit) {
-            // Umbra already: the occluder changes nothing here.
+        if cell.has_unit(unit) || cell.unreached(usize::from(light)) {
+            return;
+        }
+        let in_umbra = cell.in_umbra(usize::from(light));
+        self.roots.entry(unit).or_default().push(leaf);
+        if in_umbra {
+            // Umbra already: the occluder changes nothing here, unless the
+            // occluder making the umbra goes; remember it for then.
+            self.cell_mut(leaf).culled.push(unit);
             return;
         }
         let Some(inner) = self.chain(leaf, penumbra, unit) else {
@@ -391,83 +400,203 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         }
     }
 
+    /// Splits the cells of the subtree at `node` that list `unit` outside
+    /// its umbra by its internal discontinuities, each where its wedge
+    /// crosses the cell.
+    fn grow_internal(&mut self, node: u32, internal: &[Critical], unit: u32) {
+        let mut cells: Vec<(u32, ConvexPolygon)> = self
+            .leaves(node)
+            .into_iter()
+            .filter(|&n| {
+                self.cell(n)
+                    .entries
+                    .iter()
+                    .any(|e| e.unit == unit && !e.umbra)
+            })
+            .filter_map(|n| {
+                let polygon = self.mesh.face_polygon(self.face_of(n), 0).ok()?;
+                Some((n, polygon))
+            })
+            .collect();
+        for critical in internal {
+            let mut next = Vec::with_capacity(cells.len());
+            for (leaf, polygon) in cells {
+                let crosses = clip(&polygon, &critical.wedge)
+                    .is_some_and(|part| matches!(part.split(&critical.plane), Split::Both(..)));
+                if !crosses {
+                    next.push((leaf, polygon));
+                    continue;
+                }
+                // The cell's polygon and its face split alike (the same
+                // exact predicates on the same vertices).
+                match (
+                    polygon.split(&critical.plane),
+                    self.split_leaf(leaf, &critical.plane, unit).ok(),
+                ) {
+                    (Split::Both(b, f), Some((back, front))) => {
+                        next.extend([(back, b), (front, f)])
+                    }
+                    (_, Some((back, front))) => {
+                        for n in [back, front] {
+                            if let Ok(p) = self.mesh.face_polygon(self.face_of(n), 0) {
+                                next.push((n, p));
+                            }
+                        }
+                    }
+                    (_, None) => next.push((leaf, polygon)),
+                }
+            }
+            cells = next;
+        }
+    }
+
     /// Splits the cell at `leaf` by `planes` in turn, following the back;
     /// the innermost leaf, or `None` if a plane leaves the cell in front.
     fn chain(&mut self, leaf: u32, planes: &[Plane], unit: u32) -> Option<u32> {
         let mut cur = leaf;
         for plane in planes {
             match self.split_leaf(cur, plane, unit) {
-                Some((back, _)) => cur = back,
-                None if self.leaf_side(cur, plane) == Side::Front => return None,
-                None => {}
+                Ok((back, _)) => cur = back,
+                Err(Side::Front) => return None,
+                Err(_) => {}
             }
         }
         Some(cur)
     }
 
-    /// Removes the units in `gone`: the subtrees under their topmost nodes
-    /// collapse into the cells they split (faces merged, straight vertices
-    /// condensed), cells listing one of them drop it and every later
-    /// entry, and the later units are re-inserted into just those cells.
-    /// `planes(key, light)` gives a unit's volume planes.
+    /// Removes the units in `gone`. Every subtree such a unit grew (found
+    /// from its recorded roots) collapses into the cell it split (faces
+    /// merged, straight vertices condensed); that cell keeps the entries
+    /// every one of its parts had, and the other units that reached it are
+    /// merged in again, in order, restricted to it. `planes(key, light)`
+    /// gives a unit's volume planes.
     pub(crate) fn remove_units<'p>(
         &mut self,
         gone: &BTreeSet<u32>,
-        planes: impl Fn(K, u8) -> &'p VolumePlanes,
+        planes: impl Fn(K, u8) -> &'p UnitPlanes,
     ) {
         if gone.is_empty() {
             return;
         }
-        // Cells to redo, with the first unit to re-insert after.
-        let mut redo: Vec<(u32, u32)> = Vec::new();
-        let mut stack = vec![self.root];
+        let recorded: Vec<u32> = gone
+            .iter()
+            .filter_map(|u| self.roots.remove(u))
+            .flatten()
+            .collect();
+        let mut starts: Vec<u32> = recorded
+            .into_iter()
+            .filter(|&n| self.reached_by(n, gone))
+            .collect();
+        starts.sort_unstable();
+        starts.dedup();
+        // Only the topmost: a start below another goes with it.
+        let all: BTreeSet<u32> = starts.iter().copied().collect();
+        starts.retain(|&n| {
+            !self
+                .ancestors(n)
+                .any(|a| all.contains(&a) || self.owned_by(a, gone))
+        });
+        for unit in gone {
+            self.units.remove(unit);
+        }
+        for n in starts {
+            let (kept, redo) = self.units_under(n, gone);
+            self.collapse(n);
+            let cell = self.cell_mut(n);
+            cell.entries = kept.iter().copied().collect();
+            cell.culled.clear();
+            for e in &kept {
+                self.roots.entry(e.unit).or_default().push(n);
+            }
+            let face = self.face_of(n);
+            let Ok(region) = self.mesh.face_polygon(face, 0) else {
+                continue;
+            };
+            for unit in redo {
+                if let Some(&(key, light)) = self.units.get(&unit) {
+                    self.merge_unit(n, Some(&region), unit, light, planes(key, light));
+                }
+            }
+        }
+    }
+
+    /// Whether node `n` is a node of a unit in `gone`.
+    fn owned_by(&self, n: u32, gone: &BTreeSet<u32>) -> bool {
+        matches!(self.nodes[n as usize], Node::Split { unit, .. } if gone.contains(&unit))
+    }
+
+    /// Whether node `n` (a recorded root) is still something a unit in
+    /// `gone` made or reached: its node, or a cell listing or culling it
+    /// (split since by later units: its first leaf tells, as a unit that
+    /// grew in a cell without splitting it is in every part of it).
+    fn reached_by(&self, n: u32, gone: &BTreeSet<u32>) -> bool {
+        let mut at = n;
+        loop {
+            match self.nodes.get(at as usize) {
+                Some(Node::Split { unit, back, .. }) => {
+                    if gone.contains(unit) {
+                        return true;
+                    }
+                    at = *back;
+                }
+                Some(Node::Leaf(_)) => {
+                    let cell = self.cell(at);
+                    return cell.entries.iter().any(|e| gone.contains(&e.unit))
+                        || cell.culled.iter().any(|u| gone.contains(u));
+                }
+                _ => return false,
+            }
+        }
+    }
+
+    /// The proper ancestors of `n`, nearest first.
+    fn ancestors(&self, n: u32) -> impl Iterator<Item = u32> + '_ {
+        let mut at = n;
+        std::iter::from_fn(move || {
+            if at == self.root {
+                return None;
+            }
+            at = self.parent[at as usize];
+            Some(at)
+        })
+    }
+
+    /// For the subtree at `node`, leaving out units in `gone`: the entries
+    /// every one of its cells has (in order), and the other units that
+    /// reached it (node owners, listed or culled somewhere), in order.
+    fn units_under(&self, node: u32, gone: &BTreeSet<u32>) -> (Vec<Entry>, BTreeSet<u32>) {
+        let mut reached = BTreeSet::new();
+        let mut common: Option<Vec<Entry>> = None;
+        let mut stack = vec![node];
         while let Some(n) = stack.pop() {
-            match self.nodes[n as usize].clone() {
+            match &self.nodes[n as usize] {
                 Node::Split {
                     unit, back, front, ..
                 } => {
-                    if gone.contains(&unit) {
-                        self.collapse(n);
-                        redo.push((n, unit));
-                    } else {
-                        stack.push(front);
-                        stack.push(back);
-                    }
+                    reached.insert(*unit);
+                    stack.push(*back);
+                    stack.push(*front);
                 }
-                Node::Leaf(f) => {
-                    let cell = &self.mesh.face(f).expect("leaf face").data;
-                    if let Some(e) = cell.entries.iter().find(|e| gone.contains(&e.unit)) {
-                        redo.push((n, e.unit));
+                Node::Leaf(_) => {
+                    let cell = self.cell(n);
+                    reached.extend(cell.entries.iter().map(|e| e.unit));
+                    reached.extend(cell.culled.iter().copied());
+                    match &mut common {
+                        None => common = Some(cell.entries.to_vec()),
+                        Some(c) => c.retain(|e| cell.entries.contains(e)),
                     }
                 }
                 Node::Free => {}
             }
         }
-        for unit in gone {
-            self.units.remove(unit);
+        let mut kept = common.unwrap_or_default();
+        kept.retain(|e| !gone.contains(&e.unit));
+        kept.sort_by_key(|e| e.unit);
+        for e in &kept {
+            reached.remove(&e.unit);
         }
-        for (leaf, after) in redo {
-            let cell = self.cell_mut(leaf);
-            let after = cell
-                .entries
-                .iter()
-                .filter(|e| gone.contains(&e.unit))
-                .map(|e| e.unit)
-                .fold(after, u32::min);
-            cell.entries.retain(|e| e.unit < after);
-            let face = self.face_of(leaf);
-            let Ok(cell) = self.mesh.face_polygon(face, 0) else {
-                continue;
-            };
-            let later: Vec<(u32, UnitRef<K>)> = self
-                .units
-                .range(after + 1..)
-                .map(|(k, v)| (*k, *v))
-                .collect();
-            for (unit, (key, light)) in later {
-                self.merge_unit(leaf, Some(&cell), unit, light, planes(key, light));
-            }
-        }
+        reached.retain(|u| !gone.contains(u) && *u != LIGHT_UNIT);
+        (kept, reached)
     }
 
     /// Collapses the subtree at `node` into one leaf: children first, each

@@ -3,6 +3,8 @@
 //! Chin & Feiner 1989, Table 1: Haines' SPD tetra scenes under one point
 //! light, timed on an HP 9000/350. Chin & Feiner 1992, Figure 8: a
 //! furnished room under two quad lights (plate 6), timed on an HP 9000/375.
+//! Chrysanthou & Slater: discontinuity meshes built and updated as objects
+//! move, on a Sparc 20 ([`umbra_benches::dm_table`]).
 
 use bsp_core::BuildOptions;
 use std::time::Instant;
@@ -49,6 +51,8 @@ fn main() {
     table_1();
     println!();
     figure_8();
+    println!();
+    umbra_benches::dm_table::print();
 }
 
 /// The 1992 paper's Figure 8 row for plate 6 beside the `room` demo.

@@ -1,0 +1,61 @@
+//! Discontinuity meshes (`umbra dm`): building and illuminating the
+//! `office` and `cubes` demos, and one incremental move (delete, add,
+//! re-illuminate) of a desk (19 % of the office) and of a cube, back and
+//! forth so that the scene stays the same.
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
+use bsp_core::{ConvexPolygon, GridPoint};
+use criterion::{Criterion, criterion_group, criterion_main};
+use std::hint::black_box;
+use umbra::dm_scene;
+use umbra_benches::dm_table::demo;
+
+fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
+    let points: Vec<GridPoint> = (0..p.len())
+        .map(|k| {
+            let g = p.vertex_grid_point(k).expect("grid vertex").to_i64();
+            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).expect("on the grid")
+        })
+        .collect();
+    ConvexPolygon::from_grid_points(&points, p.source()).expect("still convex")
+}
+
+fn build(c: &mut Criterion) {
+    let dir = tempfile::tempdir().unwrap();
+    for name in ["office", "cubes"] {
+        let scene = demo(dir.path(), name);
+        c.bench_function(&format!("dm_build_illuminate_{name}"), |b| {
+            b.iter(|| black_box(dm_scene(&scene).unwrap()))
+        });
+    }
+}
+
+fn moves(c: &mut Criterion) {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, object) in [
+        ("office", "desk_1"),
+        ("office", "monitor_1"),
+        ("cubes", "cube_1"),
+    ] {
+        let scene = demo(dir.path(), name);
+        let mut run = dm_scene(&scene).unwrap();
+        let index = scene.objects.iter().position(|o| o.name == object).unwrap();
+        let (id, ks) = run.objects[index].clone();
+        let step = (0.05 * run.pieces.grid.scale()).round() as i64;
+        let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
+        let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
+        let mut flip = false;
+        c.bench_function(&format!("dm_move_{name}_{object}"), |b| {
+            b.iter(|| {
+                flip = !flip;
+                let to = if flip { &there } else { &here };
+                run.dm.move_object(id, to.clone()).unwrap();
+                black_box(run.dm.illuminate())
+            })
+        });
+    }
+}
+
+criterion_group!(benches, build, moves);
+criterion_main!(benches);

@@ -1,0 +1,157 @@
+//! Chrysanthou & Slater's figures beside umbra's discontinuity meshes:
+//! build and illumination of scenes of 92-184 polygons, and moving an
+//! object of 5-30 % of the scene against rebuilding.
+
+use std::path::Path;
+use std::time::Instant;
+use umbra::{DmOptions, DmRun, Scene, dm_scene, dm_scene_with, write_demo};
+
+/// A demo written into `dir` and loaded.
+pub fn demo(dir: &Path, name: &str) -> Scene {
+    let path = write_demo(name, &dir.join(name)).expect("demo written");
+    Scene::load(&path).expect("demo loads")
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// The fastest of `runs` builds (with illumination).
+fn best_build(scene: &Scene, runs: usize, options: DmOptions) -> DmRun {
+    let mut best: Option<DmRun> = None;
+    for _ in 0..runs {
+        let run = dm_scene_with(scene, options).expect("the scene builds");
+        if best
+            .as_ref()
+            .is_none_or(|b| run.stats.stats.seconds.total < b.stats.stats.seconds.total)
+        {
+            best = Some(run);
+        }
+    }
+    best.expect("ran")
+}
+
+/// Median seconds to remove object `name` from a copy of the built DM
+/// (the deletion alone, as the paper times it).
+fn delete_seconds(run: &DmRun, scene: &Scene, name: &str, runs: usize) -> f64 {
+    let index = scene
+        .objects
+        .iter()
+        .position(|o| o.name == name)
+        .expect("object exists");
+    let id = run.objects[index].0;
+    let times = (0..runs)
+        .map(|_| {
+            let mut dm = run.dm.clone();
+            let start = Instant::now();
+            dm.remove_object(id).expect("removable");
+            start.elapsed().as_secs_f64()
+        })
+        .collect();
+    median(times)
+}
+
+/// Prints the table.
+pub fn print() {
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    println!(
+        "Chrysanthou & Slater, incremental discontinuity meshes (paper: Sparc 20; umbra: this machine, {cores} cores, one used)"
+    );
+    println!(
+        "  paper: 92-184 polygons built and illuminated in 0.77-2.24 s; deleting a moving object of 5-30 % of the scene never above 4 % of a rebuild, usually about 1 %"
+    );
+    println!(
+        "{:<22} {:>6} {:>9} {:>7} {:>7} {:>8} {:>8}",
+        "scene", "input", "build ms", "cells", "nodes", "cmp/v", "cmp/vis"
+    );
+    let dir = std::env::temp_dir().join(format!("umbra-dm-table-{}", std::process::id()));
+    let moves = [
+        ("office", "desk_1", [0.05, 0.0, 0.0]),
+        ("office", "monitor_1", [0.05, 0.0, 0.0]),
+        ("cubes", "cube_1", [0.05, 0.0, 0.05]),
+    ];
+    let mut rows = Vec::new();
+    for name in ["office", "cubes"] {
+        let scene = demo(&dir, name);
+        let outer = best_build(
+            &scene,
+            10,
+            DmOptions {
+                internal_discontinuities: false,
+            },
+        );
+        let run = best_build(&scene, 10, DmOptions::default());
+        for (label, r) in [("outer only", &outer), ("with EV/VE", &run)] {
+            let s = &r.stats;
+            println!(
+                "{:<22} {:>6} {:>9.2} {:>7} {:>7} {:>8.2} {:>8.2}",
+                format!("{name}, {label}"),
+                s.stats.input_polygons,
+                1e3 * s.stats.seconds.total,
+                s.dm.cells,
+                s.dm.tree_nodes,
+                s.dm.comparisons_per_vertex,
+                s.dm.comparisons_per_visibility_vertex
+            );
+        }
+        let s = &run.stats;
+        for (scene_name, object, by) in moves.iter().filter(|m| m.0 == name) {
+            let delete = delete_seconds(&run, &scene, object, 11);
+            let mut moving = dm_scene(&scene).expect("builds");
+            let index = scene
+                .objects
+                .iter()
+                .position(|o| &o.name == object)
+                .expect("object");
+            let share = moving.objects[index].1.len() as f64 / s.stats.input_polygons as f64;
+            let figures = moving
+                .move_steps(&scene, object, *by, 11, |_, _, _| {})
+                .expect("moves");
+            rows.push((
+                *scene_name,
+                *object,
+                share,
+                delete,
+                median(figures.update_seconds.clone()),
+                median(figures.rebuild_seconds.clone()),
+            ));
+        }
+    }
+    println!(
+        "{:<10} {:<10} {:>7} {:>10} {:>10} {:>11} {:>9} {:>9}",
+        "scene", "object", "share", "delete ms", "move ms", "rebuild ms", "delete %", "move %"
+    );
+    for (scene, object, share, delete, update, rebuild) in rows {
+        println!(
+            "{:<10} {:<10} {:>6.1}% {:>10.3} {:>10.3} {:>11.3} {:>8.1}% {:>8.1}%",
+            scene,
+            object,
+            100.0 * share,
+            1e3 * delete,
+            1e3 * update,
+            1e3 * rebuild,
+            100.0 * delete / rebuild,
+            100.0 * update / rebuild
+        );
+    }
+    let hall = crate::rooms::box_hall(&dir, 1665, 7);
+    let start = Instant::now();
+    let outer = DmOptions {
+        internal_discontinuities: false,
+    };
+    let mut run = dm_scene_with(&hall, outer).expect("the hall builds");
+    let build = start.elapsed().as_secs_f64();
+    let figures = run
+        .move_steps(&hall, "box0", [0.05, 0.0, 0.0], 3, |_, _, _| {})
+        .expect("moves");
+    println!(
+        "hall of boxes (outer only): {} polygons, 2 lights: built and illuminated in {:.2} s ({} cells); moving one box: {:.2} ms (rebuild {:.2} s)",
+        run.stats.stats.input_polygons,
+        build,
+        run.stats.dm.cells,
+        1e3 * median(figures.update_seconds.clone()),
+        median(figures.rebuild_seconds)
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -1,0 +1,182 @@
+//! The internal discontinuities of one occluder's penumbra: EV and VE
+//! critical surfaces where the visible part of the light changes
+//! qualitatively.
+//!
+//! Inside the penumbra of a convex occluder `O` under a convex light `L`,
+//! the visible part of `L` changes its combinatorial shape where, seen from
+//! the receiving point,
+//!
+//! - a light vertex `v` crosses an occluder edge `ab` (EV): the point lies
+//!   in the plane through `v`, `a`, `b`, inside the wedge of rays from `v`
+//!   through the segment `ab`;
+//! - an occluder vertex `p` crosses a light edge `cd` (VE): the point lies
+//!   in the plane through `p`, `c`, `d`, inside the wedge of lines from the
+//!   segment `cd` through `p`, beyond `p`.
+//!
+//! The planes that bound the penumbra or umbra volumes are of the same
+//! family; the others are the internal ones. Each comes with two planes
+//! through its wedge's bounding lines (each through three grid points),
+//! oriented with the wedge behind, so a cell is cut only where the wedge
+//! crosses it. Only an occluder wholly in front of the light, with the
+//! light wholly on one side of it, gets internal discontinuities here.
+
+use area_shadow::{AreaSource, VolumePlanes};
+use bsp_core::predicates::{self, Side};
+use bsp_core::{ConvexPolygon, GridPoint, Plane};
+
+/// What one occluder merges into a receiver under one light: its volume
+/// planes and its internal discontinuities.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct UnitPlanes {
+    /// Penumbra and umbra volume planes.
+    pub(crate) volumes: VolumePlanes,
+    /// Internal EV / VE planes with their wedges.
+    pub(crate) internal: Vec<Critical>,
+}
+
+/// An internal critical plane and its wedge.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Critical {
+    /// The plane of the EV or VE surface.
+    pub(crate) plane: Plane,
+    /// Two planes through the wedge's bounding lines, the wedge behind
+    /// (as a convex polygon lies behind its edge planes).
+    pub(crate) wedge: [Plane; 2],
+}
+
+/// A plane through the line `xy` other than `critical`, oriented with `z`
+/// (a grid point off that line, in `critical`) behind it; flipped when
+/// `away`.
+fn bound(
+    x: GridPoint,
+    y: GridPoint,
+    z: GridPoint,
+    away: bool,
+    critical: &Plane,
+    others: &[GridPoint],
+) -> Option<Plane> {
+    let plane = others.iter().find_map(|&t| {
+        if predicates::side_of_point(critical, t) == Side::On {
+            return None;
+        }
+        Plane::through(x, y, t)
+    })?;
+    let side = predicates::side_of_point(&plane, z);
+    let toward = match side {
+        Side::Back => plane,
+        Side::Front => plane.flipped(),
+        Side::On => return None,
+    };
+    Some(if away { toward.flipped() } else { toward })
+}
+
+/// The internal EV and VE discontinuities of `occluder` under `light`,
+/// given its volume planes (none without an umbra volume or when the
+/// occluder reaches the light's plane).
+pub(crate) fn internal_planes(
+    occluder: &ConvexPolygon,
+    light: &AreaSource,
+    volumes: &VolumePlanes,
+) -> Vec<Critical> {
+    let Some(umbra) = &volumes.umbra else {
+        return Vec::new();
+    };
+    let o: Vec<GridPoint> = (0..occluder.len())
+        .filter_map(|k| occluder.vertex_grid_point(k))
+        .collect();
+    let l: Vec<GridPoint> = light.vertices().collect();
+    if o.len() != occluder.len()
+        || o.iter()
+            .any(|&p| predicates::side_of_point(light.support(), p) != Side::Front)
+    {
+        return Vec::new();
+    }
+    let others: Vec<GridPoint> = l.iter().chain(&o).copied().collect();
+    let known = |plane: &Plane| {
+        plane.is_coincident(occluder.support())
+            || volumes
+                .penumbra
+                .iter()
+                .flatten()
+                .any(|q| q.is_coincident(plane))
+            || umbra.iter().any(|q| q.is_coincident(plane))
+    };
+    let mut out: Vec<Critical> = Vec::new();
+    let mut push = |critical: Option<Critical>| {
+        let Some(c) = critical else { return };
+        if !known(&c.plane) && !out.iter().any(|d| d.plane.is_coincident(&c.plane)) {
+            out.push(c);
+        }
+    };
+    // EV: light vertex v, occluder edge ab; the wedge is the sector at v
+    // holding ab.
+    for &v in &l {
+        for i in 0..o.len() {
+            let (a, b) = (o[i], o[(i + 1) % o.len()]);
+            push(Plane::through(v, a, b).and_then(|plane| {
+                let wedge = [
+                    bound(v, a, b, false, &plane, &others)?,
+                    bound(v, b, a, false, &plane, &others)?,
+                ];
+                Some(Critical { plane, wedge })
+            }));
+        }
+    }
+    // VE: occluder vertex p, light edge cd; the wedge is the sector at p
+    // opposite cd.
+    for &p in &o {
+        for i in 0..l.len() {
+            let (c, d) = (l[i], l[(i + 1) % l.len()]);
+            push(Plane::through(p, c, d).and_then(|plane| {
+                let wedge = [
+                    bound(p, c, d, true, &plane, &others)?,
+                    bound(p, d, c, true, &plane, &others)?,
+                ];
+                Some(Critical { plane, wedge })
+            }));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use area_shadow::volume_planes;
+
+    fn g(x: i32, y: i32, z: i32) -> GridPoint {
+        GridPoint { x, y, z }
+    }
+
+    #[test]
+    fn a_turned_triangle_has_internal_discontinuities() {
+        let light =
+            AreaSource::from_grid_points(&[g(-2, 10, -2), g(2, 10, -2), g(2, 10, 2), g(-2, 10, 2)])
+                .unwrap();
+        let occluder =
+            ConvexPolygon::from_grid_points(&[g(-3, 5, -1), g(3, 5, -2), g(0, 5, 4)], 0).unwrap();
+        let volumes = volume_planes(&occluder, &light);
+        let internal = internal_planes(&occluder, &light, &volumes);
+        assert!(!internal.is_empty());
+        for c in &internal {
+            assert!(!c.wedge[0].is_coincident(&c.plane) && !c.wedge[1].is_coincident(&c.plane));
+        }
+    }
+
+    #[test]
+    fn parallel_squares_have_none() {
+        // Every EV plane of a square under a parallel, aligned square light
+        // holds a light edge parallel to the occluder edge: it bounds a
+        // volume already.
+        let light =
+            AreaSource::from_grid_points(&[g(-1, 10, -1), g(1, 10, -1), g(1, 10, 1), g(-1, 10, 1)])
+                .unwrap();
+        let occluder = ConvexPolygon::from_grid_points(
+            &[g(-4, 5, 4), g(4, 5, 4), g(4, 5, -4), g(-4, 5, -4)],
+            0,
+        )
+        .unwrap();
+        let volumes = volume_planes(&occluder, &light);
+        assert!(internal_planes(&occluder, &light, &volumes).is_empty());
+    }
+}
