@@ -1,0 +1,407 @@
+//! Bergeron's general shadow volumes (1986): depth-counted shadow polygons
+//! for open and closed models, non-planar polygons, an eye anywhere and
+//! lights with a sphere of influence.
+//!
+//! For one light, [`BergeronVolumes::build`] turns every shadow-casting
+//! [`Model`] into shadow polygons. A point is in shadow when it lies in the
+//! shadow frustum of some model polygon (beyond it from the light, inside
+//! the cone of rays through it); the *depth count* of a point is the number
+//! of such frusta, and along any segment that crosses no model polygon it
+//! changes only where the segment crosses the frusta's side walls and far
+//! caps. Summed over a model, the side walls of two polygons that share an
+//! edge cancel when both face the light the same way, and add up when one
+//! faces it and the other does not: what is left are the **contour edges**,
+//! each with Bergeron's increment `Nb_C` ([`ShadowPolygon::weight`]) of `±2`
+//! for an edge shared by two polygons and `±1` for an open edge (an edge of
+//! one polygon only). Closed and open models need no distinction.
+//!
+//! - **Non-planar polygons.** A non-planar model polygon comes as convex
+//!   planar pieces (its triangulation) and its outline. If it is L-twisted
+//!   ([`is_l_twisted`]: seen from the light, two of its edges cross) it gets
+//!   a shadow volume and a depth count of its own, and a point is in its
+//!   shadow when that count is positive: the in-shadow flag of the (light,
+//!   polygon) pair.
+//! - **The eye inside a shadow volume.** Counting along an eye ray needs
+//!   the count at the eye. [`BergeronVolumes::eye_counts`] closes every
+//!   frustum with its model polygon and, when the volumes are truncated, a
+//!   projected capping copy of it, and counts the closed frusta around the
+//!   eye. In Bergeron's three cases: outside every volume (Type 1) the
+//!   count is 0; inside the volume of a closed model (Type 2) it grows by 2
+//!   per model, a polygon facing the light and one facing away both lying
+//!   between the eye and the light; inside the volume of an open model
+//!   (Type 3) by the number of its sheets between the eye and the light,
+//!   often 1. The count then follows the eye ray: [`BergeronVolumes::in_shadow`].
+//! - **Sphere of influence.** A model whose bounding box is wholly beyond a
+//!   point light's range casts nothing. The others' shadow polygons end at
+//!   Bergeron's projection `V + ((range - 1) / SD) (V - L)` of each contour
+//!   vertex `V`, `SD` the distance from the light to the model's bounding
+//!   box (to its nearest contour edge if the light is inside the box):
+//!   every point in range lies before that end. The ratio is rounded up to
+//!   an integer so that the far corners are exact, and the volumes are
+//!   closed there by caps. Without a range the polygons reach past the
+//!   bounds given to [`BergeronVolumes::build`], and need no caps.
+//!
+//! Coordinates are grid units. Every decision (which side of a shadow
+//! polygon a point lies on, whether a segment crosses it, whether a
+//! polygon is twisted) is an exact orientation of explicit points
+//! ([`orient3d_f64`]); the eye and the visible points
+//! given to the queries are `f64`, decided exactly as given.
+//!
+//! # Example
+//!
+//! ```
+//! use bsp_core::{ConvexPolygon, GridPoint};
+//! use svbsp::bergeron::{BergeronVolumes, Model, ModelPolygon};
+//! use svbsp::Light;
+//!
+//! let g = |x, y, z| GridPoint { x, y, z };
+//! // An open model: one square at y = 5 under a light at y = 10.
+//! let square = [g(-2, 5, 2), g(2, 5, 2), g(2, 5, -2), g(-2, 5, -2)];
+//! let model = Model {
+//!     polygons: vec![ModelPolygon {
+//!         boundary: square.to_vec(),
+//!         pieces: vec![ConvexPolygon::from_grid_points(&square, 0).unwrap()],
+//!     }],
+//! };
+//! let bounds = [[-20.0, -1.0, -20.0], [20.0, 20.0, 20.0]];
+//! let volumes = BergeronVolumes::build(&[model], &Light::point(g(0, 10, 0)), bounds, None).unwrap();
+//! // Four open contour edges, each with an increment of 1.
+//! assert_eq!(volumes.stats().open_edges, 4);
+//! // The eye beside the square, outside the shadow; the floor under the
+//! // square is in shadow, the floor farther out is lit.
+//! let eye = [0.0, 5.0, 15.0];
+//! let start = volumes.eye_counts(eye);
+//! assert_eq!(start, vec![0]);
+//! assert!(volumes.in_shadow(eye, &start, [1.0, 0.0, 1.0]));
+//! assert!(!volumes.in_shadow(eye, &start, [6.0, 0.0, 1.0]));
+//! // The eye under the square is inside its volume (Type 3): it starts at 1.
+//! assert_eq!(volumes.eye_counts([0.0, 1.0, 0.0]), vec![1]);
+//! ```
+
+mod apex;
+mod crossing;
+mod twist;
+
+use std::collections::BTreeMap;
+
+use bsp_core::predicates::{Side, orient3d_f64};
+use bsp_core::{ConvexPolygon, GridPoint};
+
+pub use crossing::ShadowPolygon;
+pub use twist::is_l_twisted;
+
+use crate::{Error, Light};
+use apex::{Apex, f};
+
+/// Largest ratio by which a contour vertex is pushed away from the light:
+/// far corners stay exact in `f64` (grid coordinates below `2^25` times
+/// `2^26`).
+pub const MAX_PROJECTION_RATIO: f64 = (1u64 << 26) as f64;
+
+/// A shadow-casting model: an object of the scene, open or closed.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Model {
+    /// Its polygons.
+    pub polygons: Vec<ModelPolygon>,
+}
+
+/// One polygon of a model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelPolygon {
+    /// Its corners as given (grid points), planar or not; used to find
+    /// L-twisted polygons.
+    pub boundary: Vec<GridPoint>,
+    /// Convex planar pieces that tile it (its triangulation if it is not
+    /// planar), with grid-point vertices.
+    pub pieces: Vec<ConvexPolygon>,
+}
+
+/// Figures of one light's volumes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct VolumeStats {
+    /// Contour edges shared by two polygons (`Nb_C = ±2`, or more where
+    /// more polygons meet).
+    pub shared_edges: usize,
+    /// Open contour edges (`Nb_C = ±1`).
+    pub open_edges: usize,
+    /// L-twisted polygons, each with its own volume and count.
+    pub twisted_polygons: usize,
+    /// Models wholly beyond the light's range, left out.
+    pub models_beyond_range: usize,
+    /// Far caps (volumes truncated by a range).
+    pub caps: usize,
+}
+
+/// An edge of a model's pieces: the counter it adds to and its corners,
+/// smaller first.
+type EdgeKey = (u32, [i64; 3], [i64; 3]);
+
+/// A model polygon's piece as the eye count needs it.
+#[derive(Debug, Clone, PartialEq)]
+struct Piece {
+    vertices: Vec<[f64; 3]>,
+    cap: Option<Vec<[f64; 3]>>,
+    counter: u32,
+}
+
+/// The shadow volumes of a set of models under one light, ready to count
+/// along eye rays. See the [module documentation](self).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BergeronVolumes {
+    apex: Apex,
+    polygons: Vec<ShadowPolygon>,
+    pieces: Vec<Piece>,
+    counters: usize,
+    stats: VolumeStats,
+}
+
+impl BergeronVolumes {
+    /// The shadow volumes of `models` under `light` (grid units).
+    ///
+    /// `bounds` (`[min, max]`) must hold every eye and visible point that
+    /// will be queried. `reach` is the distance from a point light up to
+    /// which counts must be exact when the light has a range: at least the
+    /// range (smaller values count as the range). A renderer passes the
+    /// farthest point of any polygon that straddles the sphere, so that such
+    /// a polygon is classified by visibility all over.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::ImplicitInput`] if a piece has a vertex that is not a grid
+    /// point (the index counts pieces over all models, in order).
+    pub fn build(
+        models: &[Model],
+        light: &Light,
+        bounds: [[f64; 3]; 2],
+        reach: Option<f64>,
+    ) -> Result<Self, Error> {
+        let apex = Apex::of(&light.source);
+        let mut out = Self {
+            apex,
+            polygons: Vec::new(),
+            pieces: Vec::new(),
+            counters: 1,
+            stats: VolumeStats::default(),
+        };
+        let mut piece_index = 0;
+        for model in models {
+            // Grid-point corners of every piece, and which count each adds to.
+            let mut pieces: Vec<(Vec<[f64; 3]>, u32)> = Vec::new();
+            for polygon in &model.polygons {
+                let counter = if is_l_twisted(&polygon.boundary, &light.source) {
+                    out.stats.twisted_polygons += 1;
+                    out.counters += 1;
+                    (out.counters - 1) as u32
+                } else {
+                    0
+                };
+                for piece in &polygon.pieces {
+                    let corners: Option<Vec<GridPoint>> = (0..piece.len())
+                        .map(|i| piece.vertex_grid_point(i))
+                        .collect();
+                    let corners = corners.ok_or(Error::ImplicitInput(piece_index))?;
+                    piece_index += 1;
+                    pieces.push((corners.into_iter().map(f).collect(), counter));
+                }
+            }
+            let Some(model_box) = bounding_box(pieces.iter().flat_map(|(v, _)| v.iter())) else {
+                continue;
+            };
+            if let (Apex::Point(l), Some(range)) = (apex, light.range) {
+                if distance_to_box(l, model_box) >= range {
+                    out.stats.models_beyond_range += 1;
+                    continue;
+                }
+            }
+            out.add_model(&pieces, model_box, light, bounds, reach);
+        }
+        Ok(out)
+    }
+
+    fn add_model(
+        &mut self,
+        pieces: &[(Vec<[f64; 3]>, u32)],
+        model_box: [[f64; 3]; 2],
+        light: &Light,
+        bounds: [[f64; 3]; 2],
+        reach: Option<f64>,
+    ) {
+        let apex = self.apex;
+        // Nb_C of every edge, canonically directed (smaller corner first):
+        // crossing the plane through the light and the edge from the back
+        // of orient3d(L, a, b, .) to its front adds the weight.
+        let mut edges: BTreeMap<EdgeKey, i32> = BTreeMap::new();
+        let key = |v: [f64; 3]| v.map(|c| c as i64);
+        let mut casting = Vec::new();
+        for (v, counter) in pieces {
+            let light_side = orient3d_f64(v[0], v[1], v[2], apex.beside(v[0]));
+            if light_side == Side::On {
+                continue; // edge-on to the light: an empty frustum
+            }
+            let inside = orient3d_f64(apex.beside(v[0]), v[0], v[1], v[2]);
+            let inside_front = inside == Side::Front;
+            for i in 0..v.len() {
+                let (a, b) = (key(v[i]), key(v[(i + 1) % v.len()]));
+                let (lo, hi, reversed) = if a < b { (a, b, false) } else { (b, a, true) };
+                *edges.entry((*counter, lo, hi)).or_insert(0) +=
+                    if inside_front != reversed { 1 } else { -1 };
+            }
+            casting.push((v, *counter));
+        }
+        let contour: Vec<(EdgeKey, i32)> = edges.into_iter().filter(|&(_, w)| w != 0).collect();
+
+        // How far the shadow polygons reach: past `bounds` (ratio m_box) or,
+        // with a range, to Bergeron's projection (m_range) if that is less.
+        let to_f = |k: [i64; 3]| k.map(|c| c as f64);
+        let (ratio, capped) = match apex {
+            Apex::Point(l) => {
+                // Bergeron's SD: the distance from the light to the model's
+                // bounding box, or to its nearest piece from inside the box.
+                let sd = if distance_to_box(l, model_box) > 0.0 {
+                    distance_to_box(l, model_box)
+                } else {
+                    pieces
+                        .iter()
+                        .map(|(v, _)| crate::light::distance_to_polygon(l, v))
+                        .fold(f64::INFINITY, f64::min)
+                };
+                let sd = if sd.is_finite() { sd.max(1.0) } else { 1.0 };
+                let far = farthest_corner(l, bounds).max(farthest_corner(l, model_box));
+                let m_box = (far / sd).ceil() + 1.0;
+                match light.range {
+                    Some(range) => {
+                        let r = reach.map_or(range, |x| x.max(range));
+                        let m_range = (1.0 + (r - 1.0) / sd).ceil().max(2.0);
+                        (m_range.min(m_box), m_range < m_box)
+                    }
+                    None => (m_box, false),
+                }
+            }
+            Apex::Direction(d) => {
+                let length = distance(d, [0.0; 3]);
+                let diagonal =
+                    distance(bounds[0], bounds[1]) + distance(model_box[0], model_box[1]);
+                ((diagonal / length).ceil() + 1.0, false)
+            }
+        };
+        let ratio = ratio.clamp(2.0, MAX_PROJECTION_RATIO);
+
+        for ((counter, a, b), w) in contour {
+            let (a, b) = (to_f(a), to_f(b));
+            if w.abs() == 1 {
+                self.stats.open_edges += 1;
+            } else {
+                self.stats.shared_edges += 1;
+            }
+            // [a, b, b', a'] turns the other way from (L, a, b) around the
+            // plane: orient3d(a, b, b', x) = (1 - m) orient3d(L, a, b, x)
+            // for a point light, and likewise for a direction.
+            self.polygons.push(ShadowPolygon {
+                vertices: vec![a, b, apex.far(b, ratio), apex.far(a, ratio)],
+                weight: -w,
+                counter,
+            });
+        }
+        for (v, counter) in casting {
+            let cap = capped.then(|| v.iter().map(|&p| apex.far(p, ratio)).collect::<Vec<_>>());
+            if let Some(c) = &cap {
+                // Crossing a cap away from the light leaves the frustum.
+                let light_side = orient3d_f64(c[0], c[1], c[2], apex.beside(c[0]));
+                self.polygons.push(ShadowPolygon {
+                    vertices: c.clone(),
+                    weight: if light_side == Side::Back { -1 } else { 1 },
+                    counter,
+                });
+                self.stats.caps += 1;
+            }
+            self.pieces.push(Piece {
+                vertices: v.clone(),
+                cap,
+                counter,
+            });
+        }
+    }
+
+    /// The shadow polygons: contour edges' side polygons and, with a range,
+    /// far caps.
+    pub fn shadow_polygons(&self) -> &[ShadowPolygon] {
+        &self.polygons
+    }
+
+    /// Number of depth counts: 1 (the models') plus one per L-twisted
+    /// polygon.
+    pub fn counters(&self) -> usize {
+        self.counters
+    }
+
+    /// Figures of these volumes.
+    pub fn stats(&self) -> VolumeStats {
+        self.stats
+    }
+
+    /// The depth counts at `eye` (one per counter): for every model polygon
+    /// piece, whether the eye lies strictly inside its frustum closed by the
+    /// piece and its cap.
+    pub fn eye_counts(&self, eye: [f64; 3]) -> Vec<i32> {
+        let mut counts = vec![0; self.counters];
+        for piece in &self.pieces {
+            if crossing::in_frustum(&self.apex, &piece.vertices, piece.cap.as_deref(), eye) {
+                counts[piece.counter as usize] += 1;
+            }
+        }
+        counts
+    }
+
+    /// Whether `p`, seen from `eye` with depth counts `eye_counts`
+    /// ([`Self::eye_counts`]), is in shadow: some count is positive once
+    /// every shadow polygon the segment crosses has added its increment.
+    /// The segment must cross no model polygon (`p` is what the eye sees).
+    pub fn in_shadow(&self, eye: [f64; 3], eye_counts: &[i32], p: [f64; 3]) -> bool {
+        let mut counts = eye_counts.to_vec();
+        for polygon in &self.polygons {
+            counts[polygon.counter as usize] += polygon.crossing(eye, p);
+        }
+        is_shadowed(&counts)
+    }
+}
+
+/// Whether depth counts mean shadow: the models' count or an L-twisted
+/// polygon's own count is positive.
+pub fn is_shadowed(counts: &[i32]) -> bool {
+    counts.iter().any(|&c| c > 0)
+}
+
+fn bounding_box<'a>(points: impl Iterator<Item = &'a [f64; 3]>) -> Option<[[f64; 3]; 2]> {
+    let mut b: Option<[[f64; 3]; 2]> = None;
+    for p in points {
+        let [lo, hi] = b.get_or_insert([*p, *p]);
+        for i in 0..3 {
+            lo[i] = lo[i].min(p[i]);
+            hi[i] = hi[i].max(p[i]);
+        }
+    }
+    b
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// Distance from `p` to a box (0 inside).
+fn distance_to_box(p: [f64; 3], b: [[f64; 3]; 2]) -> f64 {
+    (0..3)
+        .map(|i| (b[0][i] - p[i]).max(p[i] - b[1][i]).max(0.0).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+/// Distance from `p` to the farthest corner of a box.
+fn farthest_corner(p: [f64; 3], b: [[f64; 3]; 2]) -> f64 {
+    (0..3)
+        .map(|i| (p[i] - b[0][i]).abs().max((p[i] - b[1][i]).abs()).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
+#[cfg(test)]
+mod tests;
