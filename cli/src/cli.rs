@@ -9,7 +9,7 @@ use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
     DemoFiles, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg,
-    render_scene, save_csg_obj, save_obj, save_ply, shadow_scene, shadow_scene_with,
+    render_scene_with, save_csg_obj, save_obj, save_ply, shadow_scene, shadow_scene_with,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -94,6 +94,16 @@ pub enum View {
     Fragments,
 }
 
+/// How `umbra render` finds shadows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Draw umbra's object-space fragments.
+    Fragments,
+    /// Count Bergeron's shadow polygons along every eye ray (point and
+    /// directional lights only; no fragments).
+    Volumes,
+}
+
 /// Options of `umbra render`.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
@@ -105,6 +115,9 @@ pub struct RenderArgs {
     /// What to show.
     #[arg(long, value_enum, default_value_t = View::Shaded)]
     pub view: View,
+    /// How shadows are found.
+    #[arg(long, value_enum, default_value_t = Method::Fragments)]
+    pub method: Method,
 }
 
 /// Options of `umbra dm`.
@@ -296,7 +309,11 @@ fn run_render(args: &RenderArgs) -> Result<()> {
         View::Classes => umbra::View::Classes,
         View::Fragments => umbra::View::Fragments,
     };
-    let image = render_scene(&scene, view)?;
+    let method = match args.method {
+        Method::Fragments => umbra::Method::Fragments,
+        Method::Volumes => umbra::Method::Volumes,
+    };
+    let image = render_scene_with(&scene, &umbra::RenderOptions { view, method })?;
     progress.say("writing");
     image.save_png(&args.output)?;
     progress.finish();

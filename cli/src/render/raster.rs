@@ -49,6 +49,14 @@ impl Samples {
         }
     }
 
+    /// Replaces the interpolated values, sample after sample (a grid made
+    /// without values takes none).
+    pub fn set_values(&mut self, values: impl Iterator<Item = [f32; 3]>) {
+        for (slot, v) in self.value.iter_mut().zip(values) {
+            *slot = v;
+        }
+    }
+
     /// Draws one triangle of fragment `id` (either orientation): every
     /// sample whose centre lies inside or on its edges and which is nearer
     /// than what is there takes it. The first triangle drawn wins ties, so

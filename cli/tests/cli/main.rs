@@ -10,6 +10,7 @@ mod ply_files;
 mod properties;
 mod render;
 mod shadow;
+mod volumes;
 
 use std::path::Path;
 use std::process::Command;
