@@ -157,24 +157,6 @@ pub fn orient3d_f64(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> Side 
     Side::of_sign(robust::orient3d(p(a), p(b), p(c), p(d)))
 }
 
-/// Side of a point with integer coordinates that may lie outside the grid
-/// (a camera's eye rounded to grid units, say): the sign of
-/// `a x + b y + c z + d`, exact in `i128`. `None` if a coordinate is
-/// beyond `2^62` in magnitude or the value would overflow.
-pub fn side_of_integer_point(plane: &Plane, p: [i64; 3]) -> Option<Side> {
-    const LIMIT: i64 = 1 << 62;
-    if p.iter().any(|c| !(-LIMIT..=LIMIT).contains(c)) {
-        return None;
-    }
-    let [a, b, c] = plane.normal();
-    let term = |n: i64, x: i64| i128::from(n).checked_mul(i128::from(x));
-    let value = term(a, p[0])?
-        .checked_add(term(b, p[1])?)?
-        .checked_add(term(c, p[2])?)?
-        .checked_add(plane.offset())?;
-    Some(Side::of_sign(value))
-}
-
 /// Floating-point filter data of an implicit point: approximate homogeneous
 /// coordinates (scaled so that the true `w` is positive) and, per
 /// coordinate, the permanent that bounds its error.
@@ -422,25 +404,12 @@ mod tests {
     use super::*;
 
     #[test]
-    fn explicit_points_and_far_integer_points() {
+    fn explicit_points() {
         let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
         // Counter-clockwise seen from +z: a point below is in front.
         assert_eq!(orient3d_f64(a, b, c, [0.3, 0.3, -1e-300]), Side::Front);
         assert_eq!(orient3d_f64(a, b, c, [0.3, 0.3, 1e-300]), Side::Back);
         assert_eq!(orient3d_f64(a, b, c, [0.1, 0.2, 0.0]), Side::On);
-        // The plane y = 3 (normal +y), far outside the grid.
-        let g = |x, y, z| GridPoint { x, y, z };
-        let plane = Plane::through(g(0, 3, 0), g(0, 3, 1), g(1, 3, 0)).unwrap();
-        let up = side_of_point(&plane, g(0, 4, 0));
-        assert_eq!(
-            side_of_integer_point(&plane, [1 << 40, 4, -(1 << 40)]),
-            Some(up)
-        );
-        assert_eq!(
-            side_of_integer_point(&plane, [7, 3, 1 << 50]),
-            Some(Side::On)
-        );
-        assert_eq!(side_of_integer_point(&plane, [0, i64::MAX, 0]), None);
     }
 
     fn gp(x: i32, y: i32, z: i32) -> GridPoint {

@@ -104,6 +104,16 @@ pub enum Method {
     Volumes,
 }
 
+/// How `umbra render` finds visible surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Order {
+    /// A z-buffer.
+    Zbuffer,
+    /// Back-to-front traversal of the scene BSP from the eye (painter's
+    /// algorithm, as the papers render).
+    Bsp,
+}
+
 /// Options of `umbra render`.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
@@ -118,6 +128,9 @@ pub struct RenderArgs {
     /// How shadows are found.
     #[arg(long, value_enum, default_value_t = Method::Fragments)]
     pub method: Method,
+    /// How visible surfaces are found.
+    #[arg(long, value_enum, default_value_t = Order::Zbuffer)]
+    pub order: Order,
 }
 
 /// Options of `umbra dm`.
@@ -313,7 +326,18 @@ fn run_render(args: &RenderArgs) -> Result<()> {
         Method::Fragments => umbra::Method::Fragments,
         Method::Volumes => umbra::Method::Volumes,
     };
-    let image = render_scene_with(&scene, &umbra::RenderOptions { view, method })?;
+    let order = match args.order {
+        Order::Zbuffer => umbra::Order::ZBuffer,
+        Order::Bsp => umbra::Order::Bsp,
+    };
+    let image = render_scene_with(
+        &scene,
+        &umbra::RenderOptions {
+            view,
+            method,
+            order,
+        },
+    )?;
     progress.say("writing");
     image.save_png(&args.output)?;
     progress.finish();

@@ -19,6 +19,7 @@
 //! Back faces of one-sided polygons are drawn like the rest: they receive
 //! no light, so they are dark in the shaded view and umbra in the others.
 
+mod bsp_order;
 mod camera;
 mod image;
 mod raster;
@@ -27,6 +28,7 @@ mod volumes;
 pub use camera::Projection;
 pub use image::{Image, linear_to_srgb8, srgb8_to_linear};
 
+use crate::decompose::Pieces;
 use crate::error::{Error, Result};
 use crate::mesh::OutputFace;
 use crate::scene::{Camera, LightKind, Scene};
@@ -69,6 +71,18 @@ pub enum Method {
     Volumes,
 }
 
+/// How visible surfaces are found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Order {
+    /// A z-buffer: each sample keeps the nearest surface.
+    #[default]
+    ZBuffer,
+    /// Back-to-front traversal of the scene BSP from the eye (the painter's
+    /// algorithm, as the papers render); the same image wherever polygons
+    /// do not interpenetrate.
+    Bsp,
+}
+
 /// Everything `umbra render` can be asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct RenderOptions {
@@ -76,14 +90,17 @@ pub struct RenderOptions {
     pub view: View,
     /// How shadows are found.
     pub method: Method,
+    /// How visible surfaces are found.
+    pub order: Order,
 }
 
 impl RenderOptions {
-    /// A view with the default method.
+    /// A view with the default method and order.
     pub fn view(view: View) -> Self {
         Self {
             view,
             method: Method::default(),
+            order: Order::default(),
         }
     }
 }
@@ -240,7 +257,7 @@ pub fn render_scene(scene: &Scene, view: View) -> Result<Image> {
 /// # Example
 ///
 /// ```
-/// use umbra::{Method, RenderOptions, Scene, View, render_scene_with};
+/// use umbra::{Method, Order, RenderOptions, Scene, View, render_scene_with};
 ///
 /// let scene = Scene::from_toml_str(
 ///     r#"
@@ -261,7 +278,7 @@ pub fn render_scene(scene: &Scene, view: View) -> Result<Image> {
 ///     "#,
 ///     "card.toml",
 /// )?;
-/// let options = |method| RenderOptions { view: View::Classes, method };
+/// let options = |method| RenderOptions { view: View::Classes, method, order: Order::ZBuffer };
 /// let fragments = render_scene_with(&scene, &options(Method::Fragments))?;
 /// let volumes = render_scene_with(&scene, &options(Method::Volumes))?;
 /// // The two methods draw the same shadow away from its edges.
@@ -270,9 +287,8 @@ pub fn render_scene(scene: &Scene, view: View) -> Result<Image> {
 /// # Ok::<(), umbra::Error>(())
 /// ```
 pub fn render_scene_with(scene: &Scene, options: &RenderOptions) -> Result<Image> {
-    let view = options.view;
     if options.method == Method::Volumes {
-        return volumes::render_volumes(scene, view);
+        return volumes::render_volumes(scene, options.view, options.order);
     }
     camera_of(scene)?;
     // Soft shadows need vertices inside the penumbra to show its gradient.
@@ -280,12 +296,12 @@ pub fn render_scene_with(scene: &Scene, options: &RenderOptions) -> Result<Image
         .lights
         .iter()
         .any(|l| matches!(l.kind, crate::scene::LightKind::Area { .. }));
-    let options = ShadowOptions {
+    let shadow_options = ShadowOptions {
         grid: has_area_light.then_some(RENDER_GRID),
         adaptive: None,
     };
-    let shadows = shadow_scene_with(scene, &options)?;
-    render(scene, &shadows, view)
+    let shadows = shadow_scene_with(scene, &shadow_options)?;
+    render_with(scene, &shadows, options)
 }
 
 /// Draws the fragments of `shadows` (computed for `scene`) from the scene's
@@ -301,32 +317,81 @@ pub fn render_scene_with(scene: &Scene, options: &RenderOptions) -> Result<Image
 /// If `shadows` was not computed for `scene` (a face naming a vertex that
 /// does not exist, fewer per-light values than lights).
 pub fn render(scene: &Scene, shadows: &ShadowResult, view: View) -> Result<Image> {
+    render_with(scene, shadows, &RenderOptions::view(view))
+}
+
+/// Draws the fragments of `shadows` (computed for `scene`) from the scene's
+/// camera in the given [`Order`] (the method is that of `shadows`:
+/// fragments).
+///
+/// # Errors
+///
+/// As [`render`]; with [`Order::Bsp`], also if the scene cannot be cut into
+/// pieces again or the eye is too far from it.
+///
+/// # Panics
+///
+/// As [`render`].
+pub fn render_with(
+    scene: &Scene,
+    shadows: &ShadowResult,
+    options: &RenderOptions,
+) -> Result<Image> {
+    let view = options.view;
     let camera = camera_of(scene)?;
     let projection = Projection::new(&camera);
     let n = SAMPLES_PER_SIDE;
-    let mut samples = Samples::new(
-        camera.width as usize * n,
-        camera.height as usize * n,
-        view == View::Shaded,
-    );
+    let (width, height) = (camera.width as usize * n, camera.height as usize * n);
+    let mut samples = match options.order {
+        Order::ZBuffer => Samples::new(width, height, view == View::Shaded),
+        Order::Bsp => Samples::painter(width, height, view == View::Shaded),
+    };
     let exposed_albedo = ALBEDO * exposure(scene, shadows);
     let near = near_distance(&camera);
     let mesh = &shadows.mesh;
     let mut classes = Vec::with_capacity(mesh.faces.len());
-    let mut polygon: Vec<([f64; 3], [f64; 3])> = Vec::new();
-    for (id, face) in mesh.faces.iter().enumerate() {
+    let mut polygons: Vec<Vec<([f64; 3], [f64; 3])>> = Vec::with_capacity(mesh.faces.len());
+    for face in &mesh.faces {
         let seen = lights_on_seen_side(scene, shadows, face, camera.eye);
         classes.push(FragmentClass::of_seen_side(face, shadows.lights, seen));
-        polygon.clear();
-        polygon.extend(face.vertices.iter().map(|&v| {
-            let value = if view == View::Shaded {
-                shaded_value(scene, shadows, v as usize, seen).map(|c| exposed_albedo * c)
-            } else {
-                [0.0; 3]
-            };
-            (projection.to_view(mesh.vertices[v as usize].0), value)
-        }));
-        draw_polygon(&mut samples, &projection, &polygon, near, id as u32);
+        polygons.push(
+            face.vertices
+                .iter()
+                .map(|&v| {
+                    let value = if view == View::Shaded {
+                        shaded_value(scene, shadows, v as usize, seen).map(|c| exposed_albedo * c)
+                    } else {
+                        [0.0; 3]
+                    };
+                    (projection.to_view(mesh.vertices[v as usize].0), value)
+                })
+                .collect(),
+        );
+    }
+    match options.order {
+        Order::ZBuffer => {
+            for (id, polygon) in polygons.iter().enumerate() {
+                draw_polygon(&mut samples, &projection, polygon, near, id as u32);
+            }
+        }
+        Order::Bsp => {
+            let pieces = Pieces::from_scene(scene)?;
+            let mut faces_of: Vec<Vec<usize>> = vec![Vec::new(); pieces.input_polygons];
+            for (id, face) in mesh.faces.iter().enumerate() {
+                faces_of[face.source as usize].push(id);
+            }
+            for (piece, part) in bsp_order::back_to_front(scene, &pieces, camera.eye)? {
+                let region: Vec<[f64; 3]> = part
+                    .vertices_f64()
+                    .iter()
+                    .map(|&v| projection.to_view(pieces.grid.grid_to_world(v)))
+                    .collect();
+                for &id in &faces_of[pieces.input_of[piece] as usize] {
+                    let inside = bsp_order::clip_to_region(&polygons[id], &region);
+                    draw_polygon(&mut samples, &projection, &inside, near, id as u32);
+                }
+            }
+        }
     }
     let class_colour: Vec<[f32; 3]> = classes.iter().map(|c| linear(c.srgb())).collect();
     Ok(resolve(

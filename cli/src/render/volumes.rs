@@ -1,7 +1,8 @@
 //! `umbra render --method volumes`: Bergeron's general shadow volumes
 //! counted along every sample's eye ray, with no object-space fragments.
 //!
-//! The scene's convex pieces are drawn into the z-buffer as they are. For
+//! The scene's convex pieces are drawn as they are (z-buffer, or the scene
+//! BSP's parts back to front). For
 //! every sample the visible point is where its eye ray meets the plane of
 //! the piece it shows; for every light, the shadow polygons of
 //! [`svbsp::bergeron::BergeronVolumes`] that the segment from the eye to
@@ -23,10 +24,11 @@ use illum::Sidedness;
 use svbsp::bergeron::{BergeronVolumes, Model, ModelPolygon, ShadowPolygon};
 use svbsp::{Light as VolumeLight, LightSource};
 
+use super::bsp_order::back_to_front;
 use super::raster::{EMPTY, Samples};
 use super::{
-    FragmentClass, Image, Projection, SAMPLES_PER_SIDE, View, camera_of, draw_polygon, linear,
-    near_distance, resolve,
+    FragmentClass, Image, Order, Projection, SAMPLES_PER_SIDE, View, camera_of, draw_polygon,
+    linear, near_distance, resolve,
 };
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
@@ -36,7 +38,7 @@ use crate::shadow::illum_lights;
 
 /// Renders `scene` from its camera with shadows found by counting shadow
 /// polygons along eye rays.
-pub(crate) fn render_volumes(scene: &Scene, view: View) -> Result<Image> {
+pub(crate) fn render_volumes(scene: &Scene, view: View, order: Order) -> Result<Image> {
     let camera = camera_of(scene)?;
     let pieces = Pieces::from_scene(scene)?;
     let grid = &pieces.grid;
@@ -45,15 +47,26 @@ pub(crate) fn render_volumes(scene: &Scene, view: View) -> Result<Image> {
     let near = near_distance(&camera);
     let n = SAMPLES_PER_SIDE;
     let (width, height) = (camera.width as usize * n, camera.height as usize * n);
-    let mut samples = Samples::new(width, height, view == View::Shaded);
     let corners: Vec<Vec<[f64; 3]>> = pieces.polygons.iter().map(|p| p.vertices_f64()).collect();
-    for (id, piece) in corners.iter().enumerate() {
-        let polygon: Vec<([f64; 3], [f64; 3])> = piece
-            .iter()
-            .map(|&v| (projection.to_view(grid.grid_to_world(v)), [0.0; 3]))
-            .collect();
-        draw_polygon(&mut samples, &projection, &polygon, near, id as u32);
-    }
+    let to_view = |v: &[f64; 3]| (projection.to_view(grid.grid_to_world(*v)), [0.0; 3]);
+    let mut samples = match order {
+        Order::ZBuffer => {
+            let mut samples = Samples::new(width, height, view == View::Shaded);
+            for (id, piece) in corners.iter().enumerate() {
+                let polygon: Vec<_> = piece.iter().map(to_view).collect();
+                draw_polygon(&mut samples, &projection, &polygon, near, id as u32);
+            }
+            samples
+        }
+        Order::Bsp => {
+            let mut samples = Samples::painter(width, height, view == View::Shaded);
+            for (id, part) in back_to_front(scene, &pieces, camera.eye)? {
+                let polygon: Vec<_> = part.vertices_f64().iter().map(to_view).collect();
+                draw_polygon(&mut samples, &projection, &polygon, near, id as u32);
+            }
+            samples
+        }
+    };
 
     // The visible point of every sample, in grid units.
     let eye = grid.world_to_grid(camera.eye);

@@ -6,6 +6,7 @@ mod csg;
 mod decomposition;
 mod demos;
 mod errors;
+mod order;
 mod ply_files;
 mod properties;
 mod render;

@@ -12,7 +12,7 @@
 use std::path::Path;
 
 use umbra::{
-    FragmentClass, Image, Method, RenderOptions, Scene, View, render_scene_with, write_demo,
+    FragmentClass, Image, Method, Order, RenderOptions, Scene, View, render_scene_with, write_demo,
 };
 
 use crate::{folder, umbra};
@@ -68,6 +68,7 @@ fn classes(scene: &Scene, method: Method) -> Image {
         &RenderOptions {
             view: View::Classes,
             method,
+            order: Order::ZBuffer,
         },
     )
     .unwrap()
