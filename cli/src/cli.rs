@@ -187,7 +187,7 @@ pub struct CsgArgs {
 /// Options of `umbra demo`.
 #[derive(Debug, Args)]
 pub struct DemoArgs {
-    /// The scene: `room` or `tetra`.
+    /// The scene: `room`, `room1`, `tetra` or `window`.
     #[arg(default_value = "room")]
     pub name: String,
     /// Folder to write into [default: a folder named after the scene].
