@@ -2,11 +2,20 @@
 //! polygon's shadow frustum: every answer is a sign of `orient3d` on
 //! explicit points ([`bsp_core::predicates::orient3d_f64`]), exact.
 //!
-//! Ties are decided one way, documented here: a segment that ends on a
-//! shadow polygon's plane, or whose line meets the polygon's boundary, does
-//! not cross it; a point on a frustum's boundary is not inside it. Such
-//! segments graze a shadow boundary, where either answer shows the same
-//! picture.
+//! Ties are broken so that every answer stays consistent:
+//!
+//! - the **eye** (a segment's start, a point whose depth counts are asked
+//!   for) is perturbed symbolically to `e + ε x + ε² y + ε³ z` (`ε` positive
+//!   and infinitely small): every orientation with it is affine in it, so
+//!   when one is zero its sign is that of the first non-zero change along
+//!   `x`, then `y`, then `z`, each read exactly by moving one coordinate to
+//!   the next `f64` up. An eye that lies on a shadow polygon (on the
+//!   boundary of a volume) is thus inside or outside the volume the same
+//!   way for its own count and for every segment it starts;
+//! - the **visible point** is not perturbed: a segment that ends on a
+//!   shadow polygon's plane does not cross it (the count just before the
+//!   point), and neither does one whose line meets the polygon's boundary
+//!   only degenerately. Such segments graze a shadow edge.
 
 use bsp_core::predicates::{Side, orient3d_f64};
 
@@ -35,21 +44,17 @@ impl ShadowPolygon {
     /// this polygon: `±weight`, or 0 if it does not cross.
     pub fn crossing(&self, e: [f64; 3], p: [f64; 3]) -> i32 {
         let v = &self.vertices;
-        let side_e = orient3d_f64(v[0], v[1], v[2], e);
+        let side_e = perturbed(e, |e| orient3d_f64(v[0], v[1], v[2], e));
         let side_p = orient3d_f64(v[0], v[1], v[2], p);
         if side_e == Side::On || side_p == Side::On || side_e == side_p {
             return 0;
         }
         // The line ep passes inside the polygon iff it turns the same way
         // around every edge.
-        let first = orient3d_f64(e, p, v[0], v[1]);
-        if first == Side::On {
+        let around = |i: usize| perturbed(e, |e| orient3d_f64(e, p, v[i], v[(i + 1) % v.len()]));
+        let first = around(0);
+        if first == Side::On || (1..v.len()).any(|i| around(i) != first) {
             return 0;
-        }
-        for i in 1..v.len() {
-            if orient3d_f64(e, p, v[i], v[(i + 1) % v.len()]) != first {
-                return 0;
-            }
         }
         if side_e == Side::Back {
             self.weight
@@ -59,11 +64,44 @@ impl ShadowPolygon {
     }
 }
 
-/// Whether `x` lies strictly inside the shadow frustum of the convex planar
-/// polygon `v` (grid points, exact): beyond its plane from the light,
-/// inside the cone of rays from the light through it, and, when `cap` (the
-/// polygon's far copy) is given, on the light's side of the cap. A polygon
-/// whose plane holds the light has an empty frustum.
+/// The side `orient(e)` gives for the symbolically perturbed point
+/// `e + ε x + ε² y + ε³ z`, where `orient` is affine in its point (every
+/// orientation is): its sign at `e` or, if zero, that of its change as one
+/// coordinate moves to the next `f64` up, `x` first. [`Side::On`] only if
+/// `orient` does not depend on the point at all.
+fn perturbed(e: [f64; 3], orient: impl Fn([f64; 3]) -> Side) -> Side {
+    let side = orient(e);
+    if side != Side::On {
+        return side;
+    }
+    for axis in 0..3 {
+        let mut moved = e;
+        moved[axis] = next_up(e[axis]);
+        let side = orient(moved);
+        if side != Side::On {
+            return side;
+        }
+    }
+    Side::On
+}
+
+/// The least `f64` above `x` (finite `x`; `f64::next_up` needs Rust 1.86).
+fn next_up(x: f64) -> f64 {
+    if x.is_nan() || x == f64::INFINITY {
+        return x;
+    }
+    if x == 0.0 {
+        return f64::from_bits(1);
+    }
+    let bits = x.to_bits();
+    f64::from_bits(if x > 0.0 { bits + 1 } else { bits - 1 })
+}
+
+/// Whether `x`, perturbed as an eye is, lies inside the shadow frustum of
+/// the convex planar polygon `v` (grid points, exact): beyond its plane from
+/// the light, inside the cone of rays from the light through it, and, when
+/// `cap` (the polygon's far copy) is given, on the light's side of the cap.
+/// A polygon whose plane holds the light has an empty frustum.
 pub(crate) fn in_frustum(
     apex: &Apex,
     v: &[[f64; 3]],
@@ -71,20 +109,23 @@ pub(crate) fn in_frustum(
     x: [f64; 3],
 ) -> bool {
     let light_side = orient3d_f64(v[0], v[1], v[2], apex.beside(v[0]));
-    if light_side == Side::On || orient3d_f64(v[0], v[1], v[2], x) != light_side.flipped() {
+    if light_side == Side::On
+        || perturbed(x, |x| orient3d_f64(v[0], v[1], v[2], x)) != light_side.flipped()
+    {
         return false;
     }
     let inside = orient3d_f64(apex.beside(v[0]), v[0], v[1], v[2]);
     for i in 0..v.len() {
         let (a, b) = (v[i], v[(i + 1) % v.len()]);
-        if orient3d_f64(apex.beside(a), a, b, x) != inside {
+        if perturbed(x, |x| orient3d_f64(apex.beside(a), a, b, x)) != inside {
             return false;
         }
     }
     match cap {
         Some(c) => {
             let light_side = orient3d_f64(c[0], c[1], c[2], apex.beside(c[0]));
-            light_side != Side::On && orient3d_f64(c[0], c[1], c[2], x) == light_side
+            light_side != Side::On
+                && perturbed(x, |x| orient3d_f64(c[0], c[1], c[2], x)) == light_side
         }
         None => true,
     }
@@ -115,8 +156,21 @@ mod tests {
         // Beside it, or stopping on it: no crossing.
         assert_eq!(square.crossing([3.0, 1.0, 1.0], [3.0, 1.0, -1.0]), 0);
         assert_eq!(square.crossing(above, [1.0, 1.0, 0.0]), 0);
-        // Through an edge's line: not counted.
+        // Through an edge's line: decided by the eye's perturbation (+x:
+        // outside the square's edge x = 2, then the edge y = 0 at x = 0:
+        // +x is inside).
         assert_eq!(square.crossing([2.0, 1.0, 1.0], [2.0, 1.0, -1.0]), 0);
+        assert_eq!(square.crossing([0.0, 1.0, 1.0], [0.0, 1.0, -1.0]), 2);
+        // Starting on its plane, inside it: the eye counts as just beside
+        // it (+x does not leave the plane; +y neither; +z is above).
+        assert_eq!(square.crossing([1.0, 1.0, 0.0], below), 2);
+    }
+
+    #[test]
+    fn next_up_is_the_next_float() {
+        assert_eq!(next_up(1.0), 1.0 + f64::EPSILON);
+        assert_eq!(next_up(-1.0), -1.0 + f64::EPSILON / 2.0);
+        assert!(next_up(0.0) > 0.0);
     }
 
     #[test]

@@ -110,8 +110,14 @@ fn counts_follow_any_segment() {
     for light in lights() {
         let v = BergeronVolumes::build(&scene_models(), &light, BOUNDS, None).unwrap();
         let pieces = piece_polygons(&v);
-        for _ in 0..400 {
-            let (e, p) = (random_point(&mut rng), random_point(&mut rng));
+        for round in 0..800 {
+            let (mut e, p) = (random_point(&mut rng), random_point(&mut rng));
+            // Every other eye at a small integer point: often on a shadow
+            // polygon's plane or in a model's plane, where the perturbation
+            // decides.
+            if round % 2 == 1 {
+                e = e.map(|c| (c / 3.0).round());
+            }
             let mut counts = v.eye_counts(e);
             for polygon in v.shadow_polygons().iter().chain(&pieces) {
                 counts[polygon.counter as usize] += polygon.crossing(e, p);
@@ -264,6 +270,32 @@ fn contour_increments_of_closed_and_open_models() {
     .unwrap();
     assert_eq!(v.eye_counts([0.5, 2.5, 0.5]), vec![0]);
     assert_eq!(v.eye_counts([30.5, -20.0, 0.5]), vec![1]);
+}
+
+#[test]
+fn an_eye_on_a_shadow_polygon() {
+    // The square's shadow volume under the light; the plane through the
+    // light and its edge x = 2 is 5x + 2y = 20, and (3, 2.5, 0) lies on the
+    // volume's side there.
+    let square = [g(-2, 5, 2), g(2, 5, 2), g(2, 5, -2), g(-2, 5, -2)];
+    let model = Model {
+        polygons: vec![flat(&square)],
+    };
+    let v = BergeronVolumes::build(&[model], &Light::point(g(0, 10, 0)), BOUNDS, None).unwrap();
+    let eye = [3.0, 2.5, 0.0];
+    let start = v.eye_counts(eye);
+    // Perturbed along +x, the eye is just outside.
+    assert_eq!(start, vec![0]);
+    assert!(v.in_shadow(eye, &start, [0.5, 0.0, 1.0]));
+    assert!(v.in_shadow(eye, &start, [3.9, 0.0, -0.5]));
+    assert!(!v.in_shadow(eye, &start, [4.1, 0.0, -0.5]));
+    assert!(!v.in_shadow(eye, &start, [6.0, 0.0, 0.0]));
+    // On the side x = -2 the same perturbation puts it inside.
+    let eye = [-3.0, 2.5, 0.0];
+    let start = v.eye_counts(eye);
+    assert_eq!(start, vec![1]);
+    assert!(v.in_shadow(eye, &start, [0.5, 0.0, 1.0]));
+    assert!(!v.in_shadow(eye, &start, [-6.0, 0.0, 0.0]));
 }
 
 #[test]
