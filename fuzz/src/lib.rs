@@ -14,6 +14,7 @@
 //! ```
 
 pub mod area;
+pub mod bergeron;
 pub mod merge;
 pub mod split;
 

@@ -122,12 +122,11 @@ pub(crate) fn render_volumes(scene: &Scene, view: View, order: Order) -> Result<
                 })
                 .fold(range, f64::max)
         });
-        let volumes =
-            BergeronVolumes::build(&models, light, bounds, reach).map_err(|e| Error::Field {
-                path: scene.path.clone(),
-                field: format!("light[{i}]"),
-                message: e.to_string(),
-            })?;
+        let volumes = BergeronVolumes::build(&models, light, reach).map_err(|e| Error::Field {
+            path: scene.path.clone(),
+            field: format!("light[{i}]"),
+            message: e.to_string(),
+        })?;
         let shadowed = count_shadows(&volumes, eye, &visible, |polygon| {
             touched_samples(polygon, bounds, grid, &projection, near, width, height)
         });
@@ -249,8 +248,9 @@ fn count_shadows(
 }
 
 /// The samples whose eye segment may cross `polygon`: those under the
-/// projection of its part inside `bounds`, with a margin of two samples;
-/// all of them if that part comes nearer to the eye than the near plane.
+/// projection of its part inside `bounds` (an open polygon's rays cut where
+/// they leave the box), with a margin of two samples; all of them if that
+/// part comes nearer to the eye than the near plane.
 fn touched_samples(
     polygon: &ShadowPolygon,
     bounds: [[f64; 3]; 2],
@@ -260,7 +260,18 @@ fn touched_samples(
     width: usize,
     height: usize,
 ) -> Vec<usize> {
-    let inside = clip_to_box(&polygon.vertices, bounds);
+    let mut corners = polygon.vertices.clone();
+    if !polygon.closed {
+        // Out along the rays until past the box.
+        let reach = distance(bounds[0], bounds[1]);
+        let n = corners.len();
+        for (ray, base) in [(0, 1), (n - 1, n - 2)] {
+            let step = sub(corners[ray], corners[base]);
+            let k = reach / dot(step, step).sqrt() + 1.0;
+            corners[ray] = [0, 1, 2].map(|i| corners[base][i] + k * step[i]);
+        }
+    }
+    let inside = clip_to_box(&corners, bounds);
     if inside.is_empty() {
         return Vec::new();
     }

@@ -25,9 +25,14 @@ use super::apex::Apex;
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShadowPolygon {
     /// Its corners, a convex planar polygon (exact `f64`, grid units). A
-    /// side polygon is `[a, b, b', a']`: the contour edge `ab` and its far
-    /// copy; a cap is a model polygon's far copy.
+    /// side polygon is `[a', a, b, b']`: the contour edge `ab` between the
+    /// two rays from the light through its ends, `a'` and `b'` on them; a
+    /// cap is a model polygon's far copy.
     pub vertices: Vec<[f64; 3]>,
+    /// Whether the polygon is closed by the edge from its last corner back
+    /// to its first. An open one is unbounded: that edge lies at infinity,
+    /// and its first and last corners only give the rays' directions.
+    pub closed: bool,
     /// Bergeron's `Nb_C`: what crossing it adds to the depth count, going
     /// from the back of `vertices[0..3]`'s orientation to its front
     /// ([`Side::Back`] to [`Side::Front`] of `orient3d_f64(v0, v1, v2, x)`),
@@ -49,11 +54,17 @@ impl ShadowPolygon {
         if side_e == Side::On || side_p == Side::On || side_e == side_p {
             return 0;
         }
-        // The line ep passes inside the polygon iff it turns the same way
-        // around every edge.
+        // The line ep passes inside the polygon iff it turns around every
+        // edge the way a line from the back of `v[0..3]` to its front
+        // turns around a convex polygon's edges: orient3d(e, p, v_i,
+        // v_i+1) has the sign opposite to e's side. Of an open polygon only
+        // the finite edges are tested: it is the intersection of their
+        // half-planes (asking for the sign, not only for equal signs, keeps
+        // out the intersection of the other half-planes, the cone opposite).
+        let edges = if self.closed { v.len() } else { v.len() - 1 };
+        let inside = side_e.flipped();
         let around = |i: usize| perturbed(e, |e| orient3d_f64(e, p, v[i], v[(i + 1) % v.len()]));
-        let first = around(0);
-        if first == Side::On || (1..v.len()).any(|i| around(i) != first) {
+        if (0..edges).any(|i| around(i) != inside) {
             return 0;
         }
         if side_e == Side::Back {
@@ -144,6 +155,7 @@ mod tests {
                 [2.0, 2.0, 0.0],
                 [0.0, 2.0, 0.0],
             ],
+            closed: true,
             weight: 2,
             counter: 0,
         };
@@ -164,6 +176,30 @@ mod tests {
         // Starting on its plane, inside it: the eye counts as just beside
         // it (+x does not leave the plane; +y neither; +z is above).
         assert_eq!(square.crossing([1.0, 1.0, 0.0], below), 2);
+    }
+
+    #[test]
+    fn an_open_polygon_reaches_to_infinity() {
+        // The wedge under the edge (-1, 5, 0) - (1, 5, 0) from a light at
+        // (0, 10, 0): rays through (-2, 0, 0) and (2, 0, 0).
+        let wedge = ShadowPolygon {
+            vertices: vec![
+                [-2.0, 0.0, 0.0],
+                [-1.0, 5.0, 0.0],
+                [1.0, 5.0, 0.0],
+                [2.0, 0.0, 0.0],
+            ],
+            closed: false,
+            weight: 1,
+            counter: 0,
+        };
+        let far = |x: f64, z: f64| [x, -1e6, z];
+        assert_eq!(wedge.crossing(far(0.0, 1.0), far(0.0, -1.0)).abs(), 1);
+        assert_eq!(wedge.crossing(far(1e5, 1.0), far(1e5, -1.0)).abs(), 1);
+        assert_eq!(wedge.crossing(far(3e5, 1.0), far(3e5, -1.0)), 0);
+        // Above the edge, or in the opposite cone above the light: no.
+        assert_eq!(wedge.crossing([0.0, 7.0, 1.0], [0.0, 7.0, -1.0]), 0);
+        assert_eq!(wedge.crossing([0.0, 20.0, 1.0], [0.0, 20.0, -1.0]), 0);
     }
 
     #[test]

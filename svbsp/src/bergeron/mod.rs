@@ -35,11 +35,14 @@
 //!   point light's range casts nothing. The others' shadow polygons end at
 //!   Bergeron's projection `V + ((range - 1) / SD) (V - L)` of each contour
 //!   vertex `V`, `SD` the distance from the light to the model's bounding
-//!   box (to its nearest contour edge if the light is inside the box):
-//!   every point in range lies before that end. The ratio is rounded up to
-//!   an integer so that the far corners are exact, and the volumes are
-//!   closed there by caps. Without a range the polygons reach past the
-//!   bounds given to [`BergeronVolumes::build`], and need no caps.
+//!   box (to its nearest piece if the light is inside the box): every point
+//!   in range lies before that end. The ratio is rounded up to an integer
+//!   (and kept at least `range / SD`, which it is whenever `SD` is a grid
+//!   unit or more) so that the far corners are exact, and the volumes are
+//!   closed there by caps. Without a range, or when the ratio would exceed
+//!   [`MAX_PROJECTION_RATIO`], a side polygon is unbounded: the contour edge
+//!   and the two rays from the light through its ends
+//!   ([`ShadowPolygon::closed`] is false).
 //!
 //! Coordinates are grid units. Every decision (which side of a shadow
 //! polygon a point lies on, whether a segment crosses it, whether a
@@ -63,8 +66,7 @@
 //!         pieces: vec![ConvexPolygon::from_grid_points(&square, 0).unwrap()],
 //!     }],
 //! };
-//! let bounds = [[-20.0, -1.0, -20.0], [20.0, 20.0, 20.0]];
-//! let volumes = BergeronVolumes::build(&[model], &Light::point(g(0, 10, 0)), bounds, None).unwrap();
+//! let volumes = BergeronVolumes::build(&[model], &Light::point(g(0, 10, 0)), None).unwrap();
 //! // Four open contour edges, each with an increment of 1.
 //! assert_eq!(volumes.stats().open_edges, 4);
 //! // The eye beside the square, outside the shadow; the floor under the
@@ -158,8 +160,7 @@ pub struct BergeronVolumes {
 impl BergeronVolumes {
     /// The shadow volumes of `models` under `light` (grid units).
     ///
-    /// `bounds` (`[min, max]`) must hold every eye and visible point that
-    /// will be queried. `reach` is the distance from a point light up to
+    /// `reach` is the distance from a point light up to
     /// which counts must be exact when the light has a range: at least the
     /// range (smaller values count as the range). A renderer passes the
     /// farthest point of any polygon that straddles the sphere, so that such
@@ -169,12 +170,7 @@ impl BergeronVolumes {
     ///
     /// [`Error::ImplicitInput`] if a piece has a vertex that is not a grid
     /// point (the index counts pieces over all models, in order).
-    pub fn build(
-        models: &[Model],
-        light: &Light,
-        bounds: [[f64; 3]; 2],
-        reach: Option<f64>,
-    ) -> Result<Self, Error> {
+    pub fn build(models: &[Model], light: &Light, reach: Option<f64>) -> Result<Self, Error> {
         let apex = Apex::of(&light.source);
         let mut out = Self {
             apex,
@@ -185,26 +181,21 @@ impl BergeronVolumes {
         };
         let mut piece_index = 0;
         for model in models {
-            // Grid-point corners of every piece, and which count each adds to.
-            let mut pieces: Vec<(Vec<[f64; 3]>, u32)> = Vec::new();
+            // Grid-point corners of every polygon's pieces.
+            let mut corners: Vec<Vec<Vec<[f64; 3]>>> = Vec::with_capacity(model.polygons.len());
             for polygon in &model.polygons {
-                let counter = if is_l_twisted(&polygon.boundary, &light.source) {
-                    out.stats.twisted_polygons += 1;
-                    out.counters += 1;
-                    (out.counters - 1) as u32
-                } else {
-                    0
-                };
+                let mut of_polygon = Vec::with_capacity(polygon.pieces.len());
                 for piece in &polygon.pieces {
-                    let corners: Option<Vec<GridPoint>> = (0..piece.len())
+                    let grid: Option<Vec<GridPoint>> = (0..piece.len())
                         .map(|i| piece.vertex_grid_point(i))
                         .collect();
-                    let corners = corners.ok_or(Error::ImplicitInput(piece_index))?;
+                    let grid = grid.ok_or(Error::ImplicitInput(piece_index))?;
                     piece_index += 1;
-                    pieces.push((corners.into_iter().map(f).collect(), counter));
+                    of_polygon.push(grid.into_iter().map(f).collect());
                 }
+                corners.push(of_polygon);
             }
-            let Some(model_box) = bounding_box(pieces.iter().flat_map(|(v, _)| v.iter())) else {
+            let Some(model_box) = bounding_box(corners.iter().flatten().flatten()) else {
                 continue;
             };
             if let (Apex::Point(l), Some(range)) = (apex, light.range) {
@@ -213,7 +204,20 @@ impl BergeronVolumes {
                     continue;
                 }
             }
-            out.add_model(&pieces, model_box, light, bounds, reach);
+            // Which count each piece adds to: its own for an L-twisted
+            // polygon.
+            let mut pieces: Vec<(Vec<[f64; 3]>, u32)> = Vec::new();
+            for (polygon, of_polygon) in model.polygons.iter().zip(corners) {
+                let counter = if is_l_twisted(&polygon.boundary, &light.source) {
+                    out.stats.twisted_polygons += 1;
+                    out.counters += 1;
+                    (out.counters - 1) as u32
+                } else {
+                    0
+                };
+                pieces.extend(of_polygon.into_iter().map(|v| (v, counter)));
+            }
+            out.add_model(&pieces, model_box, light, reach);
         }
         Ok(out)
     }
@@ -223,7 +227,6 @@ impl BergeronVolumes {
         pieces: &[(Vec<[f64; 3]>, u32)],
         model_box: [[f64; 3]; 2],
         light: &Light,
-        bounds: [[f64; 3]; 2],
         reach: Option<f64>,
     ) {
         let apex = self.apex;
@@ -250,41 +253,31 @@ impl BergeronVolumes {
         }
         let contour: Vec<(EdgeKey, i32)> = edges.into_iter().filter(|&(_, w)| w != 0).collect();
 
-        // How far the shadow polygons reach: past `bounds` (ratio m_box) or,
-        // with a range, to Bergeron's projection (m_range) if that is less.
+        // With a range, the volumes end at Bergeron's projection of every
+        // vertex, ratio 1 + (R - 1) / SD (never less than R / SD, which
+        // reaches R from the nearest point), rounded up to an integer so
+        // that far corners are exact; a ratio beyond MAX_PROJECTION_RATIO
+        // leaves the volumes unbounded. Without a range they are unbounded.
         let to_f = |k: [i64; 3]| k.map(|c| c as f64);
-        let (ratio, capped) = match apex {
-            Apex::Point(l) => {
+        let ratio = match (apex, light.range) {
+            (Apex::Point(l), Some(range)) => {
                 // Bergeron's SD: the distance from the light to the model's
-                // bounding box, or to its nearest piece from inside the box.
+                // bounding box or, from inside the box, to its nearest
+                // casting piece (none holds the light: those were skipped).
                 let sd = if distance_to_box(l, model_box) > 0.0 {
                     distance_to_box(l, model_box)
                 } else {
-                    pieces
+                    casting
                         .iter()
                         .map(|(v, _)| crate::light::distance_to_polygon(l, v))
                         .fold(f64::INFINITY, f64::min)
                 };
-                let sd = if sd.is_finite() { sd.max(1.0) } else { 1.0 };
-                let far = farthest_corner(l, bounds).max(farthest_corner(l, model_box));
-                let m_box = (far / sd).ceil() + 1.0;
-                match light.range {
-                    Some(range) => {
-                        let r = reach.map_or(range, |x| x.max(range));
-                        let m_range = (1.0 + (r - 1.0) / sd).ceil().max(2.0);
-                        (m_range.min(m_box), m_range < m_box)
-                    }
-                    None => (m_box, false),
-                }
+                let r = reach.map_or(range, |x| x.max(range));
+                let m = (1.0 + (r - 1.0) / sd).max(r / sd).ceil().max(2.0);
+                (m <= MAX_PROJECTION_RATIO).then_some(m)
             }
-            Apex::Direction(d) => {
-                let length = distance(d, [0.0; 3]);
-                let diagonal =
-                    distance(bounds[0], bounds[1]) + distance(model_box[0], model_box[1]);
-                ((diagonal / length).ceil() + 1.0, false)
-            }
+            _ => None,
         };
-        let ratio = ratio.clamp(2.0, MAX_PROJECTION_RATIO);
 
         for ((counter, a, b), w) in contour {
             let (a, b) = (to_f(a), to_f(b));
@@ -293,22 +286,29 @@ impl BergeronVolumes {
             } else {
                 self.stats.shared_edges += 1;
             }
-            // [a, b, b', a'] turns the other way from (L, a, b) around the
-            // plane: orient3d(a, b, b', x) = (1 - m) orient3d(L, a, b, x)
-            // for a point light, and likewise for a direction.
+            // [a', a, b, b'] turns the other way from (L, a, b) around the
+            // plane: orient3d(a', a, b, x) = -(m - 1) orient3d(L, a, b, x)
+            // with a' = L + m (a - L) (and likewise for a direction), so the
+            // increment changes sign.
+            let (vertices, closed) = match ratio {
+                Some(m) => (vec![apex.far(a, m), a, b, apex.far(b, m)], true),
+                None => (vec![apex.far(a, 2.0), a, b, apex.far(b, 2.0)], false),
+            };
             self.polygons.push(ShadowPolygon {
-                vertices: vec![a, b, apex.far(b, ratio), apex.far(a, ratio)],
+                vertices,
+                closed,
                 weight: -w,
                 counter,
             });
         }
         for (v, counter) in casting {
-            let cap = capped.then(|| v.iter().map(|&p| apex.far(p, ratio)).collect::<Vec<_>>());
+            let cap = ratio.map(|m| v.iter().map(|&p| apex.far(p, m)).collect::<Vec<_>>());
             if let Some(c) = &cap {
                 // Crossing a cap away from the light leaves the frustum.
                 let light_side = orient3d_f64(c[0], c[1], c[2], apex.beside(c[0]));
                 self.polygons.push(ShadowPolygon {
                     vertices: c.clone(),
+                    closed: true,
                     weight: if light_side == Side::Back { -1 } else { 1 },
                     counter,
                 });
@@ -383,22 +383,10 @@ fn bounding_box<'a>(points: impl Iterator<Item = &'a [f64; 3]>) -> Option<[[f64;
     b
 }
 
-fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
-    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
-}
-
 /// Distance from `p` to a box (0 inside).
 fn distance_to_box(p: [f64; 3], b: [[f64; 3]; 2]) -> f64 {
     (0..3)
         .map(|i| (b[0][i] - p[i]).max(p[i] - b[1][i]).max(0.0).powi(2))
-        .sum::<f64>()
-        .sqrt()
-}
-
-/// Distance from `p` to the farthest corner of a box.
-fn farthest_corner(p: [f64; 3], b: [[f64; 3]; 2]) -> f64 {
-    (0..3)
-        .map(|i| (p[i] - b[0][i]).abs().max((p[i] - b[1][i]).abs()).powi(2))
         .sum::<f64>()
         .sqrt()
 }

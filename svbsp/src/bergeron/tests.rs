@@ -65,8 +65,6 @@ fn scene_models() -> Vec<Model> {
     ]
 }
 
-const BOUNDS: [[f64; 3]; 2] = [[-40.0, -40.0, -40.0], [40.0, 40.0, 40.0]];
-
 fn lights() -> Vec<Light> {
     vec![
         Light::point(g(0, 20, 0)),
@@ -94,6 +92,7 @@ fn piece_polygons(v: &BergeronVolumes) -> Vec<ShadowPolygon> {
             let light_side = orient3d_f64(c[0], c[1], c[2], v.apex.beside(c[0]));
             (light_side != Side::On).then(|| ShadowPolygon {
                 vertices: c.clone(),
+                closed: true,
                 weight: if light_side == Side::Back { 1 } else { -1 },
                 counter: p.counter,
             })
@@ -108,7 +107,7 @@ fn piece_polygons(v: &BergeronVolumes) -> Vec<ShadowPolygon> {
 fn counts_follow_any_segment() {
     let mut rng = Pcg64::seed_from_u64(7);
     for light in lights() {
-        let v = BergeronVolumes::build(&scene_models(), &light, BOUNDS, None).unwrap();
+        let v = BergeronVolumes::build(&scene_models(), &light, None).unwrap();
         let pieces = piece_polygons(&v);
         for round in 0..800 {
             let (mut e, p) = (random_point(&mut rng), random_point(&mut rng));
@@ -140,7 +139,7 @@ fn shadow_is_occlusion() {
         .map(|p| p.vertices_f64())
         .collect();
     for light in lights() {
-        let v = BergeronVolumes::build(&models, &light, BOUNDS, None).unwrap();
+        let v = BergeronVolumes::build(&models, &light, None).unwrap();
         let mut shadowed = 0;
         for _ in 0..1500 {
             let mut x = random_point(&mut rng);
@@ -233,24 +232,14 @@ fn oracle_occluded(
 fn contour_increments_of_closed_and_open_models() {
     let light = Light::point(g(0, 20, 0));
     // A closed box under the light: its contour edges are shared, Nb_C = 2.
-    let closed = BergeronVolumes::build(
-        &[cuboid([-2, 1, -2], [2, 3, 2], false)],
-        &light,
-        BOUNDS,
-        None,
-    )
-    .unwrap();
+    let closed =
+        BergeronVolumes::build(&[cuboid([-2, 1, -2], [2, 3, 2], false)], &light, None).unwrap();
     let s = closed.stats();
     assert_eq!((s.shared_edges, s.open_edges), (4, 0));
     assert!(closed.shadow_polygons().iter().all(|p| p.weight.abs() == 2));
     // The open box (no top) under the light: its rim is open, Nb_C = 1.
-    let open = BergeronVolumes::build(
-        &[cuboid([-2, 1, -2], [2, 3, 2], true)],
-        &light,
-        BOUNDS,
-        None,
-    )
-    .unwrap();
+    let open =
+        BergeronVolumes::build(&[cuboid([-2, 1, -2], [2, 3, 2], true)], &light, None).unwrap();
     let s = open.stats();
     assert_eq!((s.shared_edges, s.open_edges), (0, 4));
     // Under a closed box the count is 2 (Type 2), under the open one 1
@@ -261,13 +250,7 @@ fn contour_increments_of_closed_and_open_models() {
     // From inside the open box, nothing is in its shadow inside it, and
     // everything below the floor is.
     let inside = Light::point(g(0, 2, 0));
-    let v = BergeronVolumes::build(
-        &[cuboid([-2, 1, -2], [2, 3, 2], true)],
-        &inside,
-        BOUNDS,
-        None,
-    )
-    .unwrap();
+    let v = BergeronVolumes::build(&[cuboid([-2, 1, -2], [2, 3, 2], true)], &inside, None).unwrap();
     assert_eq!(v.eye_counts([0.5, 2.5, 0.5]), vec![0]);
     assert_eq!(v.eye_counts([30.5, -20.0, 0.5]), vec![1]);
 }
@@ -281,7 +264,7 @@ fn an_eye_on_a_shadow_polygon() {
     let model = Model {
         polygons: vec![flat(&square)],
     };
-    let v = BergeronVolumes::build(&[model], &Light::point(g(0, 10, 0)), BOUNDS, None).unwrap();
+    let v = BergeronVolumes::build(&[model], &Light::point(g(0, 10, 0)), None).unwrap();
     let eye = [3.0, 2.5, 0.0];
     let start = v.eye_counts(eye);
     // Perturbed along +x, the eye is just outside.
@@ -308,13 +291,11 @@ fn twisted_polygons_count_apart() {
     let above = BergeronVolumes::build(
         std::slice::from_ref(&model),
         &Light::point(g(-2, 30, 4)),
-        BOUNDS,
         None,
     )
     .unwrap();
     assert_eq!((above.stats().twisted_polygons, above.counters()), (0, 1));
-    let side =
-        BergeronVolumes::build(&[model], &Light::directional([0, 0, 1]), BOUNDS, None).unwrap();
+    let side = BergeronVolumes::build(&[model], &Light::directional([0, 0, 1]), None).unwrap();
     assert_eq!((side.stats().twisted_polygons, side.counters()), (1, 2));
     assert!(side.shadow_polygons().iter().all(|p| p.counter == 1));
     // Behind it along +z, in the left lobe of its bow-tie outline.
@@ -331,16 +312,34 @@ fn a_range_truncates_and_leaves_far_models_out() {
         range: Some(20.0),
         ..Light::point(g(0, 16, 0))
     };
-    let v = BergeronVolumes::build(&[near, far], &light, BOUNDS, None).unwrap();
+    let v = BergeronVolumes::build(&[near, far], &light, None).unwrap();
     assert_eq!(v.stats().models_beyond_range, 1);
     assert_eq!(v.stats().caps, 6);
     // Inside the range under the box: shadow (closed: 2); far beyond the
     // truncation: out of every volume.
     assert_eq!(v.eye_counts([0.5, 0.0, 0.5]), vec![2]);
     assert_eq!(v.eye_counts([0.5, -39.0, 0.5]), vec![0]);
+    assert!(v.shadow_polygons().iter().all(|p| p.closed));
+    // Without the range the volumes are unbounded.
+    let unbounded = BergeronVolumes::build(
+        &[cuboid([-2, 10, -2], [2, 12, 2], false)],
+        &Light::point(g(0, 16, 0)),
+        None,
+    )
+    .unwrap();
+    assert_eq!(unbounded.stats().caps, 0);
+    assert!(unbounded.shadow_polygons().iter().all(|p| !p.closed));
+    assert_eq!(unbounded.eye_counts([0.5, -1e9, 0.5]), vec![2]);
+    let eye = [0.5, -1e9, 0.5];
+    assert!(unbounded.in_shadow(eye, &[2], [0.5, 0.0, 0.7]));
+    assert!(!unbounded.in_shadow(eye, &[2], [1e9, 0.0, 0.7]));
     // An eye beyond the caps sees the floor's shadow right.
     let eye = [0.5, -39.0, 0.5];
     let start = v.eye_counts(eye);
     assert!(v.in_shadow(eye, &start, [0.5, 0.0, 0.7]));
     assert!(!v.in_shadow(eye, &start, [12.5, 0.0, 0.7]));
+}
+
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>().sqrt()
 }
