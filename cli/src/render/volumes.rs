@@ -127,7 +127,7 @@ pub(crate) fn render_volumes(scene: &Scene, view: View, order: Order) -> Result<
             field: format!("light[{i}]"),
             message: e.to_string(),
         })?;
-        let shadowed = count_shadows(&volumes, eye, &visible, |polygon| {
+        let shadowed = count_shadows(&volumes, eye, &visible, width, |polygon| {
             touched_samples(polygon, bounds, grid, &projection, near, width, height)
         });
         for k in 0..width * height {
@@ -214,18 +214,21 @@ fn models(scene: &Scene, pieces: &Pieces) -> Vec<Model> {
 
 /// For every sample, whether its visible point is in shadow: the depth
 /// counts at the eye plus the increments of the shadow polygons crossed.
-/// `touched` lists the samples a shadow polygon may cross.
+/// `touched` gives the rectangle of samples (columns, rows; rows of
+/// `width` samples) a shadow polygon may cross.
 fn count_shadows(
     volumes: &BergeronVolumes,
     eye: [f64; 3],
     visible: &[Option<[f64; 3]>],
-    touched: impl Fn(&ShadowPolygon) -> Vec<usize>,
+    width: usize,
+    touched: impl Fn(&ShadowPolygon) -> SampleRect,
 ) -> Vec<bool> {
     let start = volumes.eye_counts(eye);
     let mut main = vec![start[0]; visible.len()];
     let mut twisted: HashMap<(u32, usize), i32> = HashMap::new();
     for polygon in volumes.shadow_polygons() {
-        for k in touched(polygon) {
+        let (columns, rows) = touched(polygon);
+        for k in rows.flat_map(|y| columns.clone().map(move |x| y * width + x)) {
             let Some(p) = visible[k] else { continue };
             let c = polygon.crossing(eye, p);
             if c == 0 {
@@ -247,6 +250,9 @@ fn count_shadows(
         .collect()
 }
 
+/// A rectangle of samples: columns, rows.
+type SampleRect = (std::ops::Range<usize>, std::ops::Range<usize>);
+
 /// The samples whose eye segment may cross `polygon`: those under the
 /// projection of its part inside `bounds` (an open polygon's rays cut where
 /// they leave the box), with a margin of two samples; all of them if that
@@ -259,7 +265,7 @@ fn touched_samples(
     near: f64,
     width: usize,
     height: usize,
-) -> Vec<usize> {
+) -> SampleRect {
     let mut corners = polygon.vertices.clone();
     if !polygon.closed {
         // Out along the rays until past the box.
@@ -273,7 +279,7 @@ fn touched_samples(
     }
     let inside = clip_to_box(&corners, bounds);
     if inside.is_empty() {
-        return Vec::new();
+        return (0..0, 0..0);
     }
     let n = SAMPLES_PER_SIDE as f64;
     let mut lo = [f64::INFINITY; 2];
@@ -281,7 +287,7 @@ fn touched_samples(
     for &v in &inside {
         let view = projection.to_view(grid.grid_to_world(v));
         if view[2] <= near {
-            return (0..width * height).collect();
+            return (0..width, 0..height);
         }
         let [x, y] = projection.view_to_pixel(view);
         for (a, c) in [x * n, y * n].into_iter().enumerate() {
@@ -293,9 +299,7 @@ fn touched_samples(
     let last = |c: f64, size: usize| ((c + 2.0).ceil().max(0.0) as usize).min(size);
     let (x0, x1) = (first(lo[0]), last(hi[0], width));
     let (y0, y1) = (first(lo[1]), last(hi[1], height));
-    (y0..y1)
-        .flat_map(|y| (x0..x1).map(move |x| y * width + x))
-        .collect()
+    (x0..x1.max(x0), y0..y1.max(y0))
 }
 
 /// The part of a convex polygon inside a box (Sutherland-Hodgman against

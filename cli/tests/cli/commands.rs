@@ -95,12 +95,23 @@ fn help_documents_every_option() {
         ),
         (
             "render",
-            &["--output", "--view", "shaded", "classes", "fragments"],
+            &[
+                "--output",
+                "--view",
+                "shaded",
+                "classes",
+                "fragments",
+                "--method",
+                "volumes",
+                "--order",
+                "zbuffer",
+                "bsp",
+            ],
         ),
         ("dm", &["--output"]),
         ("update", &["--move", "--by", "--steps", "--output"]),
         ("csg", &["--union", "--intersect", "--subtract", "--output"]),
-        ("demo", &["--output", "room", "tetra"]),
+        ("demo", &["--output", "room", "room1", "tetra", "window"]),
         ("check", &["SCENE"]),
     ];
     for (command, options) in expected {
