@@ -7,12 +7,13 @@
 //! perturbation decides. [`check_bergeron`] checks, for every eye and
 //! point, that the depth counts at the eye plus the increments of every
 //! shadow polygon and model piece the segment crosses are the counts at the
-//! point (whenever the point lies on none of the planes the counts use), and
-//! that every shadow polygon has a non-zero increment on an existing count.
+//! point (whenever the point lies on none of the planes the counts use),
+//! that Bergeron's eye cases add up to the eye's counts, and that every
+//! shadow polygon has a non-zero increment on an existing count.
 
 use arbitrary::{Arbitrary, Unstructured};
 use bsp_core::{ConvexPolygon, GridPoint};
-use svbsp::bergeron::{BergeronVolumes, Model, ModelPolygon, ShadowPolygon};
+use svbsp::bergeron::{BergeronVolumes, EyeCase, Model, ModelPolygon, ShadowPolygon};
 use svbsp::{Light, LightSource};
 
 /// One decoded input of the `bergeron` target; its `Debug` output is Rust
@@ -259,6 +260,19 @@ pub fn check_bergeron(case: &BergeronCase) -> Result<usize, String> {
         let start = volumes.eye_counts(e);
         if start.len() != volumes.counters() {
             return Err("eye counts of the wrong length".into());
+        }
+        let depths: i32 = volumes
+            .eye_cases(e)
+            .iter()
+            .map(|c| match *c {
+                EyeCase::Outside => 0,
+                EyeCase::InClosedModel { depth } | EyeCase::InOpenModel { depth } => depth,
+            })
+            .sum();
+        if depths != start.iter().sum::<i32>() {
+            return Err(format!(
+                "eye cases at {e:?} add to {depths}, counts {start:?}"
+            ));
         }
         for &p in &case.points {
             let p = p.map(|c| c as f64 / 251.0);

@@ -30,7 +30,8 @@
 //!   per model, a polygon facing the light and one facing away both lying
 //!   between the eye and the light; inside the volume of an open model
 //!   (Type 3) by the number of its sheets between the eye and the light,
-//!   often 1. The count then follows the eye ray: [`BergeronVolumes::in_shadow`].
+//!   often 1 ([`BergeronVolumes::eye_cases`] tells them apart). The count
+//!   then follows the eye ray: [`BergeronVolumes::in_shadow`].
 //! - **Sphere of influence.** A model whose bounding box is wholly beyond a
 //!   point light's range casts nothing. The others' shadow polygons end at
 //!   Bergeron's projection `V + ((range - 1) / SD) (V - L)` of each contour
@@ -54,7 +55,7 @@
 //!
 //! ```
 //! use bsp_core::{ConvexPolygon, GridPoint};
-//! use svbsp::bergeron::{BergeronVolumes, Model, ModelPolygon};
+//! use svbsp::bergeron::{BergeronVolumes, EyeCase, Model, ModelPolygon};
 //! use svbsp::Light;
 //!
 //! let g = |x, y, z| GridPoint { x, y, z };
@@ -78,6 +79,7 @@
 //! assert!(!volumes.in_shadow(eye, &start, [6.0, 0.0, 1.0]));
 //! // The eye under the square is inside its volume (Type 3): it starts at 1.
 //! assert_eq!(volumes.eye_counts([0.0, 1.0, 0.0]), vec![1]);
+//! assert_eq!(volumes.eye_cases([0.0, 1.0, 0.0]), vec![EyeCase::InOpenModel { depth: 1 }]);
 //! ```
 
 mod apex;
@@ -144,6 +146,29 @@ struct Piece {
     vertices: Vec<[f64; 3]>,
     cap: Option<Vec<[f64; 3]>>,
     counter: u32,
+    model: u32,
+}
+
+/// Where the eye is for one model: Bergeron's three cases.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EyeCase {
+    /// Type 1: in none of the model's shadow volumes; it adds nothing to
+    /// the starting count.
+    Outside,
+    /// Type 2: in the shadow volume of a closed model; it adds `depth` (2
+    /// for a convex model, a polygon facing the light and one facing away
+    /// lying between the eye and the light; more for a model folded on
+    /// itself).
+    InClosedModel {
+        /// What the model adds to the starting count.
+        depth: i32,
+    },
+    /// Type 3: in the shadow volume of an open model; it adds `depth`, the
+    /// number of its sheets between the eye and the light.
+    InOpenModel {
+        /// What the model adds to the starting count.
+        depth: i32,
+    },
 }
 
 /// The shadow volumes of a set of models under one light, ready to count
@@ -153,6 +178,8 @@ pub struct BergeronVolumes {
     apex: Apex,
     polygons: Vec<ShadowPolygon>,
     pieces: Vec<Piece>,
+    /// Per model given to `build`: whether it is closed (false if left out).
+    closed: Vec<bool>,
     counters: usize,
     stats: VolumeStats,
 }
@@ -176,11 +203,12 @@ impl BergeronVolumes {
             apex,
             polygons: Vec::new(),
             pieces: Vec::new(),
+            closed: vec![false; models.len()],
             counters: 1,
             stats: VolumeStats::default(),
         };
         let mut piece_index = 0;
-        for model in models {
+        for (index, model) in models.iter().enumerate() {
             // Grid-point corners of every polygon's pieces.
             let mut corners: Vec<Vec<Vec<[f64; 3]>>> = Vec::with_capacity(model.polygons.len());
             for polygon in &model.polygons {
@@ -217,7 +245,8 @@ impl BergeronVolumes {
                 };
                 pieces.extend(of_polygon.into_iter().map(|v| (v, counter)));
             }
-            out.add_model(&pieces, model_box, light, reach);
+            out.closed[index] = is_closed(&pieces);
+            out.add_model(&pieces, index as u32, model_box, light, reach);
         }
         Ok(out)
     }
@@ -225,6 +254,7 @@ impl BergeronVolumes {
     fn add_model(
         &mut self,
         pieces: &[(Vec<[f64; 3]>, u32)],
+        model: u32,
         model_box: [[f64; 3]; 2],
         light: &Light,
         reach: Option<f64>,
@@ -318,6 +348,7 @@ impl BergeronVolumes {
                 vertices: v.clone(),
                 cap,
                 counter,
+                model,
             });
         }
     }
@@ -352,6 +383,28 @@ impl BergeronVolumes {
         counts
     }
 
+    /// Bergeron's case (Type 1, 2 or 3) of `eye` for every model given to
+    /// [`Self::build`], in order; a model left out (beyond the range) is
+    /// [`EyeCase::Outside`]. The depths add up to the sum of
+    /// [`Self::eye_counts`].
+    pub fn eye_cases(&self, eye: [f64; 3]) -> Vec<EyeCase> {
+        let mut depth = vec![0; self.closed.len()];
+        for piece in &self.pieces {
+            if crossing::in_frustum(&self.apex, &piece.vertices, piece.cap.as_deref(), eye) {
+                depth[piece.model as usize] += 1;
+            }
+        }
+        depth
+            .iter()
+            .zip(&self.closed)
+            .map(|(&depth, &closed)| match (depth, closed) {
+                (0, _) => EyeCase::Outside,
+                (depth, true) => EyeCase::InClosedModel { depth },
+                (depth, false) => EyeCase::InOpenModel { depth },
+            })
+            .collect()
+    }
+
     /// Whether `p`, seen from `eye` with depth counts `eye_counts`
     /// ([`Self::eye_counts`]), is in shadow: some count is positive once
     /// every shadow polygon the segment crosses has added its increment.
@@ -363,6 +416,23 @@ impl BergeronVolumes {
         }
         is_shadowed(&counts)
     }
+}
+
+/// Whether pieces (corners as exact grid coordinates) close a surface:
+/// every edge between two corners is used exactly once in each direction.
+fn is_closed(pieces: &[(Vec<[f64; 3]>, u32)]) -> bool {
+    let key = |v: [f64; 3]| v.map(|c| c as i64);
+    let mut directed: BTreeMap<([i64; 3], [i64; 3]), u32> = BTreeMap::new();
+    for (v, _) in pieces {
+        for i in 0..v.len() {
+            *directed
+                .entry((key(v[i]), key(v[(i + 1) % v.len()])))
+                .or_insert(0) += 1;
+        }
+    }
+    directed
+        .iter()
+        .all(|(&(a, b), &n)| n == 1 && directed.get(&(b, a)) == Some(&1))
 }
 
 /// Whether depth counts mean shadow: the models' count or an L-twisted

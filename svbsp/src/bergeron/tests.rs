@@ -247,6 +247,15 @@ fn contour_increments_of_closed_and_open_models() {
     assert_eq!(closed.eye_counts([0.5, 0.0, 0.5]), vec![2]);
     assert_eq!(open.eye_counts([0.5, 0.0, 0.5]), vec![1]);
     assert_eq!(open.eye_counts([9.5, 0.0, 0.5]), vec![0]);
+    assert_eq!(
+        closed.eye_cases([0.5, 0.0, 0.5]),
+        vec![EyeCase::InClosedModel { depth: 2 }]
+    );
+    assert_eq!(
+        open.eye_cases([0.5, 0.0, 0.5]),
+        vec![EyeCase::InOpenModel { depth: 1 }]
+    );
+    assert_eq!(open.eye_cases([9.5, 0.0, 0.5]), vec![EyeCase::Outside]);
     // From inside the open box, nothing is in its shadow inside it, and
     // everything below the floor is.
     let inside = Light::point(g(0, 2, 0));
@@ -314,6 +323,10 @@ fn a_range_truncates_and_leaves_far_models_out() {
     };
     let v = BergeronVolumes::build(&[near, far], &light, None).unwrap();
     assert_eq!(v.stats().models_beyond_range, 1);
+    assert_eq!(
+        v.eye_cases([0.5, 0.0, 0.5]),
+        vec![EyeCase::InClosedModel { depth: 2 }, EyeCase::Outside]
+    );
     assert_eq!(v.stats().caps, 6);
     // Inside the range under the box: shadow (closed: 2); far beyond the
     // truncation: out of every volume.
