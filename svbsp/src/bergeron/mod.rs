@@ -302,7 +302,11 @@ impl BergeronVolumes {
                         .map(|(v, _)| crate::light::distance_to_polygon(l, v))
                         .fold(f64::INFINITY, f64::min)
                 };
-                let r = reach.map_or(range, |x| x.max(range));
+                // SD comes from f64 distances: a relative slack far above
+                // their rounding keeps the ratio on the long side. (Sizing
+                // only; an infinite or NaN ratio leaves the volumes
+                // unbounded.)
+                let r = reach.map_or(range, |x| x.max(range)) * (1.0 + 1e-9);
                 let m = (1.0 + (r - 1.0) / sd).max(r / sd).ceil().max(2.0);
                 (m <= MAX_PROJECTION_RATIO).then_some(m)
             }
