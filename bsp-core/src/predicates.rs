@@ -138,6 +138,25 @@ pub fn dot_i128(u: [i64; 3], v: [i64; 3]) -> i128 {
         + i128::from(u[2]) * i128::from(v[2])
 }
 
+/// Orientation of four explicit `f64` points: the sign of
+/// `det[a - d, b - d, c - d]`, exactly (Shewchuk's adaptive predicate, the
+/// `robust` crate). [`Side::Front`] when `d` lies below the plane through
+/// `a`, `b`, `c`, that is when `a`, `b`, `c` turn counter-clockwise seen
+/// from above it; [`Side::On`] when the four are coplanar.
+///
+/// For points that are not grid points: a camera's eye, a pixel's visible
+/// point, a far vertex of a shadow polygon. Its answer is exact for the
+/// `f64` values given, whatever rounding made them.
+#[inline]
+pub fn orient3d_f64(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> Side {
+    let p = |v: [f64; 3]| robust::Coord3D {
+        x: v[0],
+        y: v[1],
+        z: v[2],
+    };
+    Side::of_sign(robust::orient3d(p(a), p(b), p(c), p(d)))
+}
+
 /// Floating-point filter data of an implicit point: approximate homogeneous
 /// coordinates (scaled so that the true `w` is positive) and, per
 /// coordinate, the permanent that bounds its error.
@@ -383,6 +402,15 @@ pub fn implicit_to_f64(filter: &PointFilter, planes: [&Plane; 3]) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn explicit_points() {
+        let (a, b, c) = ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        // Counter-clockwise seen from +z: a point below is in front.
+        assert_eq!(orient3d_f64(a, b, c, [0.3, 0.3, -1e-300]), Side::Front);
+        assert_eq!(orient3d_f64(a, b, c, [0.3, 0.3, 1e-300]), Side::Back);
+        assert_eq!(orient3d_f64(a, b, c, [0.1, 0.2, 0.0]), Side::On);
+    }
 
     fn gp(x: i32, y: i32, z: i32) -> GridPoint {
         GridPoint { x, y, z }

@@ -9,7 +9,8 @@ use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
     DemoFiles, DmOptions, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg,
-    dm_scene_with, render_scene, save_csg_obj, save_obj, save_ply, shadow_scene, shadow_scene_with,
+    dm_scene_with, render_scene_with, save_csg_obj, save_obj, save_ply, shadow_scene,
+    shadow_scene_with,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -94,6 +95,26 @@ pub enum View {
     Fragments,
 }
 
+/// How `umbra render` finds shadows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Method {
+    /// Draw umbra's object-space fragments.
+    Fragments,
+    /// Count Bergeron's shadow polygons along every eye ray (point and
+    /// directional lights only; no fragments).
+    Volumes,
+}
+
+/// How `umbra render` finds visible surfaces.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Order {
+    /// A z-buffer.
+    Zbuffer,
+    /// Back-to-front traversal of the scene BSP from the eye (painter's
+    /// algorithm, as the papers render).
+    Bsp,
+}
+
 /// Options of `umbra render`.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
@@ -105,6 +126,12 @@ pub struct RenderArgs {
     /// What to show.
     #[arg(long, value_enum, default_value_t = View::Shaded)]
     pub view: View,
+    /// How shadows are found.
+    #[arg(long, value_enum, default_value_t = Method::Fragments)]
+    pub method: Method,
+    /// How visible surfaces are found.
+    #[arg(long, value_enum, default_value_t = Order::Zbuffer)]
+    pub order: Order,
 }
 
 /// Options of `umbra dm`.
@@ -320,7 +347,22 @@ fn run_render(args: &RenderArgs) -> Result<()> {
         View::Classes => umbra::View::Classes,
         View::Fragments => umbra::View::Fragments,
     };
-    let image = render_scene(&scene, view)?;
+    let method = match args.method {
+        Method::Fragments => umbra::Method::Fragments,
+        Method::Volumes => umbra::Method::Volumes,
+    };
+    let order = match args.order {
+        Order::Zbuffer => umbra::Order::ZBuffer,
+        Order::Bsp => umbra::Order::Bsp,
+    };
+    let image = render_scene_with(
+        &scene,
+        &umbra::RenderOptions {
+            view,
+            method,
+            order,
+        },
+    )?;
     progress.say("writing");
     image.save_png(&args.output)?;
     progress.finish();

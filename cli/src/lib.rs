@@ -79,8 +79,9 @@ pub use obj::{ObjFace, ObjMesh};
 pub use obj_out::{save_obj, write_obj};
 pub use ply::{PlyEncoding, load_ply, read_ply, save_ply, write_ply};
 pub use render::{
-    ALBEDO, FragmentClass, Image, MAX_IMAGE_SIDE, Projection, SAMPLES_PER_SIDE, View, exposure,
-    linear_to_srgb8, render, render_scene, srgb8_to_linear,
+    ALBEDO, FragmentClass, Image, MAX_IMAGE_SIDE, Method, Order, Projection, RenderOptions,
+    SAMPLES_PER_SIDE, View, exposure, linear_to_srgb8, render, render_scene, render_scene_with,
+    render_with, srgb8_to_linear,
 };
 pub use scene::{Camera, Falloff, InputPolygon, Light, LightKind, MAX_LIGHTS, Object, Scene};
 pub use shadow::{ShadowOptions, ShadowResult, shadow_scene, shadow_scene_with};

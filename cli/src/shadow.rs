@@ -276,7 +276,7 @@ fn grid_edges(piece: &ConvexPolygon) -> impl Iterator<Item = (GridPoint, GridPoi
 /// The scene's lights for `illum`, at their snapped positions so that
 /// illumination and classification agree. Intensities and falloffs were
 /// validated when the scene was loaded.
-fn illum_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<IllumLight>> {
+pub(crate) fn illum_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<IllumLight>> {
     let mut out = Vec::with_capacity(scene.lights.len());
     for (i, (light, snapped)) in scene.lights.iter().zip(&pieces.lights).enumerate() {
         let field = |message: String| Error::Field {

@@ -14,6 +14,7 @@
 //! ```
 
 pub mod area;
+pub mod bergeron;
 pub mod dm_update;
 pub mod merge;
 pub mod split;

@@ -37,9 +37,15 @@
 //! general Thibault-Naylor union with a [`ConvexPolyhedron`]
 //! ([`union_with_convex`]), balanced solids from closed meshes
 //! ([`balanced_solid`]) and closed, T-junction-free CSG boundaries
-//! ([`boundary`]). Still to come: Bergeron's general shadow volumes.
+//! ([`boundary`]).
+//!
+//! [`bergeron`] holds Bergeron's general shadow volumes (1986): depth-counted
+//! shadow polygons of open and closed models, L-twisted polygons, the eye
+//! inside a volume and lights with a sphere of influence, for counting along
+//! eye rays.
 
 mod balanced;
+pub mod bergeron;
 mod csg;
 mod error;
 mod light;

@@ -110,7 +110,7 @@ impl Light {
 
 /// Distance from `x` to a convex planar polygon (f64; it only decides the
 /// sphere of influence, never topology).
-fn distance_to_polygon(x: [f64; 3], v: &[[f64; 3]]) -> f64 {
+pub(crate) fn distance_to_polygon(x: [f64; 3], v: &[[f64; 3]]) -> f64 {
     let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
     let cross = |a: [f64; 3], b: [f64; 3]| {

@@ -57,6 +57,14 @@ impl Projection {
         ]
     }
 
+    /// The direction (world frame, unit depth along the view) of the ray
+    /// from the eye through pixel coordinates `[x, y]`.
+    pub fn pixel_ray(&self, x: f64, y: f64) -> [f64; 3] {
+        let right = (x - 0.5 * self.width) / self.focal;
+        let up = (0.5 * self.height - y) / self.focal;
+        [0, 1, 2].map(|i| self.forward[i] + right * self.right[i] + up * self.up[i])
+    }
+
     /// `p` in pixel coordinates with its depth, `[x, y, depth]`; `None` for
     /// points on or behind the eye's plane.
     pub fn project(&self, p: [f64; 3]) -> Option<[f64; 3]> {
@@ -126,6 +134,9 @@ mod tests {
             [50.0, 0.0, 2.0]
         ));
         assert_eq!(p.project([0.0, 0.0, 1.0]), None);
+        // The ray through a pixel reaches the point that projects there.
+        let ray = p.pixel_ray(112.5, 25.0);
+        assert!(close(ray.map(|c| 4.0 * c), [1.0, 2.0, -4.0]));
         assert_eq!(p.project([3.0, 0.0, 0.0]), None);
     }
 

@@ -19,13 +19,16 @@
 //! Back faces of one-sided polygons are drawn like the rest: they receive
 //! no light, so they are dark in the shaded view and umbra in the others.
 
+mod bsp_order;
 mod camera;
 mod image;
 mod raster;
+mod volumes;
 
 pub use camera::Projection;
 pub use image::{Image, linear_to_srgb8, srgb8_to_linear};
 
+use crate::decompose::Pieces;
 use crate::error::{Error, Result};
 use crate::mesh::OutputFace;
 use crate::scene::{Camera, LightKind, Scene};
@@ -54,6 +57,52 @@ pub enum View {
     Classes,
     /// The classes view with every fragment outlined.
     Fragments,
+}
+
+/// How shadows are found for an image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Method {
+    /// umbra's object-space fragments (`umbra shadow`), drawn.
+    #[default]
+    Fragments,
+    /// Bergeron's general shadow volumes: each sample's visible point is in
+    /// shadow when the eye ray crosses shadow polygons to a positive depth
+    /// count (point and directional lights only).
+    Volumes,
+}
+
+/// How visible surfaces are found.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Order {
+    /// A z-buffer: each sample keeps the nearest surface.
+    #[default]
+    ZBuffer,
+    /// Back-to-front traversal of the scene BSP from the eye (the painter's
+    /// algorithm, as the papers render); the same image wherever polygons
+    /// do not interpenetrate.
+    Bsp,
+}
+
+/// Everything `umbra render` can be asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RenderOptions {
+    /// What the image shows.
+    pub view: View,
+    /// How shadows are found.
+    pub method: Method,
+    /// How visible surfaces are found.
+    pub order: Order,
+}
+
+impl RenderOptions {
+    /// A view with the default method and order.
+    pub fn view(view: View) -> Self {
+        Self {
+            view,
+            method: Method::default(),
+            order: Order::default(),
+        }
+    }
 }
 
 /// A fragment's class for the figures, over all lights.
@@ -192,18 +241,67 @@ pub fn exposure(scene: &Scene, shadows: &ShadowResult) -> f64 {
 /// # Ok::<(), umbra::Error>(())
 /// ```
 pub fn render_scene(scene: &Scene, view: View) -> Result<Image> {
+    render_scene_with(scene, &RenderOptions::view(view))
+}
+
+/// Renders `scene` from its camera with the given options: as
+/// [`render_scene`] for [`Method::Fragments`]; for [`Method::Volumes`] the
+/// scene's pieces are drawn and every sample counts shadow polygons
+/// (Bergeron) along its eye ray.
+///
+/// # Errors
+///
+/// If the scene has no `[camera]`, the shadow pipeline fails, or (volumes)
+/// the scene has an area light.
+///
+/// # Example
+///
+/// ```
+/// use umbra::{Method, Order, RenderOptions, Scene, View, render_scene_with};
+///
+/// let scene = Scene::from_toml_str(
+///     r#"
+///     [[object]]
+///     name = "floor"
+///     polygons = [[[-4, 0, 4], [4, 0, 4], [4, 0, -4], [-4, 0, -4]]]
+///     [[object]]
+///     name = "card"
+///     polygons = [[[-1, 1.5, 1], [1, 1.5, 1], [1, 1.5, -1], [-1, 1.5, -1]]]
+///     two_sided = true
+///     [[light]]
+///     type = "point"
+///     position = [0, 3, 0]
+///     [camera]
+///     eye = [0, 5, 6]
+///     width = 32
+///     height = 24
+///     "#,
+///     "card.toml",
+/// )?;
+/// let options = |method| RenderOptions { view: View::Classes, method, order: Order::ZBuffer };
+/// let fragments = render_scene_with(&scene, &options(Method::Fragments))?;
+/// let volumes = render_scene_with(&scene, &options(Method::Volumes))?;
+/// // The two methods draw the same shadow away from its edges.
+/// let same = fragments.rgb.chunks(3).zip(volumes.rgb.chunks(3)).filter(|(a, b)| a == b).count();
+/// assert!(same > 32 * 24 * 9 / 10);
+/// # Ok::<(), umbra::Error>(())
+/// ```
+pub fn render_scene_with(scene: &Scene, options: &RenderOptions) -> Result<Image> {
+    if options.method == Method::Volumes {
+        return volumes::render_volumes(scene, options.view, options.order);
+    }
     camera_of(scene)?;
     // Soft shadows need vertices inside the penumbra to show its gradient.
     let has_area_light = scene
         .lights
         .iter()
         .any(|l| matches!(l.kind, crate::scene::LightKind::Area { .. }));
-    let options = ShadowOptions {
+    let shadow_options = ShadowOptions {
         grid: has_area_light.then_some(RENDER_GRID),
         adaptive: None,
     };
-    let shadows = shadow_scene_with(scene, &options)?;
-    render(scene, &shadows, view)
+    let shadows = shadow_scene_with(scene, &shadow_options)?;
+    render_with(scene, &shadows, options)
 }
 
 /// Draws the fragments of `shadows` (computed for `scene`) from the scene's
@@ -219,54 +317,117 @@ pub fn render_scene(scene: &Scene, view: View) -> Result<Image> {
 /// If `shadows` was not computed for `scene` (a face naming a vertex that
 /// does not exist, fewer per-light values than lights).
 pub fn render(scene: &Scene, shadows: &ShadowResult, view: View) -> Result<Image> {
+    render_with(scene, shadows, &RenderOptions::view(view))
+}
+
+/// Draws the fragments of `shadows` (computed for `scene`) from the scene's
+/// camera in the given [`Order`] (the method is that of `shadows`:
+/// fragments).
+///
+/// # Errors
+///
+/// As [`render`]; with [`Order::Bsp`], also if the scene cannot be cut into
+/// pieces again or the eye is too far from it.
+///
+/// # Panics
+///
+/// As [`render`].
+pub fn render_with(
+    scene: &Scene,
+    shadows: &ShadowResult,
+    options: &RenderOptions,
+) -> Result<Image> {
+    let view = options.view;
     let camera = camera_of(scene)?;
     let projection = Projection::new(&camera);
     let n = SAMPLES_PER_SIDE;
-    let mut samples = Samples::new(
-        camera.width as usize * n,
-        camera.height as usize * n,
-        view == View::Shaded,
-    );
+    let (width, height) = (camera.width as usize * n, camera.height as usize * n);
+    let mut samples = match options.order {
+        Order::ZBuffer => Samples::new(width, height, view == View::Shaded),
+        Order::Bsp => Samples::painter(width, height, view == View::Shaded),
+    };
     let exposed_albedo = ALBEDO * exposure(scene, shadows);
     let near = near_distance(&camera);
     let mesh = &shadows.mesh;
     let mut classes = Vec::with_capacity(mesh.faces.len());
-    let mut polygon: Vec<([f64; 3], [f64; 3])> = Vec::new();
-    for (id, face) in mesh.faces.iter().enumerate() {
+    let mut polygons: Vec<Vec<([f64; 3], [f64; 3])>> = Vec::with_capacity(mesh.faces.len());
+    for face in &mesh.faces {
         let seen = lights_on_seen_side(scene, shadows, face, camera.eye);
         classes.push(FragmentClass::of_seen_side(face, shadows.lights, seen));
-        polygon.clear();
-        polygon.extend(face.vertices.iter().map(|&v| {
-            let value = if view == View::Shaded {
-                shaded_value(scene, shadows, v as usize, seen).map(|c| exposed_albedo * c)
-            } else {
-                [0.0; 3]
-            };
-            (projection.to_view(mesh.vertices[v as usize].0), value)
-        }));
-        let clipped = clip_near(&polygon, near);
-        let corners: Vec<Corner> = clipped
-            .iter()
-            .map(|&(v, value)| {
-                let [x, y] = projection.view_to_pixel(v);
-                Corner {
-                    xy: [x * n as f64, y * n as f64],
-                    depth: v[2],
-                    value,
+        polygons.push(
+            face.vertices
+                .iter()
+                .map(|&v| {
+                    let value = if view == View::Shaded {
+                        shaded_value(scene, shadows, v as usize, seen).map(|c| exposed_albedo * c)
+                    } else {
+                        [0.0; 3]
+                    };
+                    (projection.to_view(mesh.vertices[v as usize].0), value)
+                })
+                .collect(),
+        );
+    }
+    match options.order {
+        Order::ZBuffer => {
+            for (id, polygon) in polygons.iter().enumerate() {
+                draw_polygon(&mut samples, &projection, polygon, near, id as u32);
+            }
+        }
+        Order::Bsp => {
+            let pieces = Pieces::from_scene(scene)?;
+            let mut faces_of: Vec<Vec<usize>> = vec![Vec::new(); pieces.input_polygons];
+            for (id, face) in mesh.faces.iter().enumerate() {
+                faces_of[face.source as usize].push(id);
+            }
+            for (piece, part) in bsp_order::back_to_front(scene, &pieces, camera.eye)? {
+                let region: Vec<[f64; 3]> = part
+                    .vertices_f64()
+                    .iter()
+                    .map(|&v| projection.to_view(pieces.grid.grid_to_world(v)))
+                    .collect();
+                for &id in &faces_of[pieces.input_of[piece] as usize] {
+                    let inside = bsp_order::clip_to_region(&polygons[id], &region);
+                    draw_polygon(&mut samples, &projection, &inside, near, id as u32);
                 }
-            })
-            .collect();
-        for i in 1..corners.len().saturating_sub(1) {
-            samples.triangle([corners[0], corners[i], corners[i + 1]], id as u32);
+            }
         }
     }
+    let class_colour: Vec<[f32; 3]> = classes.iter().map(|c| linear(c.srgb())).collect();
     Ok(resolve(
         &samples,
-        &classes,
+        |_, id| class_colour[id as usize],
         view,
         camera.width,
         camera.height,
     ))
+}
+
+/// Draws a convex polygon (view frame, with values) as fragment `id`:
+/// clipped to the near plane, then a fan of triangles.
+fn draw_polygon(
+    samples: &mut Samples,
+    projection: &Projection,
+    polygon: &[([f64; 3], [f64; 3])],
+    near: f64,
+    id: u32,
+) {
+    let n = SAMPLES_PER_SIDE as f64;
+    let clipped = clip_near(polygon, near);
+    let corners: Vec<Corner> = clipped
+        .iter()
+        .map(|&(v, value)| {
+            let [x, y] = projection.view_to_pixel(v);
+            Corner {
+                xy: [x * n, y * n],
+                depth: v[2],
+                value,
+            }
+        })
+        .collect();
+    for i in 1..corners.len().saturating_sub(1) {
+        samples.triangle([corners[0], corners[i], corners[i + 1]], id);
+    }
 }
 
 /// The scene's camera, checked for size.
@@ -397,15 +558,16 @@ fn clip_near(polygon: &[([f64; 3], [f64; 3])], near: f64) -> Vec<([f64; 3], [f64
     out
 }
 
-/// Averages the samples of every pixel (in linear light) into an sRGB image.
+/// Averages the samples of every pixel (in linear light) into an sRGB image;
+/// `class_colour(k, id)` is the linear class colour of sample `k`, which
+/// shows fragment `id`.
 fn resolve(
     samples: &Samples,
-    classes: &[FragmentClass],
+    class_colour: impl Fn(usize, u32) -> [f32; 3],
     view: View,
     width: u32,
     height: u32,
 ) -> Image {
-    let class_colour: Vec<[f32; 3]> = classes.iter().map(|c| linear(c.srgb())).collect();
     let background = linear(match view {
         View::Shaded => BACKGROUND_SHADED,
         View::Classes | View::Fragments => BACKGROUND_CLASSES,
@@ -419,12 +581,12 @@ fn resolve(
         }
         match view {
             View::Shaded => samples.value[k].map(|c| 1.0 - (-c).exp()),
-            View::Classes => class_colour[id as usize],
+            View::Classes => class_colour(k, id),
             View::Fragments => {
                 if is_outline(samples, x, y) {
                     outline
                 } else {
-                    class_colour[id as usize]
+                    class_colour(k, id)
                 }
             }
         }
@@ -460,7 +622,7 @@ fn is_outline(samples: &Samples, x: usize, y: usize) -> bool {
         || (y + 1 < samples.height && differs(x, y + 1))
 }
 
-fn linear(srgb: [u8; 3]) -> [f32; 3] {
+pub(crate) fn linear(srgb: [u8; 3]) -> [f32; 3] {
     srgb.map(srgb8_to_linear)
 }
 

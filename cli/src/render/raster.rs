@@ -30,6 +30,9 @@ pub(crate) struct Samples {
     pub id: Vec<u32>,
     /// Interpolated value of the nearest surface (empty unless asked for).
     pub value: Vec<[f32; 3]>,
+    /// Whether a triangle covers only samples it is nearer at (z-buffer),
+    /// or every sample it covers (painter's order).
+    depth_test: bool,
 }
 
 impl Samples {
@@ -46,6 +49,24 @@ impl Samples {
             } else {
                 Vec::new()
             },
+            depth_test: true,
+        }
+    }
+
+    /// An empty grid for the painter's algorithm: every triangle drawn
+    /// covers what was there, whatever its depth.
+    pub fn painter(width: usize, height: usize, values: bool) -> Self {
+        Self {
+            depth_test: false,
+            ..Self::new(width, height, values)
+        }
+    }
+
+    /// Replaces the interpolated values, sample after sample (a grid made
+    /// without values takes none).
+    pub fn set_values(&mut self, values: impl Iterator<Item = [f32; 3]>) {
+        for (slot, v) in self.value.iter_mut().zip(values) {
+            *slot = v;
         }
     }
 
@@ -88,7 +109,7 @@ impl Samples {
                 let w = [l0 * inverse[0], l1 * inverse[1], l2 * inverse[2]];
                 let inv = w[0] + w[1] + w[2];
                 let k = y * self.width + x;
-                if inv as f32 <= self.inverse_depth[k] {
+                if self.depth_test && inv as f32 <= self.inverse_depth[k] {
                     continue;
                 }
                 self.inverse_depth[k] = inv as f32;
@@ -159,6 +180,11 @@ mod tests {
         // A farther one changes nothing.
         s.triangle(far.map(|c| Corner { depth: 20.0, ..c }), 9);
         assert!(!s.id.contains(&9));
+        // Unless painted.
+        let mut p = Samples::painter(4, 4, false);
+        p.triangle(far, 7);
+        p.triangle(far.map(|c| Corner { depth: 20.0, ..c }), 9);
+        assert!(p.id.iter().all(|&i| i == 9 || i == EMPTY) && p.id.contains(&9));
 
         // Perspective: a value going from 0 at depth 1 to 1 at depth 3
         // across the screen. At the screen midpoint of such a segment

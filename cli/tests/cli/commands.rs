@@ -92,7 +92,18 @@ fn help_documents_every_option() {
         ),
         (
             "render",
-            &["--output", "--view", "shaded", "classes", "fragments"],
+            &[
+                "--output",
+                "--view",
+                "shaded",
+                "classes",
+                "fragments",
+                "--method",
+                "volumes",
+                "--order",
+                "zbuffer",
+                "bsp",
+            ],
         ),
         ("dm", &["--output", "--stats", "--ascii"]),
         (
@@ -102,7 +113,7 @@ fn help_documents_every_option() {
             ],
         ),
         ("csg", &["--union", "--intersect", "--subtract", "--output"]),
-        ("demo", &["--output", "room", "tetra"]),
+        ("demo", &["--output", "room", "room1", "tetra", "window"]),
         ("check", &["SCENE"]),
     ];
     for (command, options) in expected {

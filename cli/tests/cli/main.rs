@@ -7,10 +7,12 @@ mod decomposition;
 mod demos;
 mod dm;
 mod errors;
+mod order;
 mod ply_files;
 mod properties;
 mod render;
 mod shadow;
+mod volumes;
 
 use std::path::Path;
 use std::process::Command;
