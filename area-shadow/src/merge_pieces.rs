@@ -11,7 +11,6 @@ use crate::Class;
 use crate::conform::MeshPoint;
 use bsp_core::predicates::Side;
 use bsp_core::{ConvexPolygon, ImplicitPoint};
-use std::collections::HashMap;
 
 fn vertex(p: &ConvexPolygon, k: usize) -> MeshPoint {
     match p.vertex_grid_point(k) {
@@ -99,61 +98,85 @@ fn edge_position(p: &ConvexPolygon, e: usize) -> f64 {
 /// Merges same-class neighbours among `pieces` (the pieces of one polygon)
 /// until no two can merge.
 ///
-/// Merging goes in rounds: the pieces' edges are grouped by their line and
-/// sorted along it, and only edges at the same place on the same line are
-/// tried (the `f64` position only chooses which pairs [`merge_pair`] tests
-/// exactly, with a margin far above rounding). A piece merges at most once
-/// per round, so a polygon cut into many pieces costs rounds of
-/// `n log n` work rather than a quadratic search.
+/// The pieces' edges are grouped by their line and kept sorted along it;
+/// each piece, and each union as it is made, is tried once against the
+/// edges at the same place on its edges' lines (the `f64` position only
+/// chooses which pairs [`merge_pair`] tests exactly, with a margin far above
+/// rounding). A piece that merges is replaced by the union, whose edges go
+/// into the lines in turn, so the work is `n log n` in all rather than a
+/// quadratic search or a pass over every piece per round.
 pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolygon, Class)> {
+    if pieces.len() < 2 {
+        return pieces;
+    }
     let mut pieces: Vec<Option<(ConvexPolygon, Class)>> = pieces.into_iter().map(Some).collect();
-    loop {
-        // Per line, its pieces' edges: (position along it, piece).
-        let mut by_line: HashMap<LineKey, Vec<(f64, usize)>> = HashMap::new();
-        for (i, piece) in pieces.iter().enumerate() {
-            if let Some((p, _)) = piece {
-                for (e, plane) in p.edges().iter().enumerate() {
-                    by_line
-                        .entry(plane_key(plane))
-                        .or_default()
-                        .push((edge_position(p, e), i));
-                }
-            }
-        }
-        let mut lines: Vec<_> = by_line.into_iter().collect();
-        // A fixed order: results do not depend on the hash map's.
-        lines.sort_unstable_by_key(|line| line.0);
-        let mut merged_this_round = vec![false; pieces.len()];
-        let mut merged_any = false;
-        for (_, mut list) in lines {
-            list.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            for x in 0..list.len() {
-                let (t, i) = list[x];
-                let margin = 1e-7 * t.abs().max(1.0);
-                for &(u, j) in list[x + 1..].iter().take_while(|(u, _)| *u - t <= margin) {
-                    debug_assert!(u >= t);
-                    if i == j || merged_this_round[i] || merged_this_round[j] {
-                        continue;
-                    }
-                    let (Some((a, ca)), Some((b, cb))) = (&pieces[i], &pieces[j]) else {
-                        continue;
-                    };
-                    if ca != cb {
-                        continue;
-                    }
-                    if let Some(union) = merge_pair(a, b) {
-                        let class = *ca;
-                        pieces[i] = Some((union, class));
-                        pieces[j] = None;
-                        merged_this_round[i] = true;
-                        merged_this_round[j] = true;
-                        merged_any = true;
-                    }
-                }
-            }
-        }
-        if !merged_any {
-            return pieces.into_iter().flatten().collect();
+    // Every line's edges: (position along it, piece), sorted. A merged
+    // piece's entries stay behind and are skipped.
+    let mut keys: Vec<(LineKey, f64, usize)> = Vec::new();
+    for (i, (p, _)) in pieces.iter().flatten().enumerate() {
+        for (e, plane) in p.edges().iter().enumerate() {
+            keys.push((plane_key(plane), edge_position(p, e), i));
         }
     }
+    keys.sort_unstable_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+    let mut lines: Vec<(LineKey, Vec<(f64, usize)>)> = Vec::new();
+    for (key, t, i) in keys {
+        match lines.last_mut() {
+            Some((last, list)) if *last == key => list.push((t, i)),
+            _ => lines.push((key, vec![(t, i)])),
+        }
+    }
+    let line_of = |lines: &[(LineKey, Vec<(f64, usize)>)], key: &LineKey| {
+        lines.binary_search_by(|(k, _)| k.cmp(key)).ok()
+    };
+    let mut queue: std::collections::VecDeque<usize> = (0..pieces.len()).collect();
+    'pieces: while let Some(i) = queue.pop_front() {
+        let Some((a, class)) = &pieces[i] else {
+            continue;
+        };
+        for (e, plane) in a.edges().iter().enumerate() {
+            let line = line_of(&lines, &plane_key(plane)).expect("every edge's line is listed");
+            let t = edge_position(a, e);
+            let margin = 1e-7 * t.abs().max(1.0);
+            let list = &lines[line].1;
+            let from = list.partition_point(|(u, _)| *u < t - margin);
+            for &(_, j) in list[from..].iter().take_while(|(u, _)| *u <= t + margin) {
+                if j == i {
+                    continue;
+                }
+                let Some((b, other)) = &pieces[j] else {
+                    continue;
+                };
+                if other != class {
+                    continue;
+                }
+                if let Some(union) = merge_pair(a, b) {
+                    let (class, k) = (*class, pieces.len());
+                    for (e, plane) in union.edges().iter().enumerate() {
+                        let key = plane_key(plane);
+                        let t = edge_position(&union, e);
+                        match line_of(&lines, &key) {
+                            Some(line) => {
+                                let list = &mut lines[line].1;
+                                let at = list.partition_point(|(u, _)| *u <= t);
+                                list.insert(at, (t, k));
+                            }
+                            None => {
+                                // Only when `from_planes` dropped or
+                                // reoriented an edge: a line of its own.
+                                let at = lines.partition_point(|(l, _)| *l < key);
+                                lines.insert(at, (key, vec![(t, k)]));
+                            }
+                        }
+                    }
+                    pieces[i] = None;
+                    pieces[j] = None;
+                    pieces.push(Some((union, class)));
+                    queue.push_back(k);
+                    continue 'pieces;
+                }
+            }
+        }
+    }
+    pieces.into_iter().flatten().collect()
 }

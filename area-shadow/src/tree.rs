@@ -119,32 +119,42 @@ impl VolumeTree {
 
     /// Splits `polygon` into its pieces inside the union and outside it (or
     /// on its boundary), exactly.
+    ///
+    /// Where a plane cut the polygon but both halves came out on the same
+    /// side of the union (the plane bounds a volume elsewhere in the cell),
+    /// the cut is undone and the piece comes back whole: the filter's split
+    /// tree is collapsed bottom-up wherever a split's two halves agree.
+    /// Nothing is recomputed or rounded; the pieces are the split tree's.
     pub fn partition(&self, polygon: ConvexPolygon) -> Partition {
-        let mut out = Partition::default();
-        self.filter(polygon, |piece, inside| {
-            if inside {
-                out.inside.push(piece);
-            } else {
-                out.outside.push(piece);
-            }
-            true
-        });
-        out
+        let mut splits = SplitTree {
+            slots: vec![Slot::Open],
+        };
+        self.filter(polygon, &mut splits);
+        splits.collapse()
     }
 
     /// Whether all of `polygon` lies in the interior of the union; stops at
     /// the first piece outside.
     pub fn contains(&self, polygon: &ConvexPolygon) -> bool {
-        let mut all = true;
-        self.filter(polygon.clone(), |_, inside| {
-            all &= inside;
-            inside
-        });
-        all
+        struct AllInside(bool);
+        impl FilterSink for AllInside {
+            fn split(&mut self, _: usize, _: ConvexPolygon) -> (usize, usize) {
+                (0, 0)
+            }
+            fn piece(&mut self, _: usize, _: ConvexPolygon, inside: bool) -> bool {
+                self.0 &= inside;
+                inside
+            }
+        }
+        let mut all = AllInside(true);
+        self.filter(polygon.clone(), &mut all);
+        all.0
     }
 
-    /// Filters `polygon` down the tree and hands each final piece with
-    /// whether it is inside to `visit`, which returns whether to go on.
+    /// Filters `polygon` down the tree, telling `sink` of every cut and of
+    /// each final piece with whether it is inside (the sink says whether to
+    /// go on). The polygon is slot 0; each cut gives the slots of its
+    /// halves.
     ///
     /// A piece in a node's plane lies on the boundary of both cells; it is
     /// inside only if it is inside on both sides, so it goes down the front
@@ -152,13 +162,13 @@ impl VolumeTree {
     /// a node, a node with the same plane (a volume hung there repeats it)
     /// has an empty cell on one side: the piece goes only to the side it is
     /// being tested on.
-    fn filter(&self, polygon: ConvexPolygon, mut visit: impl FnMut(ConvexPolygon, bool) -> bool) {
-        // (piece, subtree, coplanar nodes above it with the side being
-        // tested: true while on the front).
+    fn filter(&self, polygon: ConvexPolygon, sink: &mut impl FilterSink) {
+        // (piece, its slot, subtree, coplanar nodes above it with the side
+        // being tested: true while on the front).
         type Pending = Vec<(u32, bool)>;
-        let mut stack: Vec<(ConvexPolygon, SolidChild, Pending)> =
-            vec![(polygon, self.root, Vec::new())];
-        while let Some((mut piece, mut child, mut pending)) = stack.pop() {
+        let mut stack: Vec<(ConvexPolygon, usize, SolidChild, Pending)> =
+            vec![(polygon, 0, self.root, Vec::new())];
+        while let Some((mut piece, mut slot, mut child, mut pending)) = stack.pop() {
             loop {
                 let i = match child {
                     SolidChild::Leaf(Region::In) => {
@@ -177,13 +187,13 @@ impl VolumeTree {
                             child = back;
                             continue;
                         }
-                        if !visit(piece, true) {
+                        if !sink.piece(slot, piece, true) {
                             return;
                         }
                         break;
                     }
                     SolidChild::Leaf(Region::Out) => {
-                        if !visit(piece, false) {
+                        if !sink.piece(slot, piece, false) {
                             return;
                         }
                         break;
@@ -195,8 +205,10 @@ impl VolumeTree {
                     Split::Back => child = node.back,
                     Split::Front => child = node.front,
                     Split::Both(back, front) => {
-                        stack.push((back, node.back, pending.clone()));
+                        let (back_slot, front_slot) = sink.split(slot, piece);
+                        stack.push((back, back_slot, node.back, pending.clone()));
                         piece = front;
+                        slot = front_slot;
                         child = node.front;
                     }
                     Split::Coplanar(_) => {
@@ -222,5 +234,85 @@ impl VolumeTree {
                 }
             }
         }
+    }
+}
+
+/// What [`VolumeTree::filter`] reports to.
+trait FilterSink {
+    /// The piece at `slot` was cut in two; the slots of its back and front
+    /// halves.
+    fn split(&mut self, slot: usize, whole: ConvexPolygon) -> (usize, usize);
+    /// A final piece at `slot`; returns whether to go on.
+    fn piece(&mut self, slot: usize, piece: ConvexPolygon, inside: bool) -> bool;
+}
+
+/// A slot of a [`SplitTree`].
+#[derive(Debug)]
+enum Slot {
+    /// Not reported yet.
+    Open,
+    /// A final piece, inside the union or not.
+    Piece(ConvexPolygon, bool),
+    /// A piece cut in two; its back half is at the given slot, its front
+    /// half at the next.
+    Cut(ConvexPolygon, usize),
+}
+
+/// The cuts a polygon went through on its way down a tree.
+#[derive(Debug)]
+struct SplitTree {
+    slots: Vec<Slot>,
+}
+
+impl FilterSink for SplitTree {
+    fn split(&mut self, slot: usize, whole: ConvexPolygon) -> (usize, usize) {
+        let back = self.slots.len();
+        self.slots.push(Slot::Open);
+        self.slots.push(Slot::Open);
+        self.slots[slot] = Slot::Cut(whole, back);
+        (back, back + 1)
+    }
+
+    fn piece(&mut self, slot: usize, piece: ConvexPolygon, inside: bool) -> bool {
+        self.slots[slot] = Slot::Piece(piece, inside);
+        true
+    }
+}
+
+impl SplitTree {
+    /// The largest pieces of the tree whose parts all lie on one side.
+    fn collapse(mut self) -> Partition {
+        // A cut's halves come after it, so one backward pass finds, for
+        // every slot, whether all of it lies on one side.
+        let mut uniform: Vec<Option<bool>> = vec![None; self.slots.len()];
+        for i in (0..self.slots.len()).rev() {
+            uniform[i] = match self.slots[i] {
+                Slot::Open => None,
+                Slot::Piece(_, inside) => Some(inside),
+                Slot::Cut(_, back) if uniform[back] == uniform[back + 1] => uniform[back],
+                Slot::Cut(..) => None,
+            };
+        }
+        let mut out = Partition::default();
+        let mut stack = vec![0];
+        while let Some(i) = stack.pop() {
+            match (
+                std::mem::replace(&mut self.slots[i], Slot::Open),
+                uniform[i],
+            ) {
+                (Slot::Piece(piece, _) | Slot::Cut(piece, _), Some(inside)) => {
+                    if inside {
+                        out.inside.push(piece);
+                    } else {
+                        out.outside.push(piece);
+                    }
+                }
+                (Slot::Cut(_, back), None) => stack.extend([back + 1, back]),
+                (Slot::Open, _) | (Slot::Piece(..), None) => {
+                    debug_assert!(false, "every slot is reported");
+                }
+            }
+        }
+        out
     }
 }

@@ -2,5 +2,6 @@
 
 mod figure4;
 mod oracle;
+mod pieces;
 mod random;
 mod volumes;
