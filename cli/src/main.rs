@@ -9,6 +9,11 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
+/// Millions of small polygons are made and dropped per run; mimalloc's
+/// thread-local free lists serve them far faster than the system allocator.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     // A panic is a bug; report it in one line instead of a backtrace dump,
     // and exit with the same status as any other error.

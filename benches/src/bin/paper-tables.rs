@@ -12,6 +12,10 @@ use svbsp::{Light, PieceFlags, compute_shadows};
 use umbra::{ShadowOptions, shadow_scene_with};
 use umbra_benches::{rooms, scene, tetra};
 
+/// The allocator of the `umbra` binary, so the figures are the command's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// One row of the 1989 paper's Table 1.
 struct PaperRow {
     name: &'static str,
