@@ -17,7 +17,6 @@
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, ImplicitPoint, Plane};
 use rayon::prelude::*;
-use std::collections::HashMap;
 
 /// A vertex of the mesh, exact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -29,6 +28,19 @@ pub enum MeshPoint {
 }
 
 impl MeshPoint {
+    /// Vertex `k` of `polygon`.
+    pub fn vertex(polygon: &ConvexPolygon, k: usize) -> Self {
+        match polygon.vertex_grid_point(k) {
+            Some(g) => MeshPoint::Grid(g),
+            None => {
+                let [s, a, b] = polygon.vertex_planes(k);
+                MeshPoint::Implicit(
+                    ImplicitPoint::new(*s, *a, *b).expect("a polygon's vertex is a point"),
+                )
+            }
+        }
+    }
+
     /// Side of `plane`, exact.
     pub fn side(&self, plane: &Plane) -> Side {
         match self {
@@ -92,38 +104,56 @@ pub struct ConformingMesh {
     pub inserted: usize,
 }
 
-/// Buckets of point indices over a uniform grid of cells.
+/// Point indices over a uniform grid of cells, sorted by cell.
 struct Buckets {
     cell: f64,
-    map: HashMap<[i64; 3], Vec<u32>>,
+    /// (cell, index), sorted.
+    entries: Vec<([i64; 3], u32)>,
 }
 
 impl Buckets {
+    /// The buckets of `coords` (index `i` for `coords[i]`).
+    fn new(cell: f64, coords: &[[f64; 3]]) -> Self {
+        let key = |p: [f64; 3]| p.map(|c| (c / cell).floor() as i64);
+        let mut entries: Vec<([i64; 3], u32)> = coords
+            .par_iter()
+            .enumerate()
+            .map(|(i, &p)| (key(p), i as u32))
+            .collect();
+        entries.par_sort_unstable();
+        Self { cell, entries }
+    }
+
     fn key(&self, p: [f64; 3]) -> [i64; 3] {
         p.map(|c| (c / self.cell).floor() as i64)
     }
 
-    /// Indices in the cells that the box `[lo, hi]` touches.
+    /// Indices in the cells that the box `[lo, hi]` touches, in index order
+    /// within each cell.
     fn query(&self, lo: [f64; 3], hi: [f64; 3], out: &mut Vec<u32>) {
         out.clear();
         let (a, b) = (self.key(lo), self.key(hi));
         let cells = (0..3).map(|i| (b[i] - a[i] + 1) as f64).product::<f64>();
-        if cells > self.map.len() as f64 {
-            // A box over more cells than there are buckets: scan them all.
-            for (k, ids) in &self.map {
-                if (0..3).all(|i| a[i] <= k[i] && k[i] <= b[i]) {
-                    out.extend(ids);
-                }
-            }
+        if cells > self.entries.len() as f64 {
+            // A box over more cells than there are points: scan them all.
+            out.extend(
+                self.entries
+                    .iter()
+                    .filter(|(k, _)| (0..3).all(|i| a[i] <= k[i] && k[i] <= b[i]))
+                    .map(|&(_, id)| id),
+            );
             return;
         }
+        // Cells with the same x and y are contiguous: one range per (x, y).
         for x in a[0]..=b[0] {
             for y in a[1]..=b[1] {
-                for z in a[2]..=b[2] {
-                    if let Some(ids) = self.map.get(&[x, y, z]) {
-                        out.extend(ids);
-                    }
-                }
+                let from = self.entries.partition_point(|(k, _)| *k < [x, y, a[2]]);
+                out.extend(
+                    self.entries[from..]
+                        .iter()
+                        .take_while(|(k, _)| *k <= [x, y, b[2]])
+                        .map(|&(_, id)| id),
+                );
             }
         }
     }
@@ -147,46 +177,51 @@ pub fn conform(fragments: &[ConvexPolygon]) -> ConformingMesh {
         },
     );
     let extent = (0..3).map(|i| hi[i] - lo[i]).fold(1.0, f64::max);
-    let mut buckets = Buckets {
-        cell: (extent / (corners.max(1) as f64).sqrt()).max(1.0),
-        map: HashMap::new(),
-    };
+    let cell = (extent / (corners.max(1) as f64).sqrt()).max(1.0);
 
-    // Distinct points, and each fragment's corners as indices.
-    let mut found = Vec::new();
-    let mut outlines: Vec<Vec<u32>> = Vec::with_capacity(fragments.len());
-    for f in fragments {
-        let mut outline = Vec::with_capacity(f.len());
-        for k in 0..f.len() {
-            let point = match f.vertex_grid_point(k) {
-                Some(g) => MeshPoint::Grid(g),
-                None => {
-                    let [s, a, b] = f.vertex_planes(k);
-                    MeshPoint::Implicit(
-                        ImplicitPoint::new(*s, *a, *b).expect("a polygon's vertex is a point"),
-                    )
-                }
-            };
-            let c = f.vertex_f64(k);
-            buckets.query(c.map(|x| x - MARGIN), c.map(|x| x + MARGIN), &mut found);
-            let id = match found
+    // Every corner, exact and in f64, fragment after fragment.
+    let corner_points: Vec<(MeshPoint, [f64; 3])> = fragments
+        .par_iter()
+        .flat_map_iter(|f| (0..f.len()).map(move |k| (MeshPoint::vertex(f, k), f.vertex_f64(k))))
+        .collect();
+    let corner_coords: Vec<[f64; 3]> = corner_points.iter().map(|(_, c)| *c).collect();
+    let corner_buckets = Buckets::new(cell, &corner_coords);
+    // Each corner's first corner at the same point (exact), found in
+    // parallel: the same point's corners lie within the margin of each
+    // other, so the buckets around it hold them all.
+    let first_same: Vec<u32> = (0..corner_points.len())
+        .into_par_iter()
+        .map_init(Vec::new, |found, i| {
+            let (point, c) = &corner_points[i];
+            corner_buckets.query(c.map(|x| x - MARGIN), c.map(|x| x + MARGIN), found);
+            found
                 .iter()
-                .find(|&&id| mesh.points[id as usize].same_point(&point))
-            {
-                Some(&id) => id,
-                None => {
-                    let id = mesh.points.len() as u32;
-                    mesh.points.push(point);
-                    mesh.coords.push(c);
-                    let key = buckets.key(c);
-                    buckets.map.entry(key).or_default().push(id);
-                    id
-                }
-            };
-            outline.push(id);
-        }
-        outlines.push(outline);
+                .copied()
+                .filter(|&j| (j as usize) < i && corner_points[j as usize].0.same_point(point))
+                .min()
+                .unwrap_or(i as u32)
+        })
+        .collect();
+    // Distinct points numbered in order of first appearance.
+    let mut corner_ids: Vec<u32> = Vec::with_capacity(corner_points.len());
+    for (i, &first) in first_same.iter().enumerate() {
+        let id = if first as usize == i {
+            let id = mesh.points.len() as u32;
+            mesh.points.push(corner_points[i].0);
+            mesh.coords.push(corner_points[i].1);
+            id
+        } else {
+            corner_ids[first as usize]
+        };
+        corner_ids.push(id);
     }
+    let mut outlines: Vec<Vec<u32>> = Vec::with_capacity(fragments.len());
+    let mut next = 0;
+    for f in fragments {
+        outlines.push(corner_ids[next..next + f.len()].to_vec());
+        next += f.len();
+    }
+    let buckets = Buckets::new(cell, &mesh.coords);
 
     // Points inside each edge, in order along it: each fragment reads the
     // points and buckets only, so fragments go in parallel (faces keep

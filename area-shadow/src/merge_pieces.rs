@@ -9,19 +9,11 @@
 
 use crate::Class;
 use crate::conform::MeshPoint;
+use bsp_core::ConvexPolygon;
 use bsp_core::predicates::Side;
-use bsp_core::{ConvexPolygon, ImplicitPoint};
 
 fn vertex(p: &ConvexPolygon, k: usize) -> MeshPoint {
-    match p.vertex_grid_point(k) {
-        Some(g) => MeshPoint::Grid(g),
-        None => {
-            let [s, a, b] = p.vertex_planes(k);
-            MeshPoint::Implicit(
-                ImplicitPoint::new(*s, *a, *b).expect("a polygon's vertex is a point"),
-            )
-        }
-    }
+    MeshPoint::vertex(p, k)
 }
 
 /// `a ∪ b` when they share a whole edge and their union is convex.
