@@ -102,10 +102,15 @@ pub(crate) fn internal_planes(
             || umbra.iter().any(|q| q.is_coincident(plane))
     };
     let mut out: Vec<Critical> = Vec::new();
-    let mut push = |critical: Option<Critical>| {
-        let Some(c) = critical else { return };
-        if !known(&c.plane) && !out.iter().any(|d| d.plane.is_coincident(&c.plane)) {
-            out.push(c);
+    // A plane already known (a volume's, or found before) is skipped before
+    // its wedge is made.
+    let mut push = |plane: Option<Plane>, wedge: &dyn Fn(&Plane) -> Option<[Plane; 2]>| {
+        let Some(plane) = plane else { return };
+        if known(&plane) || out.iter().any(|d| d.plane.is_coincident(&plane)) {
+            return;
+        }
+        if let Some(wedge) = wedge(&plane) {
+            out.push(Critical { plane, wedge });
         }
     };
     // EV: light vertex v, occluder edge ab; the wedge is the sector at v
@@ -113,13 +118,12 @@ pub(crate) fn internal_planes(
     for &v in &l {
         for i in 0..o.len() {
             let (a, b) = (o[i], o[(i + 1) % o.len()]);
-            push(Plane::through(v, a, b).and_then(|plane| {
-                let wedge = [
-                    bound(v, a, b, false, &plane, &others)?,
-                    bound(v, b, a, false, &plane, &others)?,
-                ];
-                Some(Critical { plane, wedge })
-            }));
+            push(Plane::through(v, a, b), &|plane| {
+                Some([
+                    bound(v, a, b, false, plane, &others)?,
+                    bound(v, b, a, false, plane, &others)?,
+                ])
+            });
         }
     }
     // VE: occluder vertex p, light edge cd; the wedge is the sector at p
@@ -127,13 +131,12 @@ pub(crate) fn internal_planes(
     for &p in &o {
         for i in 0..l.len() {
             let (c, d) = (l[i], l[(i + 1) % l.len()]);
-            push(Plane::through(p, c, d).and_then(|plane| {
-                let wedge = [
-                    bound(p, c, d, true, &plane, &others)?,
-                    bound(p, d, c, true, &plane, &others)?,
-                ];
-                Some(Critical { plane, wedge })
-            }));
+            push(Plane::through(p, c, d), &|plane| {
+                Some([
+                    bound(p, c, d, true, plane, &others)?,
+                    bound(p, d, c, true, plane, &others)?,
+                ])
+            });
         }
     }
     out

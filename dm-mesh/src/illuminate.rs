@@ -24,11 +24,15 @@
 //! changed are evaluated again.
 
 use crate::cell::Cell;
-use crate::scene::{DmScene, PieceId};
+use crate::scene::{DmLight, DmScene, Piece, PieceId};
+use crate::tree::ReceiverDm;
 use bsp_core::{FaceKey, Side, VertexKey};
 use illum::{Sidedness, VisiblePart, visible_irradiance};
+use rayon::prelude::*;
 use slotmap::SecondaryMap;
+use slotmap::SlotMap;
 use smallvec::SmallVec;
+use std::collections::HashMap;
 
 /// What covers a vertex from one light.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -108,113 +112,39 @@ fn cover(cells: &[&Cell], light: usize) -> Cover {
     Cover::Occluders(units)
 }
 
+impl IllumStats {
+    fn add(mut self, other: Self) -> Self {
+        self.vertices += other.vertices;
+        self.evaluated += other.evaluated;
+        self.unoccluded += other.unoccluded;
+        self.dark += other.dark;
+        self.visibility += other.visibility;
+        self.comparisons += other.comparisons;
+        self
+    }
+}
+
 impl DmScene {
     /// Computes the irradiance at the vertices of every receiver changed
     /// since the last call (all of them the first time), keeping the value
-    /// of every vertex whose covering occluders did not change.
+    /// of every vertex whose covering occluders did not change. Receivers
+    /// are worked on in parallel; the values do not depend on the number of
+    /// threads.
     pub fn illuminate(&mut self) -> IllumStats {
-        let mut stats = IllumStats::default();
-        let mut scratch = VisiblePart::new();
-        let keys: Vec<PieceId> = self.receivers.keys().collect();
-        for r in keys {
-            let touched = self.receivers[r].take_touched();
-            let state = &self.illum[r];
-            let everything = !state.fresh;
-            if !everything && touched.is_empty() {
-                continue;
-            }
-            let dm = &self.receivers[r];
-            let piece = &self.pieces[r];
-            let normal = piece.polygon.support().unit_normal_f64();
-            let sided = if piece.flags.two_sided {
-                Sidedness::TwoSided
-            } else {
-                Sidedness::OneSided
-            };
-            let mesh = dm.mesh();
-            let faces: Vec<FaceKey> = if everything {
-                mesh.faces().map(|(f, _)| f).collect()
-            } else {
-                touched
-            };
-            let mut values = std::mem::take(&mut self.illum[r].values);
-            let mut seen: SecondaryMap<VertexKey, ()> = SecondaryMap::new();
-            for f in faces {
-                for v in mesh.face_vertices(f) {
-                    if seen.insert(v, ()).is_some() {
-                        continue;
-                    }
-                    stats.vertices += 1;
-                    let cells: SmallVec<[&Cell; 6]> = mesh
-                        .vertex_faces(v)
-                        .into_iter()
-                        .flatten()
-                        .filter_map(|f| mesh.face(f).map(|face| &face.data))
-                        .collect();
-                    let position = mesh.vertex(v).expect("face vertex").position;
-                    let covers: SmallVec<[Cover; 1]> = self
-                        .lights
-                        .iter()
-                        .enumerate()
-                        .map(|(i, light)| {
-                            // In the light's plane the light is seen edge-on
-                            // (exactly decided; f64 would be ill-conditioned
-                            // where a receiver pierces the light).
-                            if position.side(light.source.support()) == Side::On {
-                                Cover::Dark
-                            } else {
-                                cover(&cells, i)
-                            }
-                        })
-                        .collect();
-                    if values.get(v).is_some_and(|value| value.covers == covers) {
-                        continue;
-                    }
-                    stats.evaluated += 1;
-                    let p = position.to_f64();
-                    let mut irradiance = 0.0;
-                    for (light, cover) in self.lights.iter().zip(&covers) {
-                        irradiance += match cover {
-                            Cover::Dark => {
-                                stats.dark += 1;
-                                0.0
-                            }
-                            Cover::Free => {
-                                stats.unoccluded += 1;
-                                light.illum.irradiance(p, normal, sided)
-                            }
-                            Cover::Occluders(units) => {
-                                stats.visibility += 1;
-                                stats.comparisons += units.len();
-                                let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
-                                    .iter()
-                                    .filter_map(|u| dm.unit(*u))
-                                    .map(|(o, _)| self.pieces[o].outline.as_slice())
-                                    .collect();
-                                visible_irradiance(
-                                    &light.illum,
-                                    &outlines,
-                                    p,
-                                    normal,
-                                    sided,
-                                    &mut scratch,
-                                )
-                            }
-                        };
-                    }
-                    values.insert(v, VertexValue { covers, irradiance });
-                }
-            }
-            // Values of vertices gone since are dropped now and then.
-            let (live, _, _) = mesh.counts();
-            if values.len() > 2 * live + 64 {
-                values.retain(|v, _| mesh.vertex(v).is_some());
-            }
-            let state = &mut self.illum[r];
-            state.values = values;
-            state.fresh = true;
-        }
-        stats
+        let mut states: HashMap<PieceId, &mut ReceiverIllum> = self.illum.iter_mut().collect();
+        let mut work: Vec<(PieceId, &mut ReceiverDm<PieceId>, &mut ReceiverIllum)> = self
+            .receivers
+            .iter_mut()
+            .filter_map(|(r, dm)| states.remove(&r).map(|state| (r, dm, state)))
+            .collect();
+        let (lights, pieces) = (&self.lights, &self.pieces);
+        // Big receivers first, so that no thread is left with one at the end.
+        work.sort_by_key(|(_, dm, _)| std::cmp::Reverse(dm.cell_count()));
+        work.par_iter_mut()
+            .map_init(VisiblePart::new, |scratch, (r, dm, state)| {
+                illuminate_receiver(lights, pieces, *r, dm, state, scratch)
+            })
+            .reduce(IllumStats::default, IllumStats::add)
     }
 
     /// The irradiance at a vertex of a receiver's mesh (all lights, grid
@@ -226,4 +156,102 @@ impl DmScene {
             .get(vertex)
             .map(|v| v.irradiance)
     }
+}
+
+/// [`DmScene::illuminate`] on one receiver.
+fn illuminate_receiver(
+    lights: &[DmLight],
+    pieces: &SlotMap<PieceId, Piece>,
+    r: PieceId,
+    dm: &mut ReceiverDm<PieceId>,
+    state: &mut ReceiverIllum,
+    scratch: &mut VisiblePart,
+) -> IllumStats {
+    let mut stats = IllumStats::default();
+    let touched = dm.take_touched();
+    let everything = !state.fresh;
+    if !everything && touched.is_empty() {
+        return stats;
+    }
+    let dm = &*dm;
+    let piece = &pieces[r];
+    let normal = piece.polygon.support().unit_normal_f64();
+    let sided = if piece.flags.two_sided {
+        Sidedness::TwoSided
+    } else {
+        Sidedness::OneSided
+    };
+    let mesh = dm.mesh();
+    let faces: Vec<FaceKey> = if everything {
+        mesh.faces().map(|(f, _)| f).collect()
+    } else {
+        touched
+    };
+    let values = &mut state.values;
+    let mut seen: SecondaryMap<VertexKey, ()> = SecondaryMap::new();
+    for f in faces {
+        for v in mesh.face_vertices(f) {
+            if seen.insert(v, ()).is_some() {
+                continue;
+            }
+            stats.vertices += 1;
+            let cells: SmallVec<[&Cell; 6]> = mesh
+                .vertex_faces(v)
+                .into_iter()
+                .flatten()
+                .filter_map(|f| mesh.face(f).map(|face| &face.data))
+                .collect();
+            let position = mesh.vertex(v).expect("face vertex").position;
+            let covers: SmallVec<[Cover; 1]> = lights
+                .iter()
+                .enumerate()
+                .map(|(i, light)| {
+                    // In the light's plane the light is seen edge-on
+                    // (exactly decided; f64 would be ill-conditioned
+                    // where a receiver pierces the light).
+                    if position.side(light.source.support()) == Side::On {
+                        Cover::Dark
+                    } else {
+                        cover(&cells, i)
+                    }
+                })
+                .collect();
+            if values.get(v).is_some_and(|value| value.covers == covers) {
+                continue;
+            }
+            stats.evaluated += 1;
+            let p = position.to_f64();
+            let mut irradiance = 0.0;
+            for (light, cover) in lights.iter().zip(&covers) {
+                irradiance += match cover {
+                    Cover::Dark => {
+                        stats.dark += 1;
+                        0.0
+                    }
+                    Cover::Free => {
+                        stats.unoccluded += 1;
+                        light.illum.irradiance(p, normal, sided)
+                    }
+                    Cover::Occluders(units) => {
+                        stats.visibility += 1;
+                        stats.comparisons += units.len();
+                        let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
+                            .iter()
+                            .filter_map(|u| dm.unit(*u))
+                            .map(|(o, _)| pieces[o].outline.as_slice())
+                            .collect();
+                        visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
+                    }
+                };
+            }
+            values.insert(v, VertexValue { covers, irradiance });
+        }
+    }
+    // Values of vertices gone since are dropped now and then.
+    let (live, _, _) = mesh.counts();
+    if values.len() > 2 * live + 64 {
+        values.retain(|v, _| mesh.vertex(v).is_some());
+    }
+    state.fresh = true;
+    stats
 }

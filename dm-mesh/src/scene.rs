@@ -9,8 +9,9 @@ use crate::overlap::Overlap;
 use crate::tree::ReceiverDm;
 use area_shadow::{AreaSource, SourceSide, volume_planes};
 use bsp_core::ConvexPolygon;
+use rayon::prelude::*;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
-use std::collections::BTreeSet;
+use std::collections::{BTreeSet, HashMap};
 use svbsp::PieceFlags;
 
 new_key_type! {
@@ -21,6 +22,9 @@ new_key_type! {
     /// object casts shadows, an occluder.
     pub struct PieceId;
 }
+
+/// Units (occluder, light) to merge into one receiver, in order.
+type Order = Vec<(PieceId, u8)>;
 
 /// An area light: a convex polygon on the grid and its radiance.
 #[derive(Debug, Clone)]
@@ -296,26 +300,15 @@ impl DmScene {
 
     /// Casts the shadows of `added` (new pieces) on every receiver, and of
     /// every occluder on the new receivers.
+    ///
+    /// Which units go into which receiver, and in what order, is decided
+    /// first; then the receivers are worked on in parallel (each tree only
+    /// ever sees its own units, in the same order, so the result does not
+    /// depend on the number of threads).
     fn cast(&mut self, added: &[PieceId]) {
         self.overlap.refresh(&self.pieces);
         let new: BTreeSet<PieceId> = added.iter().copied().collect();
-        // New receivers: every occluder the overlap structure pairs them with.
-        for &r in added {
-            if self.receivers[r].in_the_dark() {
-                continue;
-            }
-            let candidates = self.overlap.occluders_near(r, &self.pieces);
-            let order = unit_order(&self.lights, &self.pieces, &candidates);
-            let dm = &mut self.receivers[r];
-            for (occluder, light) in order {
-                dm.insert(
-                    occluder,
-                    light,
-                    &self.pieces[occluder].volumes[light as usize],
-                );
-            }
-        }
-        // Old receivers: the new occluders, appended.
+        // Old receivers the new occluders may reach.
         let mut touched: BTreeSet<PieceId> = BTreeSet::new();
         for &o in added {
             touched.extend(
@@ -325,25 +318,44 @@ impl DmScene {
                     .filter(|r| !new.contains(r)),
             );
         }
-        for r in touched {
-            if self.receivers[r].in_the_dark() {
-                continue;
+        let targets: Vec<(PieceId, bool)> = added
+            .iter()
+            .map(|&r| (r, true))
+            .chain(touched.into_iter().map(|r| (r, false)))
+            .filter(|(r, _)| !self.receivers[*r].in_the_dark())
+            .collect();
+        let (lights, pieces, overlap) = (&self.lights, &self.pieces, &self.overlap);
+        let jobs: Vec<(PieceId, Order)> = targets
+            .par_iter()
+            .map(|&(r, fresh)| {
+                // New receivers: every occluder the overlap structure pairs
+                // them with. Old ones: the new occluders, appended.
+                let candidates: Vec<PieceId> = if fresh {
+                    overlap.occluders_near(r, pieces)
+                } else {
+                    added
+                        .iter()
+                        .copied()
+                        .filter(|o| overlap.may_shadow(*o, r, pieces))
+                        .collect()
+                };
+                (r, unit_order(lights, pieces, &candidates))
+            })
+            .filter(|(_, order)| !order.is_empty())
+            .collect();
+        let mut work: HashMap<PieceId, Order> = jobs.into_iter().collect();
+        let mut trees: Vec<(&mut ReceiverDm<PieceId>, Order)> = self
+            .receivers
+            .iter_mut()
+            .filter_map(|(r, dm)| work.remove(&r).map(|order| (dm, order)))
+            .collect();
+        // The biggest first, so that no thread is left with one at the end.
+        trees.sort_by_key(|(_, order)| std::cmp::Reverse(order.len()));
+        trees.par_iter_mut().for_each(|(dm, order)| {
+            for &(occluder, light) in order.iter() {
+                dm.insert(occluder, light, &pieces[occluder].volumes[light as usize]);
             }
-            let candidates: Vec<PieceId> = added
-                .iter()
-                .copied()
-                .filter(|o| self.overlap.may_shadow(*o, r, &self.pieces))
-                .collect();
-            let order = unit_order(&self.lights, &self.pieces, &candidates);
-            let dm = &mut self.receivers[r];
-            for (occluder, light) in order {
-                dm.insert(
-                    occluder,
-                    light,
-                    &self.pieces[occluder].volumes[light as usize],
-                );
-            }
-        }
+        });
     }
 
     /// Removes an object's pieces and their discontinuities.

@@ -23,7 +23,9 @@ use crate::cell::{Cell, CellClass, Entry};
 use crate::critical::{Critical, UnitPlanes};
 use area_shadow::{AreaSource, SourceSide};
 use bsp_core::predicates::Side;
-use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, Split, VertexKey, WingedMesh};
+use bsp_core::{
+    ConvexPolygon, FaceKey, FaceSplit, Plane, PolygonSide, Split, VertexKey, WingedMesh,
+};
 use std::collections::{BTreeMap, BTreeSet};
 
 /// The unit number of the light-plane splits made when a receiver is
@@ -421,8 +423,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         for critical in internal {
             let mut next = Vec::with_capacity(cells.len());
             for (leaf, polygon) in cells {
-                let crosses = clip(&polygon, &critical.wedge)
-                    .is_some_and(|part| matches!(part.split(&critical.plane), Split::Both(..)));
+                // The plane must cut the cell (cheap, no polygon made),
+                // and then the cell's part inside the wedge.
+                let crosses = polygon.classify(&critical.plane) == PolygonSide::Both
+                    && clip(&polygon, &critical.wedge)
+                        .is_some_and(|part| part.classify(&critical.plane) == PolygonSide::Both);
                 if !crosses {
                     next.push((leaf, polygon));
                     continue;

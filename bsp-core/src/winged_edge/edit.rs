@@ -4,6 +4,7 @@
 use super::{Edge, Face, FaceSplit, Vertex, VertexPosition, WingedMesh};
 use crate::predicates::Side;
 use crate::{EdgeKey, Error, FaceKey, ImplicitPoint, Plane, VertexKey};
+use smallvec::SmallVec;
 
 impl<F: Clone, E: Clone> WingedMesh<F, E> {
     /// Splits edge `e` at `position`, which must lie strictly inside it
@@ -70,43 +71,55 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     /// plane that only touches the face leaves it whole.
     pub fn split_face(&mut self, f: FaceKey, plane: &Plane) -> FaceSplit {
         let support = self.faces[f].support;
-        let mut back = false;
-        let mut front = false;
-        for v in self.face_vertices(f) {
-            match self.vertices[v].position.side(plane) {
-                Side::Back => back = true,
-                Side::Front => front = true,
-                Side::On => {}
+        let side = Some(f);
+        // One walk around the face: each edge with the side of the vertex
+        // the walk leaves it from.
+        let mut walk: SmallVec<[(EdgeKey, Side); 16]> = SmallVec::new();
+        let (mut back, mut front) = (false, false);
+        let first = self.faces[f].edge;
+        let mut e = first;
+        loop {
+            let s = self.vertices[self.walk_start(e, side)].position.side(plane);
+            back |= s == Side::Back;
+            front |= s == Side::Front;
+            walk.push((e, s));
+            e = self.next_in(e, side);
+            if e == first || walk.len() > self.edges.len() {
+                break;
             }
         }
         if !(back && front) {
             return FaceSplit::NotSplit(if back { Side::Back } else { Side::Front });
         }
-        // Split the edges that cross the plane strictly.
-        for e in self.face_edges(f) {
-            let edge = &self.edges[e];
-            let (s, t) = (
-                self.vertices[edge.start].position.side(plane),
-                self.vertices[edge.end].position.side(plane),
-            );
+        // Split the edges that cross the plane strictly (in walk order); the
+        // new vertex is on the plane, and the walk of `f` takes the two
+        // halves in its own direction.
+        let m = walk.len();
+        let mut edges: SmallVec<[EdgeKey; 16]> = SmallVec::with_capacity(m + 2);
+        let mut sides: SmallVec<[Side; 16]> = SmallVec::with_capacity(m + 2);
+        for i in 0..m {
+            let (e, s) = walk[i];
+            let t = walk[(i + 1) % m].1;
             if (s == Side::Back && t == Side::Front) || (s == Side::Front && t == Side::Back) {
+                let edge = &self.edges[e];
+                let forward = edge.left == side;
                 let point = ImplicitPoint::new(support, edge.line, *plane)
                     .expect("an edge with ends on both sides meets the plane");
-                self.split_edge_unchecked(e, VertexPosition::Implicit(point));
+                let (_, second) = self.split_edge_unchecked(e, VertexPosition::Implicit(point));
+                if forward {
+                    edges.extend([e, second]);
+                } else {
+                    edges.extend([second, e]);
+                }
+                sides.extend([s, Side::On]);
+            } else {
+                edges.push(e);
+                sides.push(s);
             }
         }
         // Now exactly two vertices of the loop are on the plane where the
         // walk changes side: find the edges entering and leaving them.
-        let edges = self.face_edges(f);
         let n = edges.len();
-        let sides: Vec<Side> = edges
-            .iter()
-            .map(|&e| {
-                self.vertices[self.walk_start(e, Some(f))]
-                    .position
-                    .side(plane)
-            })
-            .collect();
         // Vertex i is the start of edges[i]. `a`: the On vertex after which
         // the walk goes strictly back; `b`: the one after which it goes front.
         let on_before = |i: usize, want: Side| {
@@ -135,8 +148,8 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             edge: out_b,
             data: self.faces[f].data.clone(),
         });
-        let front_edges: Vec<EdgeKey> = {
-            let mut list = Vec::new();
+        let front_edges: SmallVec<[EdgeKey; 16]> = {
+            let mut list = SmallVec::new();
             let mut k = b;
             while k != a {
                 list.push(edges[k]);
