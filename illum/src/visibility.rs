@@ -54,9 +54,10 @@ enum Split {
 
 type Buf = SmallVec<[Vec3; 16]>;
 
-/// Splits convex `poly` by `h`; on [`Split::Both`], `inside` and `outside`
-/// hold the two parts.
-fn split(poly: &[Vec3], h: HalfSpace, inside: &mut Buf, outside: &mut Buf) -> Split {
+/// Where convex `poly` lies with respect to `h`: whether some vertex is
+/// strictly inside, and whether some vertex is strictly outside.
+#[inline(always)]
+fn classify(poly: &[Vec3], h: &HalfSpace) -> (bool, bool) {
     let mut pos = false;
     let mut neg = false;
     for v in poly {
@@ -64,7 +65,13 @@ fn split(poly: &[Vec3], h: HalfSpace, inside: &mut Buf, outside: &mut Buf) -> Sp
         pos |= s > 0.0;
         neg |= s < 0.0;
     }
-    match (pos, neg) {
+    (pos, neg)
+}
+
+/// Splits convex `poly` by `h`; on [`Split::Both`], `inside` and `outside`
+/// hold the two parts.
+fn split(poly: &[Vec3], h: &HalfSpace, inside: &mut Buf, outside: &mut Buf) -> Split {
+    match classify(poly, h) {
         (false, _) => Split::Outside,
         (true, false) => Split::Inside,
         (true, true) => {
@@ -144,6 +151,7 @@ impl VisiblePart {
         self.verts.extend_from_slice(light.vertices());
         self.pieces.push(0..self.verts.len() as u32);
         let mut planes = SmallVec::<[HalfSpace; 9]>::new();
+        let mut active = SmallVec::<[HalfSpace; 9]>::new();
         for occ in occluders {
             if self.pieces.is_empty() {
                 break;
@@ -152,21 +160,34 @@ impl VisiblePart {
                 continue;
             }
             // The pieces lie in the light: an occluder whose blocked region
-            // misses the whole light leaves them as they are.
-            let misses = planes.iter().any(|h| {
-                light
-                    .vertices()
-                    .iter()
-                    .all(|v| dot(h.m, sub(*v, h.q)) <= 0.0)
-            });
+            // misses the whole light leaves them as they are, and a
+            // half-space that holds the whole light holds every piece, so
+            // only the others can split them.
+            active.clear();
+            let mut misses = false;
+            for h in &planes {
+                match classify(light.vertices(), h) {
+                    (false, _) => {
+                        misses = true;
+                        break;
+                    }
+                    (true, false) => {}
+                    (true, true) => active.push(*h),
+                }
+            }
             if misses {
                 continue;
+            }
+            if active.is_empty() {
+                // The whole light is hidden.
+                self.pieces.clear();
+                break;
             }
             self.next_verts.clear();
             self.next_pieces.clear();
             for r in &self.pieces {
                 let piece = &self.verts[r.start as usize..r.end as usize];
-                subtract(piece, &planes, &mut self.next_verts, &mut self.next_pieces);
+                subtract(piece, &active, &mut self.next_verts, &mut self.next_pieces);
             }
             std::mem::swap(&mut self.verts, &mut self.next_verts);
             std::mem::swap(&mut self.pieces, &mut self.next_pieces);
@@ -215,6 +236,11 @@ impl VisiblePart {
 
 /// Appends to `verts`/`pieces` the parts of convex `piece` outside the
 /// intersection of `planes`.
+///
+/// A piece wholly outside one of the half-spaces is kept whole, and one
+/// wholly inside them all is dropped, before any splitting; otherwise it is
+/// split only by the planes it straddles, so that no piece is cut where the
+/// blocked region does not reach it.
 fn subtract(
     piece: &[Vec3],
     planes: &[HalfSpace],
@@ -228,19 +254,41 @@ fn subtract(
             pieces.push(start..verts.len() as u32);
         }
     };
-    let mut cur = Buf::from_slice(piece);
-    let mut inside = Buf::new();
+    // Bit k: the piece straddles planes[k] (at most 9 half-spaces).
+    let mut straddled = 0u32;
+    for (k, h) in planes.iter().enumerate() {
+        match classify(piece, h) {
+            (false, _) => {
+                push(piece);
+                return;
+            }
+            (true, false) => {}
+            (true, true) => straddled |= 1 << k,
+        }
+    }
+    // What is left to split: the piece itself, then bufs[0] or bufs[1] in
+    // turn (no copy of the piece, no swap of buffers).
+    let mut bufs = [Buf::new(), Buf::new()];
     let mut outside = Buf::new();
-    for &h in planes {
-        match split(&cur, h, &mut inside, &mut outside) {
+    let mut cur: Option<usize> = None;
+    while straddled != 0 {
+        let h = &planes[straddled.trailing_zeros() as usize];
+        straddled &= straddled - 1;
+        let [b0, b1] = &mut bufs;
+        let (src, dst): (&[Vec3], &mut Buf) = match cur {
+            None => (piece, b0),
+            Some(0) => (b0.as_slice(), b1),
+            Some(_) => (b1.as_slice(), b0),
+        };
+        match split(src, h, dst, &mut outside) {
             Split::Outside => {
-                push(&cur);
+                push(src);
                 return;
             }
             Split::Inside => {}
             Split::Both => {
                 push(&outside);
-                std::mem::swap(&mut cur, &mut inside);
+                cur = Some(cur.map_or(0, |i| 1 - i));
             }
         }
     }
