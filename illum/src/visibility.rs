@@ -31,12 +31,26 @@ use std::ops::Range;
 pub struct VisiblePart {
     verts: Vec<Vec3>,
     pieces: Vec<Range<u32>>,
-    next_verts: Vec<Vec3>,
-    next_pieces: Vec<Range<u32>>,
+    scratch: Scratch,
+}
+
+/// Working storage of [`VisiblePart::compute`].
+#[derive(Debug, Clone, Default)]
+struct Scratch {
+    /// The half-spaces of the occluders that cut the light, in runs.
+    planes: Vec<HalfSpace>,
+    runs: Vec<Range<u32>>,
+    /// Pieces still to be checked against occluders `next..`: a stack of
+    /// runs of `stack_verts` with their `next`.
+    stack_verts: Vec<Vec3>,
+    stack: Vec<(Range<u32>, u32)>,
+    cur: Vec<Vec3>,
+    inside: Vec<Vec3>,
+    outside: Vec<Vec3>,
 }
 
 /// A half-space `m . (x - q) > 0` of the blocked region.
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 struct HalfSpace {
     m: Vec3,
     q: Vec3,
@@ -52,11 +66,10 @@ enum Split {
     Both,
 }
 
-type Buf = SmallVec<[Vec3; 16]>;
-
-/// Splits convex `poly` by `h`; on [`Split::Both`], `inside` and `outside`
-/// hold the two parts.
-fn split(poly: &[Vec3], h: HalfSpace, inside: &mut Buf, outside: &mut Buf) -> Split {
+/// Where convex `poly` lies with respect to `h`: whether some vertex is
+/// strictly inside, and whether some vertex is strictly outside.
+#[inline(always)]
+fn classify(poly: &[Vec3], h: &HalfSpace) -> (bool, bool) {
     let mut pos = false;
     let mut neg = false;
     for v in poly {
@@ -64,7 +77,13 @@ fn split(poly: &[Vec3], h: HalfSpace, inside: &mut Buf, outside: &mut Buf) -> Sp
         pos |= s > 0.0;
         neg |= s < 0.0;
     }
-    match (pos, neg) {
+    (pos, neg)
+}
+
+/// Splits convex `poly` by `h`; on [`Split::Both`], `inside` and `outside`
+/// hold the two parts.
+fn split(poly: &[Vec3], h: &HalfSpace, inside: &mut Vec<Vec3>, outside: &mut Vec<Vec3>) -> Split {
+    match classify(poly, h) {
         (false, _) => Split::Outside,
         (true, false) => Split::Inside,
         (true, true) => {
@@ -138,38 +157,106 @@ impl VisiblePart {
 
     /// Replaces the pieces by the part of `light` visible from `p` past the
     /// convex planar `occluders`.
+    ///
+    /// The occluders that cut the light are found first (an occluder
+    /// outside the pyramid from `p` to the light, or whose blocked region
+    /// misses the light, is skipped); then each piece goes down the list
+    /// depth first, and is split only by an occluder it straddles.
     pub fn compute<O: AsRef<[Vec3]>>(&mut self, light: &AreaLight, occluders: &[O], p: Vec3) {
         self.verts.clear();
         self.pieces.clear();
-        self.verts.extend_from_slice(light.vertices());
-        self.pieces.push(0..self.verts.len() as u32);
+        let sc = &mut self.scratch;
+        sc.planes.clear();
+        sc.runs.clear();
+        let cone = light_pyramid(light, p);
         let mut planes = SmallVec::<[HalfSpace; 9]>::new();
         for occ in occluders {
-            if self.pieces.is_empty() {
-                break;
+            let occ = occ.as_ref();
+            // Outside the pyramid from p to the light: hides none of it.
+            if cone
+                .iter()
+                .any(|h| occ.iter().all(|v| dot(h.m, sub(*v, h.q)) <= 0.0))
+            {
+                continue;
             }
-            if !blocked_region(occ.as_ref(), p, &mut planes) {
+            if !blocked_region(occ, p, &mut planes) {
                 continue;
             }
             // The pieces lie in the light: an occluder whose blocked region
-            // misses the whole light leaves them as they are.
-            let misses = planes.iter().any(|h| {
-                light
-                    .vertices()
-                    .iter()
-                    .all(|v| dot(h.m, sub(*v, h.q)) <= 0.0)
-            });
+            // misses the whole light leaves them as they are, and a
+            // half-space that holds the whole light holds every piece, so
+            // only the others can split them.
+            let start = sc.planes.len() as u32;
+            let mut misses = false;
+            for h in &planes {
+                match classify(light.vertices(), h) {
+                    (false, _) => {
+                        misses = true;
+                        break;
+                    }
+                    (true, false) => {}
+                    (true, true) => sc.planes.push(*h),
+                }
+            }
             if misses {
+                sc.planes.truncate(start as usize);
                 continue;
             }
-            self.next_verts.clear();
-            self.next_pieces.clear();
-            for r in &self.pieces {
-                let piece = &self.verts[r.start as usize..r.end as usize];
-                subtract(piece, &planes, &mut self.next_verts, &mut self.next_pieces);
+            if sc.planes.len() as u32 == start {
+                // The whole light is hidden.
+                return;
             }
-            std::mem::swap(&mut self.verts, &mut self.next_verts);
-            std::mem::swap(&mut self.pieces, &mut self.next_pieces);
+            sc.runs.push(start..sc.planes.len() as u32);
+        }
+        sc.stack_verts.clear();
+        sc.stack.clear();
+        sc.stack_verts.extend_from_slice(light.vertices());
+        sc.stack.push((0..sc.stack_verts.len() as u32, 0));
+        while let Some((r, mut next)) = sc.stack.pop() {
+            // The run popped is the last one of stack_verts.
+            sc.cur.clear();
+            sc.cur
+                .extend_from_slice(&sc.stack_verts[r.start as usize..r.end as usize]);
+            sc.stack_verts.truncate(r.start as usize);
+            'occluders: loop {
+                let Some(run) = sc.runs.get(next as usize) else {
+                    // Past every occluder: visible.
+                    let start = self.verts.len() as u32;
+                    self.verts.extend_from_slice(&sc.cur);
+                    self.pieces.push(start..self.verts.len() as u32);
+                    break;
+                };
+                next += 1;
+                let planes = &sc.planes[run.start as usize..run.end as usize];
+                // Bit k: the piece straddles planes[k] (at most 9).
+                let mut straddled = 0u32;
+                for (k, h) in planes.iter().enumerate() {
+                    match classify(&sc.cur, h) {
+                        (false, _) => continue 'occluders,
+                        (true, false) => {}
+                        (true, true) => straddled |= 1 << k,
+                    }
+                }
+                while straddled != 0 {
+                    let h = &planes[straddled.trailing_zeros() as usize];
+                    straddled &= straddled - 1;
+                    match split(&sc.cur, h, &mut sc.inside, &mut sc.outside) {
+                        // Once cut, what is left may be outside a later plane.
+                        Split::Outside => continue 'occluders,
+                        Split::Inside => {}
+                        Split::Both => {
+                            if sc.outside.len() >= 3 {
+                                let start = sc.stack_verts.len() as u32;
+                                sc.stack_verts.extend_from_slice(&sc.outside);
+                                sc.stack.push((start..sc.stack_verts.len() as u32, next));
+                            }
+                            std::mem::swap(&mut sc.cur, &mut sc.inside);
+                        }
+                    }
+                }
+                // What is left lies inside every half-space: hidden.
+                break;
+            }
         }
     }
 
@@ -213,38 +300,30 @@ impl VisiblePart {
     }
 }
 
-/// Appends to `verts`/`pieces` the parts of convex `piece` outside the
-/// intersection of `planes`.
-fn subtract(
-    piece: &[Vec3],
-    planes: &[HalfSpace],
-    verts: &mut Vec<Vec3>,
-    pieces: &mut Vec<Range<u32>>,
-) {
-    let mut push = |poly: &[Vec3]| {
-        if poly.len() >= 3 {
-            let start = verts.len() as u32;
-            verts.extend_from_slice(poly);
-            pieces.push(start..verts.len() as u32);
-        }
-    };
-    let mut cur = Buf::from_slice(piece);
-    let mut inside = Buf::new();
-    let mut outside = Buf::new();
-    for &h in planes {
-        match split(&cur, h, &mut inside, &mut outside) {
-            Split::Outside => {
-                push(&cur);
-                return;
-            }
-            Split::Inside => {}
-            Split::Both => {
-                push(&outside);
-                std::mem::swap(&mut cur, &mut inside);
-            }
-        }
+/// The pyramid from `p` to the light, as half-spaces `m . (x - q) > 0`: one
+/// per light edge, and the light's plane. Empty when `p` is not strictly on
+/// the lit side (then nothing is skipped on its account).
+fn light_pyramid(light: &AreaLight, p: Vec3) -> SmallVec<[HalfSpace; 9]> {
+    let mut out = SmallVec::new();
+    if !light.lights_side_of(p) {
+        return out;
     }
-    // What is left lies inside every half-space: hidden.
+    let n = light.normal();
+    let lv = light.vertices();
+    // The lit side of the light's plane, where p is.
+    out.push(HalfSpace { m: n, q: lv[0] });
+    let mut prev = lv[lv.len() - 1];
+    for &v in lv {
+        // Counter-clockwise seen from p: (v_i - p) x (v_{i+1} - p) = a x e
+        // points away from the pyramid's inside.
+        let m = cross(sub(prev, p), sub(v, prev));
+        out.push(HalfSpace {
+            m: scale(m, -1.0),
+            q: p,
+        });
+        prev = v;
+    }
+    out
 }
 
 /// Irradiance at `p` (unit normal `n`) from the part of `light` visible past
