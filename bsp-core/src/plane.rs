@@ -93,13 +93,18 @@ impl Plane {
     }
 
     fn normalized(a: i64, b: i64, c: i64, d: i128) -> Self {
-        let g = gcd_u128(
-            gcd_u128(
-                gcd_u128(u128::from(a.unsigned_abs()), u128::from(b.unsigned_abs())),
-                u128::from(c.unsigned_abs()),
-            ),
-            d.unsigned_abs(),
+        // The normal's gcd first, in 64 bits; it is usually 1, and then so
+        // is the whole gcd.
+        let gn = gcd_u64(
+            gcd_u64(a.unsigned_abs(), b.unsigned_abs()),
+            c.unsigned_abs(),
         );
+        let g = if gn == 1 {
+            1
+        } else {
+            // gcd(gn, d) = gcd(gn, d mod gn), with gn >= 1 (normal not zero).
+            u128::from(gcd_u64(gn, (d.unsigned_abs() % u128::from(gn)) as u64))
+        };
         // g >= 1 because the normal is not zero.
         let gi = g as i128;
         let a = (i128::from(a) / gi) as i64;
@@ -195,6 +200,28 @@ impl Hash for Plane {
     }
 }
 
+fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
+    if a == 0 {
+        return b;
+    }
+    if b == 0 {
+        return a;
+    }
+    let shift = (a | b).trailing_zeros();
+    a >>= a.trailing_zeros();
+    loop {
+        b >>= b.trailing_zeros();
+        if a > b {
+            std::mem::swap(&mut a, &mut b);
+        }
+        b -= a;
+        if b == 0 {
+            return a << shift;
+        }
+    }
+}
+
+#[cfg(test)]
 fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
     if a == 0 {
         return b;
@@ -244,6 +271,26 @@ mod tests {
         assert!(a.flipped().is_opposite(&a));
         assert!(a.is_coincident(&a.flipped()));
         assert_ne!(a, a.flipped());
+    }
+
+    #[test]
+    fn coefficients_are_divided_by_their_gcd() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
+        for _ in 0..2000 {
+            let k: i64 = rng.random_range(1..50);
+            let n: [i64; 3] = std::array::from_fn(|_| k * rng.random_range(-1000..1000));
+            let p = gp(rng.random_range(-99..99), rng.random_range(-99..99), 0);
+            let Some(plane) = Plane::with_normal_through(n, p) else {
+                continue;
+            };
+            let [a, b, c] = plane.normal().map(|v| v.unsigned_abs() as u128);
+            let g = gcd_u128(gcd_u128(gcd_u128(a, b), c), plane.offset().unsigned_abs());
+            assert_eq!(g, 1);
+            // The same plane from a scaled normal.
+            let m = n.map(|v| v / k);
+            assert_eq!(Plane::with_normal_through(m, p), Some(plane));
+        }
     }
 
     #[test]

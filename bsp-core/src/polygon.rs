@@ -1,8 +1,6 @@
 //! Convex polygons with implicit vertices, and their exact splitting.
 
-use crate::predicates::{
-    self, PointFilter, Side, cross_of_differences, dot_i128, side_of_implicit, side_of_point,
-};
+use crate::predicates::{self, PointFilter, Side, cross_of_differences, dot_i128, side_of_point};
 use crate::{Error, GridPoint, Plane};
 use smallvec::SmallVec;
 
@@ -212,8 +210,39 @@ impl ConvexPolygon {
     pub fn vertex_side(&self, i: usize, plane: &Plane) -> Side {
         match &self.vertices[i] {
             Vertex::Grid(p) => side_of_point(plane, *p),
-            Vertex::Implicit(filter) => side_of_implicit(filter, self.vertex_planes(i), plane),
+            Vertex::Implicit(filter) => match filter.side(plane) {
+                Some(side) => side,
+                None => self.implicit_side_exact(i, plane),
+            },
         }
+    }
+
+    /// Side of implicit vertex `i` where the filter is uncertain, exact.
+    /// Edge `i` runs from the vertex along `support.normal × edge.normal`
+    /// (the polygon lies behind its edge planes), so a grid-point neighbour
+    /// on `plane` at either end of an edge through the vertex decides it by
+    /// a 3x3 determinant.
+    #[inline(never)]
+    fn implicit_side_exact(&self, i: usize, plane: &Plane) -> Side {
+        let planes = self.vertex_planes(i);
+        if planes.iter().any(|p| p.is_coincident(plane)) {
+            return Side::On;
+        }
+        let n = self.len();
+        let prev = (i + n - 1) % n;
+        // Vertex i + 1 ends edge i: the vertex lies back along the edge.
+        if let Vertex::Grid(g) = self.vertices[(i + 1) % n] {
+            if side_of_point(plane, g) == Side::On {
+                return predicates::side_along_line(plane, &self.support, &self.edges[i], false);
+            }
+        }
+        // Vertex i - 1 starts edge i - 1: the vertex lies forward along it.
+        if let Vertex::Grid(g) = self.vertices[prev] {
+            if side_of_point(plane, g) == Side::On {
+                return predicates::side_along_line(plane, &self.support, &self.edges[prev], true);
+            }
+        }
+        predicates::exact_side_of_implicit(planes, plane)
     }
 
     /// Vertex `i` in grid units, as `f64` (for output and illumination).
@@ -340,22 +369,27 @@ impl ConvexPolygon {
         match (back, front) {
             (true, true) => {
                 // Each crossing vertex is made once and shared by both parts
-                // (a plane and its flip give the same filter data).
-                let crossings: SmallVec<[(usize, Vertex); 2]> = (0..n)
-                    .filter(|&e| matches!(
+                // (a plane and its flip give the same filter data). A convex
+                // polygon crosses a plane on at most two edges.
+                let mut crossings: [(usize, Vertex); 2] =
+                    [(usize::MAX, Vertex::Grid(GridPoint::default())); 2];
+                let mut count = 0;
+                for e in 0..n {
+                    if matches!(
                         (sides[e], sides[(e + 1) % n]),
                         (Side::Back, Side::Front) | (Side::Front, Side::Back)
-                    ))
-                    .map(|e| {
+                    ) {
                         let filter = PointFilter::new(&self.support, &self.edges[e], plane).expect(
                             "an edge whose ends lie strictly on both sides meets the plane in a point",
                         );
-                        (e, Vertex::Implicit(filter))
-                    })
-                    .collect();
+                        crossings[count] = (e, Vertex::Implicit(filter));
+                        count += 1;
+                    }
+                }
+                let crossings = &crossings[..count];
                 Split::Both(
-                    self.part(&sides, &crossings, Side::Back, *plane),
-                    self.part(&sides, &crossings, Side::Front, plane.flipped()),
+                    self.part(&sides, crossings, Side::Back, *plane),
+                    self.part(&sides, crossings, Side::Front, plane.flipped()),
                 )
             }
             (true, false) => Split::Back,

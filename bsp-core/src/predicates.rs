@@ -260,14 +260,117 @@ pub fn exact_side_of_implicit(planes: [&Plane; 3], q: &Plane) -> Side {
         return Side::On;
     }
     EXACT_FALLBACKS.fetch_add(1, Ordering::Relaxed);
-    let x = exact_homogeneous(planes[0], planes[1], planes[2]);
-    let [a, b, c] = q.normal();
-    let s = I256::from(a) * x[0]
-        + I256::from(b) * x[1]
-        + I256::from(c) * x[2]
-        + I256::from(q.offset()) * x[3];
-    let sign = s.signum128() * x[3].signum128();
-    Side::of_sign(sign)
+    // side = sign(det[p1; p2; p3; q]) * sign(w), w = det of the three
+    // normals. The 4x4 determinant is expanded in the 2x2 minors of rows
+    // (p1, p2) and (p3, q) (Laplace): the minors of normal components fit
+    // `i128`, the others usually do, and only six products need 256 bits.
+    let row = |p: &Plane| {
+        let [a, b, c] = p.normal();
+        [i128::from(a), i128::from(b), i128::from(c), p.offset()]
+    };
+    let (r0, r1, r2, r3) = (row(planes[0]), row(planes[1]), row(planes[2]), row(q));
+    let m = |j: usize, k: usize| minor(r0[j], r1[k], r0[k], r1[j]);
+    let n = |j: usize, k: usize| minor(r2[j], r3[k], r2[k], r3[j]);
+    let (m01, m02, m12) = (m(0, 1), m(0, 2), m(1, 2));
+    let w = dot3(
+        [Wide::Small(r2[0]), Wide::Small(-r2[1]), Wide::Small(r2[2])],
+        [m12, m02, m01],
+    );
+    let det = dot3(
+        [m(0, 3), m(1, 3).neg(), m(2, 3)],
+        [n(1, 2), n(0, 2), n(0, 1)],
+    )
+    .cmp_sum(dot3([m01, m02.neg(), m12], [n(2, 3), n(1, 3), n(0, 3)]));
+    Side::of_sign(det * w.signum_i32())
+}
+
+/// A signed 256-bit sum, kept as `i128` while it fits.
+#[derive(Clone, Copy)]
+enum Wide {
+    Small(i128),
+    Big(I256),
+}
+
+impl Wide {
+    fn big(self) -> I256 {
+        match self {
+            Wide::Small(v) => I256::from(v),
+            Wide::Big(v) => v,
+        }
+    }
+
+    fn neg(self) -> Wide {
+        match self {
+            Wide::Small(v) => v
+                .checked_neg()
+                .map_or(Wide::Big(-I256::from(v)), Wide::Small),
+            Wide::Big(v) => Wide::Big(-v),
+        }
+    }
+
+    fn signum_i32(self) -> i32 {
+        match self {
+            Wide::Small(v) => v.signum() as i32,
+            Wide::Big(v) => v.signum128() as i32,
+        }
+    }
+
+    /// The sign of `self + other`, as an `i32`.
+    fn cmp_sum(self, other: Wide) -> i32 {
+        if let (Wide::Small(a), Wide::Small(b)) = (self, other) {
+            if let Some(s) = a.checked_add(b) {
+                return s.signum() as i32;
+            }
+        }
+        (self.big() + other.big()).signum128() as i32
+    }
+}
+
+/// `x0 y1 - x1 y0` exactly, for entries below `2^78` in magnitude.
+#[inline]
+fn minor(x0: i128, y1: i128, x1: i128, y0: i128) -> Wide {
+    if let (Some(p), Some(q)) = (x0.checked_mul(y1), x1.checked_mul(y0)) {
+        if let Some(d) = p.checked_sub(q) {
+            return Wide::Small(d);
+        }
+    }
+    Wide::Big(I256::from(x0) * I256::from(y1) - I256::from(x1) * I256::from(y0))
+}
+
+/// `u · v` exactly (each product below `2^250` in magnitude).
+fn dot3(u: [Wide; 3], v: [Wide; 3]) -> Wide {
+    let small = || {
+        let mut acc = 0_i128;
+        for k in 0..3 {
+            let (Wide::Small(uk), Wide::Small(vk)) = (u[k], v[k]) else {
+                return None;
+            };
+            acc = acc.checked_add(uk.checked_mul(vk)?)?;
+        }
+        Some(acc)
+    };
+    match small() {
+        Some(s) => Wide::Small(s),
+        None => Wide::Big((0..3).fold(I256::ZERO, |acc, k| acc + u[k].big() * v[k].big())),
+    }
+}
+
+/// Side of a point of the line `support ∩ edge` that lies at a grid point
+/// `g` on `q` moved along the line's direction `support.normal ×
+/// edge.normal` (`forward`) or against it, with `g` itself on `q`: the sign
+/// of `±q.normal · (support.normal × edge.normal)`, exact.
+///
+/// This decides, without the 4x4 determinant, a polygon vertex whose
+/// neighbour along an edge is a grid point on `q` (a cut vertex on a mesh
+/// edge tested against the neighbouring face, a commonest zero).
+pub fn side_along_line(q: &Plane, support: &Plane, edge: &Plane, forward: bool) -> Side {
+    EXACT_FALLBACKS.fetch_add(1, Ordering::Relaxed);
+    let [a, b, c] = support.normal().map(i128::from);
+    let [d, e, f] = edge.normal().map(i128::from);
+    // Components below 2^103.
+    let dir = [b * f - c * e, c * d - a * f, a * e - b * d].map(Wide::Small);
+    let s = dot3(q.normal().map(|x| Wide::Small(i128::from(x))), dir).signum_i32();
+    Side::of_sign(if forward { s } else { -s })
 }
 
 /// Exact homogeneous coordinates of `p1 ∩ p2 ∩ p3` (the 3x3 minors of the
@@ -402,6 +505,73 @@ pub fn implicit_to_f64(filter: &PointFilter, planes: [&Plane; 3]) -> [f64; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The exact side through the homogeneous coordinates (the previous
+    /// implementation): an independent oracle for the Laplace expansion.
+    fn side_by_cofactors(planes: [&Plane; 3], q: &Plane) -> Side {
+        let x = exact_homogeneous(planes[0], planes[1], planes[2]);
+        let [a, b, c] = q.normal();
+        let s = I256::from(a) * x[0]
+            + I256::from(b) * x[1]
+            + I256::from(c) * x[2]
+            + I256::from(q.offset()) * x[3];
+        Side::of_sign(s.signum128() * x[3].signum128())
+    }
+
+    #[test]
+    fn laplace_expansion_agrees_with_cofactors() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(11);
+        let mut on = 0;
+        for round in 0..4000 {
+            // Full-range and small coordinates, and planes sharing points
+            // so that zeros occur.
+            let l = if round % 2 == 0 {
+                crate::GRID_LIMIT
+            } else {
+                1000
+            };
+            let mut point = || {
+                gp(
+                    rng.random_range(-l..=l),
+                    rng.random_range(-l..=l),
+                    rng.random_range(-l..=l),
+                )
+            };
+            let shared = point();
+            let pts: Vec<GridPoint> = (0..8).map(|_| point()).collect();
+            let planes: Vec<Plane> = [
+                (shared, pts[0], pts[1]),
+                (pts[2], shared, pts[3]),
+                (pts[4], pts[5], shared),
+                (shared, pts[6], pts[7]),
+            ]
+            .iter()
+            .filter_map(|&(a, b, c)| Plane::through(a, b, c))
+            .collect();
+            let [p1, p2, p3, q] = planes[..] else {
+                continue;
+            };
+            if PointFilter::new(&p1, &p2, &p3).is_none() {
+                continue;
+            }
+            for q in [
+                q,
+                q.flipped(),
+                Plane::through(pts[0], pts[3], pts[6]).unwrap_or(q),
+            ] {
+                let expected = side_by_cofactors([&p1, &p2, &p3], &q);
+                on += usize::from(expected == Side::On);
+                assert_eq!(exact_side_of_implicit([&p1, &p2, &p3], &q), expected);
+                assert_eq!(exact_side_of_implicit([&p2, &p1, &p3], &q), expected);
+                assert_eq!(
+                    exact_side_of_implicit([&p3.flipped(), &p2, &p1], &q),
+                    expected
+                );
+            }
+        }
+        assert!(on > 1000, "only {on} points on their plane");
+    }
 
     #[test]
     fn explicit_points() {

@@ -120,6 +120,12 @@ impl SceneBsp {
         &self.polygons
     }
 
+    /// The polygons (as [`polygons`](Self::polygons) orders them), without
+    /// copying them; the tree is consumed.
+    pub fn into_polygons(self) -> Vec<ConvexPolygon> {
+        self.polygons
+    }
+
     /// The polygons lying in node `node`'s plane.
     pub fn node_polygons(&self, node: u32) -> &[ConvexPolygon] {
         let r = &self.nodes[node as usize].polygons;

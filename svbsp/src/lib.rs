@@ -66,6 +66,6 @@ pub use pipeline::{Fragment, LightStats, MAX_LIGHTS, PieceFlags, ShadowOutput, c
 pub use polyhedron::{
     CellParts, CellSplit, ConvexPolyhedron, SECTION_SOURCE, plane_in_box, plane_parallelogram,
 };
-pub use tree::{Filtered, ShadowVolumeTree, Slot, VolumeChild, VolumeNode};
+pub use tree::{Filtered, Filtering, ShadowVolumeTree, Slot, VolumeChild, VolumeNode};
 pub use union::{union_in_place, union_with_convex};
 pub use volume::{ShadowVolume, shadow_volume};

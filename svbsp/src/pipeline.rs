@@ -1,12 +1,16 @@
 //! Shadows of many point and directional lights, pipelined: the fragments
 //! of one light's pass are the input of the next.
 
-use crate::tree::ShadowVolumeTree;
+use crate::tree::{Filtering, ShadowVolumeTree};
 use crate::volume::shadow_volume;
 use crate::{Error, Light};
 use bsp_core::predicates::Side;
 use bsp_core::{BuildOptions, ConvexPolygon, SceneBsp};
+use smallvec::{SmallVec, smallvec};
 use std::time::Instant;
+
+/// The fragments of one scene-BSP polygon (most stay whole).
+type FragmentList = SmallVec<[Fragment; 1]>;
 
 /// At most this many lights: one bit each in a `u32` mask.
 pub const MAX_LIGHTS: usize = 32;
@@ -119,18 +123,6 @@ pub fn compute_shadows(
     let bsp = SceneBsp::build(originals.clone(), options);
     let bsp_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
-    let mut fragments: Vec<Vec<Fragment>> = bsp
-        .polygons()
-        .iter()
-        .map(|p| {
-            vec![Fragment {
-                polygon: p.clone(),
-                lit_mask: 0,
-                umbra_mask: 0,
-            }]
-        })
-        .collect();
-
     let mut stats = vec![LightStats::default(); lights.len()];
     for (i, light) in lights.iter().enumerate() {
         for piece in &originals {
@@ -142,57 +134,41 @@ pub fn compute_shadows(
     }
     let mut order: Vec<usize> = (0..lights.len()).collect();
     order.sort_by_key(|&i| stats[i].front_facing_polygons);
+    // Every light's visiting order first, so that the scene BSP's polygons
+    // can then be moved, not copied, into the fragment lists.
+    let visits: Vec<Vec<u32>> = order
+        .iter()
+        .map(|&i| {
+            bsp.front_to_back(lights[i].source.viewpoint())
+                .map(|(k, _)| k)
+                .collect()
+        })
+        .collect();
+    let scene_nodes = bsp.nodes().len();
+    let mut fragments: Vec<FragmentList> = bsp
+        .into_polygons()
+        .into_iter()
+        .map(|polygon| {
+            smallvec![Fragment {
+                polygon,
+                lit_mask: 0,
+                umbra_mask: 0,
+            }]
+        })
+        .collect();
 
-    for &i in &order {
+    for (&i, visit) in order.iter().zip(visits) {
         let light = &lights[i];
         let bit = 1_u32 << i;
         let mut tree = ShadowVolumeTree::new(light.source);
-        let view = light.source.viewpoint();
-        let visit: Vec<u32> = bsp.front_to_back(view).map(|(k, _)| k).collect();
         for k in visit {
             let list = std::mem::take(&mut fragments[k as usize]);
-            let mut next = Vec::with_capacity(list.len());
+            let mut next = FragmentList::with_capacity(list.len());
             for fragment in list {
                 let piece = fragment.polygon.source() as usize;
                 let facing = light.source.side(fragment.polygon.support());
                 let beyond = light.range.is_some()
                     && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
-                if facing == Side::On || beyond {
-                    // Edge-on to the light or beyond its reach: it neither
-                    // receives nor casts.
-                    next.push(Fragment {
-                        umbra_mask: fragment.umbra_mask | bit,
-                        ..fragment
-                    });
-                    continue;
-                }
-                let receives = facing == Side::Front || flags[piece].two_sided;
-                if !receives && (flags[piece].closed_surface || !flags[piece].casts_shadows) {
-                    // Turned away and casting nothing the rest of its
-                    // closed surface does not: umbra, untouched.
-                    next.push(Fragment {
-                        umbra_mask: fragment.umbra_mask | bit,
-                        ..fragment
-                    });
-                    continue;
-                }
-                // The tree may cut a fragment into pieces that all end up on
-                // one side (planes of neighbouring volumes cross it): then it
-                // stays whole, and only its lit pieces' volumes go in.
-                let original = fragment.polygon.clone();
-                let filtered = tree.filter(fragment.polygon);
-                for (polygon, slot) in &filtered.lit {
-                    if flags[piece].casts_shadows {
-                        if let Some(volume) =
-                            shadow_volume(polygon, &originals[piece], light.source)
-                        {
-                            stats[i].whole_piece_volumes += usize::from(volume.whole_piece);
-                            let (_, skipped) =
-                                tree.insert_volume(*slot, &volume.shadow_planes, volume.cap);
-                            stats[i].planes_skipped += skipped;
-                        }
-                    }
-                }
                 let lit_masks = (fragment.lit_mask | bit, fragment.umbra_mask);
                 let umbra_masks = (fragment.lit_mask, fragment.umbra_mask | bit);
                 let make = |polygon, (lit_mask, umbra_mask): (u32, u32)| Fragment {
@@ -200,18 +176,61 @@ pub fn compute_shadows(
                     lit_mask,
                     umbra_mask,
                 };
-                if !receives || filtered.lit.is_empty() {
-                    // It receives none of this light (turned away, or all in
-                    // shadow): whole, in umbra.
-                    next.push(make(original, umbra_masks));
-                } else if filtered.shadowed.is_empty() {
-                    next.push(make(original, lit_masks));
-                } else {
-                    for (polygon, _) in filtered.lit {
-                        next.push(make(polygon, lit_masks));
+                if facing == Side::On || beyond {
+                    // Edge-on to the light or beyond its reach: it neither
+                    // receives nor casts.
+                    next.push(make(fragment.polygon, umbra_masks));
+                    continue;
+                }
+                let receives = facing == Side::Front || flags[piece].two_sided;
+                if !receives && (flags[piece].closed_surface || !flags[piece].casts_shadows) {
+                    // Turned away and casting nothing the rest of its
+                    // closed surface does not: umbra, untouched.
+                    next.push(make(fragment.polygon, umbra_masks));
+                    continue;
+                }
+                let casts = flags[piece].casts_shadows;
+                let mut cast = |tree: &mut ShadowVolumeTree, polygon: &ConvexPolygon, slot| {
+                    if let Some(volume) = shadow_volume(polygon, &originals[piece], light.source) {
+                        stats[i].whole_piece_volumes += usize::from(volume.whole_piece);
+                        let (_, skipped) =
+                            tree.insert_volume(slot, &volume.shadow_planes, volume.cap);
+                        stats[i].planes_skipped += skipped;
                     }
-                    for polygon in filtered.shadowed {
-                        next.push(make(polygon, umbra_masks));
+                };
+                match tree.filter_ref(&fragment.polygon) {
+                    Filtering::Lit(slot) => {
+                        if casts {
+                            cast(&mut tree, &fragment.polygon, slot);
+                        }
+                        let masks = if receives { lit_masks } else { umbra_masks };
+                        next.push(make(fragment.polygon, masks));
+                    }
+                    Filtering::Shadowed => next.push(make(fragment.polygon, umbra_masks)),
+                    Filtering::Pieces(filtered) => {
+                        if casts {
+                            for (polygon, slot) in &filtered.lit {
+                                cast(&mut tree, polygon, *slot);
+                            }
+                        }
+                        // The tree may cut a fragment into pieces that all
+                        // end up on one side (planes of neighbouring volumes
+                        // cross it): then it stays whole, and only its lit
+                        // pieces' volumes go in.
+                        if !receives || filtered.lit.is_empty() {
+                            // It receives none of this light (turned away,
+                            // or all in shadow): whole, in umbra.
+                            next.push(make(fragment.polygon, umbra_masks));
+                        } else if filtered.shadowed.is_empty() {
+                            next.push(make(fragment.polygon, lit_masks));
+                        } else {
+                            for (polygon, _) in filtered.lit {
+                                next.push(make(polygon, lit_masks));
+                            }
+                            for polygon in filtered.shadowed {
+                                next.push(make(polygon, umbra_masks));
+                            }
+                        }
                     }
                 }
             }
@@ -220,7 +239,7 @@ pub fn compute_shadows(
         stats[i].tree_nodes = tree.nodes().len();
     }
 
-    let mut all = Vec::with_capacity(fragments.iter().map(Vec::len).sum());
+    let mut all = Vec::with_capacity(fragments.iter().map(|l| l.len()).sum());
     for list in fragments {
         all.extend(list);
     }
@@ -238,7 +257,7 @@ pub fn compute_shadows(
     Ok(ShadowOutput {
         fragments,
         lights: stats,
-        scene_nodes: bsp.nodes().len(),
+        scene_nodes,
         bsp_seconds,
         shadow_seconds: started.elapsed().as_secs_f64(),
     })

@@ -8,6 +8,7 @@
 use crate::LightSource;
 use bsp_core::predicates::Side;
 use bsp_core::{ConvexPolygon, Plane, Split};
+use smallvec::SmallVec;
 
 /// A child link: an inner node, or a leaf.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,6 +54,17 @@ pub struct Filtered {
     pub shadowed: Vec<ConvexPolygon>,
 }
 
+/// The result of [`ShadowVolumeTree::filter_ref`].
+#[derive(Debug, Clone)]
+pub enum Filtering {
+    /// No plane cut the polygon: it reached this lit leaf whole.
+    Lit(Slot),
+    /// No plane cut the polygon: it reached a shadowed leaf whole.
+    Shadowed,
+    /// Some plane cut it: its pieces (which may still all lie on one side).
+    Pieces(Filtered),
+}
+
 /// A Shadow Volume BSP tree for one light.
 #[derive(Debug, Clone)]
 pub struct ShadowVolumeTree {
@@ -91,9 +103,57 @@ impl ShadowVolumeTree {
     /// goes to the light's side.
     pub fn filter(&self, polygon: ConvexPolygon) -> Filtered {
         let mut out = Filtered::default();
+        self.filter_pieces(vec![(self.root, Slot::Root, polygon)], &mut out);
+        out
+    }
+
+    /// [`filter`](Self::filter) without taking the polygon: a polygon that
+    /// no plane cuts (the common case) is not copied, and its leaf is
+    /// returned instead of its pieces.
+    pub fn filter_ref(&self, polygon: &ConvexPolygon) -> Filtering {
+        let (mut child, mut slot) = (self.root, Slot::Root);
+        loop {
+            let i = match child {
+                VolumeChild::Lit => return Filtering::Lit(slot),
+                VolumeChild::Shadow => return Filtering::Shadowed,
+                VolumeChild::Node(i) => i,
+            };
+            let node = &self.nodes[i as usize];
+            let go_front = match polygon.split(&node.plane) {
+                Split::Front => true,
+                Split::Back => false,
+                Split::Both(back, front) => {
+                    let mut out = Filtered::default();
+                    // Popped front first, as `filter` does.
+                    self.filter_pieces(
+                        vec![
+                            (node.back, Slot::Back(i), back),
+                            (node.front, Slot::Front(i), front),
+                        ],
+                        &mut out,
+                    );
+                    return Filtering::Pieces(out);
+                }
+                // In a cap's plane: not behind it, so on the light's side.
+                Split::Coplanar(_) => self.light.side(&node.plane) != Side::Back,
+            };
+            (child, slot) = if go_front {
+                (node.front, Slot::Front(i))
+            } else {
+                (node.back, Slot::Back(i))
+            };
+        }
+    }
+
+    /// Filters the pieces on `stack` (each with the subtree it enters) to
+    /// their leaves.
+    fn filter_pieces(
+        &self,
+        mut stack: Vec<(VolumeChild, Slot, ConvexPolygon)>,
+        out: &mut Filtered,
+    ) {
         // A piece walks down in place; only the back part of a cut waits on
         // the stack (moving polygons is the dominant cost otherwise).
-        let mut stack = vec![(self.root, Slot::Root, polygon)];
         while let Some((mut child, mut slot, mut piece)) = stack.pop() {
             loop {
                 let i = match child {
@@ -126,22 +186,6 @@ impl ShadowVolumeTree {
                 };
             }
         }
-        out
-    }
-
-    /// Planes of the nodes above `slot` (unoriented comparisons only).
-    fn planes_above(&self, slot: Slot) -> Vec<Plane> {
-        let mut at = match slot {
-            Slot::Root => None,
-            Slot::Front(i) | Slot::Back(i) => Some(i),
-        };
-        let mut planes = Vec::new();
-        while let Some(i) = at {
-            let node = &self.nodes[i as usize];
-            planes.push(node.plane);
-            at = node.parent;
-        }
-        planes
     }
 
     /// Replaces the lit leaf at `slot` with the shadow volume of the region
@@ -158,21 +202,32 @@ impl ShadowVolumeTree {
         shadow_planes: &[Plane],
         cap: Plane,
     ) -> (usize, usize) {
-        let above = self.planes_above(slot);
-        let mut chain: Vec<Plane> = shadow_planes
-            .iter()
-            .filter(|p| !above.iter().any(|a| a.is_coincident(p)))
-            .copied()
-            .collect();
-        let skipped = shadow_planes.len() - chain.len();
-        chain.push(cap);
-        let first = self.nodes.len() as u32;
-        let mut parent = match slot {
+        // One walk up the tree marks the planes that already bound the leaf.
+        let mut bounded: SmallVec<[bool; 8]> = SmallVec::from_elem(false, shadow_planes.len());
+        let leaf_parent = match slot {
             Slot::Root => None,
             Slot::Front(i) | Slot::Back(i) => Some(i),
         };
-        let count = chain.len();
-        for (k, plane) in chain.into_iter().enumerate() {
+        let mut at = leaf_parent;
+        while let Some(i) = at {
+            let node = &self.nodes[i as usize];
+            for (b, p) in bounded.iter_mut().zip(shadow_planes) {
+                *b = *b || node.plane.is_coincident(p);
+            }
+            at = node.parent;
+        }
+        let skipped = bounded.iter().filter(|&&b| b).count();
+        let count = shadow_planes.len() - skipped + 1;
+        let chain = shadow_planes
+            .iter()
+            .zip(&bounded)
+            .filter(|(_, b)| !**b)
+            .map(|(p, _)| *p)
+            .chain(std::iter::once(cap));
+        let first = self.nodes.len() as u32;
+        let mut parent = leaf_parent;
+        self.nodes.reserve(count);
+        for (k, plane) in chain.enumerate() {
             let id = first + k as u32;
             let back = if k + 1 == count {
                 VolumeChild::Shadow
