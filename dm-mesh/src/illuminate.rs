@@ -32,7 +32,7 @@ use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use slotmap::SlotMap;
 use smallvec::SmallVec;
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 
 /// What covers a vertex from one light.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -47,7 +47,7 @@ enum Cover {
 
 #[derive(Debug, Clone)]
 struct VertexValue {
-    covers: SmallVec<[Cover; 1]>,
+    covers: SmallVec<[Cover; 2]>,
     irradiance: f64,
 }
 
@@ -131,13 +131,42 @@ impl DmScene {
     /// are worked on in parallel; the values do not depend on the number of
     /// threads.
     pub fn illuminate(&mut self) -> IllumStats {
-        let mut states: HashMap<PieceId, &mut ReceiverIllum> = self.illum.iter_mut().collect();
+        let pending: BTreeSet<PieceId> = self
+            .receivers
+            .iter()
+            .filter(|(r, dm)| dm.has_touched() || self.illum.get(*r).is_some_and(|s| !s.fresh))
+            .map(|(r, _)| r)
+            .collect();
+        let (lights, pieces) = (&self.lights, &self.pieces);
+        if pending.len() <= 2 {
+            // A small update: no tasks to hand out.
+            let mut scratch = VisiblePart::new();
+            let mut stats = IllumStats::default();
+            for r in pending {
+                if let (Some(dm), Some(state)) = (self.receivers.get_mut(r), self.illum.get_mut(r))
+                {
+                    stats = stats.add(illuminate_receiver(
+                        lights,
+                        pieces,
+                        r,
+                        dm,
+                        state,
+                        &mut scratch,
+                    ));
+                }
+            }
+            return stats;
+        }
+        let mut states: HashMap<PieceId, &mut ReceiverIllum> = self
+            .illum
+            .iter_mut()
+            .filter(|(r, _)| pending.contains(r))
+            .collect();
         let mut work: Vec<(PieceId, &mut ReceiverDm<PieceId>, &mut ReceiverIllum)> = self
             .receivers
             .iter_mut()
             .filter_map(|(r, dm)| states.remove(&r).map(|state| (r, dm, state)))
             .collect();
-        let (lights, pieces) = (&self.lights, &self.pieces);
         // Big receivers first, so that no thread is left with one at the end.
         work.sort_by_key(|(_, dm, _)| std::cmp::Reverse(dm.cell_count()));
         work.par_iter_mut()
@@ -202,7 +231,7 @@ fn illuminate_receiver(
                 .filter_map(|f| mesh.face(f).map(|face| &face.data))
                 .collect();
             let position = mesh.vertex(v).expect("face vertex").position;
-            let covers: SmallVec<[Cover; 1]> = lights
+            let covers: SmallVec<[Cover; 2]> = lights
                 .iter()
                 .enumerate()
                 .map(|(i, light)| {
