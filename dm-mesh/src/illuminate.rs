@@ -34,6 +34,10 @@ use slotmap::SlotMap;
 use smallvec::SmallVec;
 use std::collections::{BTreeSet, HashMap};
 
+/// Vertices of one receiver to evaluate from which on they are shared out
+/// among threads.
+const PARALLEL_VERTICES: usize = 4096;
+
 /// What covers a vertex from one light.
 #[derive(Debug, Clone, PartialEq, Eq)]
 enum Cover {
@@ -218,6 +222,7 @@ fn illuminate_receiver(
     };
     let values = &mut state.values;
     let mut seen: SecondaryMap<VertexKey, ()> = SecondaryMap::new();
+    let mut todo: Vec<(VertexKey, [f64; 3], SmallVec<[Cover; 2]>)> = Vec::new();
     for f in faces {
         for v in mesh.face_vertices(f) {
             if seen.insert(v, ()).is_some() {
@@ -248,33 +253,56 @@ fn illuminate_receiver(
             if values.get(v).is_some_and(|value| value.covers == covers) {
                 continue;
             }
-            stats.evaluated += 1;
-            let p = position.to_f64();
-            let mut irradiance = 0.0;
-            for (light, cover) in lights.iter().zip(&covers) {
-                irradiance += match cover {
-                    Cover::Dark => {
-                        stats.dark += 1;
-                        0.0
-                    }
-                    Cover::Free => {
-                        stats.unoccluded += 1;
-                        light.illum.irradiance(p, normal, sided)
-                    }
-                    Cover::Occluders(units) => {
-                        stats.visibility += 1;
-                        stats.comparisons += units.len();
-                        let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
-                            .iter()
-                            .filter_map(|u| dm.unit(*u))
-                            .map(|(o, _)| pieces[o].outline.as_slice())
-                            .collect();
-                        visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
-                    }
-                };
-            }
-            values.insert(v, VertexValue { covers, irradiance });
+            todo.push((v, position.to_f64(), covers));
         }
+    }
+    // The visible part of the light at each vertex to evaluate: on a big
+    // receiver, in parallel chunks (each value depends on its vertex only).
+    let eval = |p: [f64; 3], covers: &[Cover], scratch: &mut VisiblePart| {
+        let mut stats = IllumStats {
+            evaluated: 1,
+            ..IllumStats::default()
+        };
+        let mut irradiance = 0.0;
+        for (light, cover) in lights.iter().zip(covers) {
+            irradiance += match cover {
+                Cover::Dark => {
+                    stats.dark += 1;
+                    0.0
+                }
+                Cover::Free => {
+                    stats.unoccluded += 1;
+                    light.illum.irradiance(p, normal, sided)
+                }
+                Cover::Occluders(units) => {
+                    stats.visibility += 1;
+                    stats.comparisons += units.len();
+                    let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
+                        .iter()
+                        .filter_map(|u| dm.unit(*u))
+                        .map(|(o, _)| pieces[o].outline.as_slice())
+                        .collect();
+                    visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
+                }
+            };
+        }
+        (irradiance, stats)
+    };
+    let results: Vec<(f64, IllumStats)> = if todo.len() >= PARALLEL_VERTICES {
+        todo.par_iter()
+            .with_min_len(PARALLEL_VERTICES / 4)
+            .map_init(VisiblePart::new, |scratch, (_, p, covers)| {
+                eval(*p, covers, scratch)
+            })
+            .collect()
+    } else {
+        todo.iter()
+            .map(|(_, p, covers)| eval(*p, covers, scratch))
+            .collect()
+    };
+    for ((v, _, covers), (irradiance, s)) in todo.into_iter().zip(results) {
+        stats = stats.add(s);
+        values.insert(v, VertexValue { covers, irradiance });
     }
     // Values of vertices gone since are dropped now and then.
     let (live, _, _) = mesh.counts();
