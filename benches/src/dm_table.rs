@@ -56,7 +56,7 @@ fn delete_seconds(run: &DmRun, scene: &Scene, name: &str, runs: usize) -> f64 {
 pub fn print() {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     println!(
-        "Chrysanthou & Slater, incremental discontinuity meshes (paper: Sparc 20; umbra: this machine, {cores} cores, one used)"
+        "Chrysanthou & Slater, incremental discontinuity meshes (paper: Sparc 20; umbra: this machine, {cores} cores)"
     );
     println!(
         "  paper: 92-184 polygons built and illuminated in 0.77-2.24 s; deleting a moving object of 5-30 % of the scene never above 4 % of a rebuild, usually about 1 %"

@@ -32,7 +32,11 @@ use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use slotmap::SlotMap;
 use smallvec::SmallVec;
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
+
+/// Vertices of one receiver to evaluate from which on they are shared out
+/// among threads.
+const PARALLEL_VERTICES: usize = 4096;
 
 /// What covers a vertex from one light.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -47,7 +51,7 @@ enum Cover {
 
 #[derive(Debug, Clone)]
 struct VertexValue {
-    covers: SmallVec<[Cover; 1]>,
+    covers: SmallVec<[Cover; 2]>,
     irradiance: f64,
 }
 
@@ -131,13 +135,42 @@ impl DmScene {
     /// are worked on in parallel; the values do not depend on the number of
     /// threads.
     pub fn illuminate(&mut self) -> IllumStats {
-        let mut states: HashMap<PieceId, &mut ReceiverIllum> = self.illum.iter_mut().collect();
+        let pending: BTreeSet<PieceId> = self
+            .receivers
+            .iter()
+            .filter(|(r, dm)| dm.has_touched() || self.illum.get(*r).is_some_and(|s| !s.fresh))
+            .map(|(r, _)| r)
+            .collect();
+        let (lights, pieces) = (&self.lights, &self.pieces);
+        if pending.len() <= 2 {
+            // A small update: no tasks to hand out.
+            let mut scratch = VisiblePart::new();
+            let mut stats = IllumStats::default();
+            for r in pending {
+                if let (Some(dm), Some(state)) = (self.receivers.get_mut(r), self.illum.get_mut(r))
+                {
+                    stats = stats.add(illuminate_receiver(
+                        lights,
+                        pieces,
+                        r,
+                        dm,
+                        state,
+                        &mut scratch,
+                    ));
+                }
+            }
+            return stats;
+        }
+        let mut states: HashMap<PieceId, &mut ReceiverIllum> = self
+            .illum
+            .iter_mut()
+            .filter(|(r, _)| pending.contains(r))
+            .collect();
         let mut work: Vec<(PieceId, &mut ReceiverDm<PieceId>, &mut ReceiverIllum)> = self
             .receivers
             .iter_mut()
             .filter_map(|(r, dm)| states.remove(&r).map(|state| (r, dm, state)))
             .collect();
-        let (lights, pieces) = (&self.lights, &self.pieces);
         // Big receivers first, so that no thread is left with one at the end.
         work.sort_by_key(|(_, dm, _)| std::cmp::Reverse(dm.cell_count()));
         work.par_iter_mut()
@@ -189,6 +222,7 @@ fn illuminate_receiver(
     };
     let values = &mut state.values;
     let mut seen: SecondaryMap<VertexKey, ()> = SecondaryMap::new();
+    let mut todo: Vec<(VertexKey, [f64; 3], SmallVec<[Cover; 2]>)> = Vec::new();
     for f in faces {
         for v in mesh.face_vertices(f) {
             if seen.insert(v, ()).is_some() {
@@ -202,7 +236,7 @@ fn illuminate_receiver(
                 .filter_map(|f| mesh.face(f).map(|face| &face.data))
                 .collect();
             let position = mesh.vertex(v).expect("face vertex").position;
-            let covers: SmallVec<[Cover; 1]> = lights
+            let covers: SmallVec<[Cover; 2]> = lights
                 .iter()
                 .enumerate()
                 .map(|(i, light)| {
@@ -219,33 +253,56 @@ fn illuminate_receiver(
             if values.get(v).is_some_and(|value| value.covers == covers) {
                 continue;
             }
-            stats.evaluated += 1;
-            let p = position.to_f64();
-            let mut irradiance = 0.0;
-            for (light, cover) in lights.iter().zip(&covers) {
-                irradiance += match cover {
-                    Cover::Dark => {
-                        stats.dark += 1;
-                        0.0
-                    }
-                    Cover::Free => {
-                        stats.unoccluded += 1;
-                        light.illum.irradiance(p, normal, sided)
-                    }
-                    Cover::Occluders(units) => {
-                        stats.visibility += 1;
-                        stats.comparisons += units.len();
-                        let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
-                            .iter()
-                            .filter_map(|u| dm.unit(*u))
-                            .map(|(o, _)| pieces[o].outline.as_slice())
-                            .collect();
-                        visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
-                    }
-                };
-            }
-            values.insert(v, VertexValue { covers, irradiance });
+            todo.push((v, position.to_f64(), covers));
         }
+    }
+    // The visible part of the light at each vertex to evaluate: on a big
+    // receiver, in parallel chunks (each value depends on its vertex only).
+    let eval = |p: [f64; 3], covers: &[Cover], scratch: &mut VisiblePart| {
+        let mut stats = IllumStats {
+            evaluated: 1,
+            ..IllumStats::default()
+        };
+        let mut irradiance = 0.0;
+        for (light, cover) in lights.iter().zip(covers) {
+            irradiance += match cover {
+                Cover::Dark => {
+                    stats.dark += 1;
+                    0.0
+                }
+                Cover::Free => {
+                    stats.unoccluded += 1;
+                    light.illum.irradiance(p, normal, sided)
+                }
+                Cover::Occluders(units) => {
+                    stats.visibility += 1;
+                    stats.comparisons += units.len();
+                    let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
+                        .iter()
+                        .filter_map(|u| dm.unit(*u))
+                        .map(|(o, _)| pieces[o].outline.as_slice())
+                        .collect();
+                    visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
+                }
+            };
+        }
+        (irradiance, stats)
+    };
+    let results: Vec<(f64, IllumStats)> = if todo.len() >= PARALLEL_VERTICES {
+        todo.par_iter()
+            .with_min_len(PARALLEL_VERTICES / 4)
+            .map_init(VisiblePart::new, |scratch, (_, p, covers)| {
+                eval(*p, covers, scratch)
+            })
+            .collect()
+    } else {
+        todo.iter()
+            .map(|(_, p, covers)| eval(*p, covers, scratch))
+            .collect()
+    };
+    for ((v, _, covers), (irradiance, s)) in todo.into_iter().zip(results) {
+        stats = stats.add(s);
+        values.insert(v, VertexValue { covers, irradiance });
     }
     // Values of vertices gone since are dropped now and then.
     let (live, _, _) = mesh.counts();

@@ -23,8 +23,14 @@ new_key_type! {
     pub struct PieceId;
 }
 
-/// Units (occluder, light) to merge into one receiver, in order.
-type Order = Vec<(PieceId, u8)>;
+/// Units (occluder, light) to merge into one receiver, in order, after
+/// tiling it to that depth.
+type Order = (u32, Vec<(PieceId, u8)>);
+
+/// Units per tile of a new receiver (see [`ReceiverDm::tile`]).
+const TILE_UNITS: usize = 8;
+/// At most `2^MAX_TILE_DEPTH` tiles per receiver.
+const MAX_TILE_DEPTH: u32 = 12;
 
 /// An area light: a convex polygon on the grid and its radiance.
 #[derive(Debug, Clone)]
@@ -339,10 +345,32 @@ impl DmScene {
                         .filter(|o| overlap.may_shadow(*o, r, pieces))
                         .collect()
                 };
-                (r, unit_order(lights, pieces, &candidates))
+                let order = unit_order(lights, pieces, &candidates);
+                // A new receiver that many units reach starts as a
+                // balanced tree of tiles, about one per TILE_UNITS units.
+                let depth = if fresh {
+                    (order.len() / TILE_UNITS)
+                        .max(1)
+                        .ilog2()
+                        .min(MAX_TILE_DEPTH)
+                } else {
+                    0
+                };
+                (r, (depth, order))
             })
-            .filter(|(_, order)| !order.is_empty())
+            .filter(|(_, (_, order))| !order.is_empty())
             .collect();
+        if jobs.len() <= 2 {
+            // A small update: no tasks to hand out.
+            for (r, (depth, order)) in jobs {
+                let dm = &mut self.receivers[r];
+                dm.tile(depth);
+                for (occluder, light) in order {
+                    dm.insert(occluder, light, &pieces[occluder].volumes[light as usize]);
+                }
+            }
+            return;
+        }
         let mut work: HashMap<PieceId, Order> = jobs.into_iter().collect();
         let mut trees: Vec<(&mut ReceiverDm<PieceId>, Order)> = self
             .receivers
@@ -350,8 +378,9 @@ impl DmScene {
             .filter_map(|(r, dm)| work.remove(&r).map(|order| (dm, order)))
             .collect();
         // The biggest first, so that no thread is left with one at the end.
-        trees.sort_by_key(|(_, order)| std::cmp::Reverse(order.len()));
-        trees.par_iter_mut().for_each(|(dm, order)| {
+        trees.sort_by_key(|(_, (_, order))| std::cmp::Reverse(order.len()));
+        trees.par_iter_mut().for_each(|(dm, (depth, order))| {
+            dm.tile(*depth);
             for &(occluder, light) in order.iter() {
                 dm.insert(occluder, light, &pieces[occluder].volumes[light as usize]);
             }

@@ -52,6 +52,11 @@ const TABLE_1: [PaperRow; 2] = [
 ];
 
 fn main() {
+    // `paper-tables dm`: the discontinuity-mesh table alone.
+    if std::env::args().nth(1).as_deref() == Some("dm") {
+        umbra_benches::dm_table::print();
+        return;
+    }
     table_1();
     println!();
     figure_8();

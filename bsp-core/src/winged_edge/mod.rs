@@ -241,7 +241,10 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     }
 
     fn walk(&self, first: EdgeKey, side: Option<FaceKey>) -> Vec<EdgeKey> {
-        let mut out = vec![first];
+        // Room for a typical face at once (growing one by one from a single
+        // slot reallocates several times per walk).
+        let mut out = Vec::with_capacity(8);
+        out.push(first);
         let mut e = self.next_in(first, side);
         while e != first && out.len() <= self.edges.len() {
             out.push(e);
@@ -261,7 +264,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     /// The edges around a vertex, in the order of the faces around it.
     pub fn vertex_edges(&self, v: VertexKey) -> Vec<EdgeKey> {
         let first = self.vertices[v].edge;
-        let mut out = Vec::new();
+        let mut out = Vec::with_capacity(8);
         let mut e = first;
         loop {
             out.push(e);

@@ -2,7 +2,7 @@
 //! and area-shadow's independent classification (penumbra and umbra trees
 //! of the whole scene) area for area.
 
-use crate::common::{TestScene, class_areas, scene};
+use crate::common::{TestScene, class_areas, scene, scene_with};
 use crate::oracle::{hidden, interior_samples};
 use area_shadow::{Class, SceneLight, compute_shadows};
 use bsp_core::BuildOptions;
@@ -168,6 +168,16 @@ proptest! {
 
     #[test]
     fn cells_agree_with_the_occlusion_oracle(t in scene()) {
+        check_against_oracle(&t)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Many objects: the floor's tree starts tiled.
+    #[test]
+    fn tiled_cells_agree_with_the_occlusion_oracle(t in scene_with(9..14)) {
         check_against_oracle(&t)?;
     }
 }

@@ -131,6 +131,12 @@ pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
 }
 
 pub fn scene() -> impl Strategy<Value = TestScene> {
+    scene_with(1..5)
+}
+
+/// Scenes of `objects` objects over the floor (many of them: the floor's
+/// tree starts tiled, see `ReceiverDm::tile`).
+pub fn scene_with(objects: std::ops::Range<usize>) -> impl Strategy<Value = TestScene> {
     (
         prop::collection::vec(
             (
@@ -138,7 +144,7 @@ pub fn scene() -> impl Strategy<Value = TestScene> {
                 prop::collection::vec(prop::array::uniform3(-60_i64..60), 3..7),
                 any::<bool>(),
             ),
-            1..5,
+            objects,
         ),
         (
             -120_i64..60,

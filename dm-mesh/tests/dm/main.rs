@@ -4,4 +4,5 @@ mod classes;
 mod common;
 mod illumination;
 mod oracle;
+mod threads;
 mod updates;

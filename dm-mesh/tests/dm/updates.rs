@@ -4,7 +4,7 @@
 //! points, and the same irradiance at vertices both meshes have; the trees
 //! keep their invariants after every operation.
 
-use crate::common::{Object, TestScene, class_areas, scene, translated};
+use crate::common::{Object, TestScene, class_areas, scene, scene_with, translated};
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
 use dm_mesh::{DmLight, DmScene, ObjectId, PieceId};
@@ -204,6 +204,17 @@ proptest! {
                 prop_assert!((x[c] - y[c]).abs() <= 1e-9 * (x[0] + x[1] + x[2]));
             }
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Enough objects that the floor starts as a tiled tree: removals
+    /// collapse and re-merge within tiles only, and still agree.
+    #[test]
+    fn updates_on_tiled_receivers_agree_with_a_rebuild(t in scene_with(9..14), ops in ops()) {
+        run(&t, &ops)?;
     }
 }
 

@@ -1,0 +1,86 @@
+//! Runs a fixed amount of discontinuity-mesh work, so that an instruction
+//! counter (`valgrind --tool=callgrind`) can weigh a move against a
+//! rebuild on a machine whose clock is shared.
+//!
+//! `dm-cost SCENE OBJECT MOVES REBUILDS [DELETES]`: builds and illuminates SCENE
+//! once, moves OBJECT back and forth by 0.05 along x MOVES times
+//! (re-illuminating after each), removes OBJECT from DELETES copies of the
+//! result, then rebuilds the scene REBUILDS times.
+//! The cost of one move is the difference of two runs' counts divided by
+//! the difference of their MOVES; likewise for rebuilds.
+
+use std::process::ExitCode;
+
+use bsp_core::{ConvexPolygon, GridPoint};
+use umbra::{Scene, dm_scene};
+
+fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
+    let points: Vec<GridPoint> = (0..p.len())
+        .map(|k| {
+            let g = p.vertex_grid_point(k).expect("grid vertex").to_i64();
+            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).expect("on the grid")
+        })
+        .collect();
+    ConvexPolygon::from_grid_points(&points, p.source()).expect("still convex")
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let [scene, object, moves, rebuilds, ..] = args.as_slice() else {
+        eprintln!("usage: dm-cost SCENE OBJECT MOVES REBUILDS");
+        return ExitCode::FAILURE;
+    };
+    let (Ok(moves), Ok(rebuilds)) = (moves.parse::<u32>(), rebuilds.parse::<u32>()) else {
+        eprintln!("dm-cost: MOVES and REBUILDS are whole numbers");
+        return ExitCode::FAILURE;
+    };
+    let scene = match Scene::load(std::path::Path::new(scene)) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("dm-cost: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let Some(index) = scene.objects.iter().position(|o| &o.name == object) else {
+        eprintln!("dm-cost: no object `{object}`");
+        return ExitCode::FAILURE;
+    };
+    let mut run = dm_scene(&scene).expect("the scene builds");
+    let (id, ks) = run.objects[index].clone();
+    let step = (0.05 * run.pieces.grid.scale()).round() as i64;
+    let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
+    let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
+    let mut evaluated = 0;
+    for m in 0..moves {
+        let to = if m % 2 == 0 { &there } else { &here };
+        let started = std::time::Instant::now();
+        run.dm.move_object(id, to.clone()).expect("moves");
+        let stats = run.dm.illuminate();
+        eprintln!(
+            "move {m}: {:.2} ms, {} vertices looked at, {} re-evaluated",
+            1e3 * started.elapsed().as_secs_f64(),
+            stats.vertices,
+            stats.evaluated
+        );
+        evaluated += stats.evaluated;
+        if std::env::var_os("DM_COST_VERBOSE").is_some() {
+            for &piece in run.dm.object_pieces(id).unwrap_or_default() {
+                if let Some(dm) = run.dm.receiver(piece) {
+                    eprintln!("  its piece: {} cells", dm.cell_count());
+                }
+            }
+        }
+    }
+    // DELETES (optional): removals of OBJECT from copies of the state.
+    let deletes: u32 = args.get(4).and_then(|d| d.parse().ok()).unwrap_or(0);
+    for _ in 0..deletes {
+        let mut copy = run.dm.clone();
+        copy.remove_object(id).expect("removable");
+        std::hint::black_box(copy);
+    }
+    for _ in 0..rebuilds {
+        std::hint::black_box(dm_scene(&scene).expect("builds"));
+    }
+    println!("{moves} moves ({evaluated} vertices re-evaluated), {rebuilds} rebuilds");
+    ExitCode::SUCCESS
+}
