@@ -17,7 +17,7 @@
 //! plane, keeping `(x - p) . n > 0` (Sutherland–Hodgman on one plane, in a
 //! fixed-size buffer).
 
-use crate::angle::angle;
+use crate::angle::angle_over;
 use crate::vec3::{Vec3, area_normal, cross, dot, lerp, norm, sub};
 use smallvec::SmallVec;
 
@@ -83,7 +83,7 @@ fn sum_edges(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
         let c = cross(sub(v, prev), a);
         let len = norm(c);
         if len > 0.0 {
-            sum += dot(n, c) * (angle(len, dot(a, b)) / len);
+            sum += dot(n, c) * angle_over(len, dot(a, b));
         }
         a = b;
         prev = v;
