@@ -45,6 +45,7 @@ struct Scratch {
     stack_verts: Vec<Vec3>,
     stack: Vec<(Range<u32>, u32)>,
     cur: Vec<Vec3>,
+    dist: Vec<f64>,
     inside: Vec<Vec3>,
     outside: Vec<Vec3>,
 }
@@ -81,18 +82,28 @@ fn classify(poly: &[Vec3], h: &HalfSpace) -> (bool, bool) {
 }
 
 /// Splits convex `poly` by `h`; on [`Split::Both`], `inside` and `outside`
-/// hold the two parts.
-fn split(poly: &[Vec3], h: &HalfSpace, inside: &mut Vec<Vec3>, outside: &mut Vec<Vec3>) -> Split {
-    match classify(poly, h) {
+/// hold the two parts. `dist` is scratch for the signed distances, each
+/// computed once.
+fn split(
+    poly: &[Vec3],
+    h: &HalfSpace,
+    dist: &mut Vec<f64>,
+    inside: &mut Vec<Vec3>,
+    outside: &mut Vec<Vec3>,
+) -> Split {
+    dist.clear();
+    dist.extend(poly.iter().map(|v| dot(h.m, sub(*v, h.q))));
+    let pos = dist.iter().any(|&s| s > 0.0);
+    let neg = dist.iter().any(|&s| s < 0.0);
+    match (pos, neg) {
         (false, _) => Split::Outside,
         (true, false) => Split::Inside,
         (true, true) => {
             inside.clear();
             outside.clear();
             let mut prev = poly[poly.len() - 1];
-            let mut sp = dot(h.m, sub(prev, h.q));
-            for &v in poly {
-                let sv = dot(h.m, sub(v, h.q));
+            let mut sp = dist[dist.len() - 1];
+            for (&v, &sv) in poly.iter().zip(dist.iter()) {
                 if (sp > 0.0 && sv < 0.0) || (sp < 0.0 && sv > 0.0) {
                     let x = lerp(prev, v, sp / (sp - sv));
                     inside.push(x);
@@ -240,7 +251,7 @@ impl VisiblePart {
                 while straddled != 0 {
                     let h = &planes[straddled.trailing_zeros() as usize];
                     straddled &= straddled - 1;
-                    match split(&sc.cur, h, &mut sc.inside, &mut sc.outside) {
+                    match split(&sc.cur, h, &mut sc.dist, &mut sc.inside, &mut sc.outside) {
                         // Once cut, what is left may be outside a later plane.
                         Split::Outside => continue 'occluders,
                         Split::Inside => {}
