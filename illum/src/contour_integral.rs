@@ -17,7 +17,7 @@
 //! plane, keeping `(x - p) . n > 0` (Sutherland–Hodgman on one plane, in a
 //! fixed-size buffer).
 
-use crate::angle::angle;
+use crate::angle::angle_over;
 use crate::vec3::{Vec3, area_normal, cross, dot, lerp, norm, sub};
 use smallvec::SmallVec;
 
@@ -27,20 +27,34 @@ pub(crate) type ClipBuf = SmallVec<[Vec3; 16]>;
 /// Irradiance for unit radiance of a convex polygon, counter-clockwise as
 /// seen from `p` (the caller has checked that `p` is on its emitting side),
 /// on a receiver of unit normal `n`, clipped by the receiver's horizon.
+///
+/// The edges are summed in the same pass that finds which side of the
+/// horizon each vertex is on: the sum stands when none is below, and the
+/// clipped polygon is summed instead when some is.
 #[inline]
 pub(crate) fn integrate_front(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
+    let Some(&last) = poly.last() else {
+        return 0.0;
+    };
     let mut above = false;
     let mut below = false;
-    for v in poly {
-        let s = dot(sub(*v, p), n);
+    let mut prev = last;
+    let mut a = sub(prev, p);
+    let mut sum = 0.0;
+    for &v in poly {
+        let b = sub(v, p);
+        let s = dot(b, n);
         above |= s > 0.0;
         below |= s < 0.0;
+        sum += edge_term(sub(v, prev), a, b, n);
+        a = b;
+        prev = v;
     }
     if !above {
         return 0.0;
     }
     if !below {
-        return sum_edges(poly, p, n);
+        return finish(sum);
     }
     let clipped = clip_above(poly, p, n);
     sum_edges(&clipped, p, n)
@@ -79,15 +93,29 @@ fn sum_edges(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
     let mut sum = 0.0;
     for &v in poly {
         let b = sub(v, p);
-        // b x a = (a + e) x a = e x a, with e exact from the vertices.
-        let c = cross(sub(v, prev), a);
-        let len = norm(c);
-        if len > 0.0 {
-            sum += dot(n, c) * (angle(len, dot(a, b)) / len);
-        }
+        sum += edge_term(sub(v, prev), a, b, n);
         a = b;
         prev = v;
     }
+    finish(sum)
+}
+
+/// One edge's `angle (n . unit(b x a))`, from the edge vector `e = b - a`
+/// taken from the vertices: `b x a = (a + e) x a = e x a`.
+#[inline(always)]
+fn edge_term(e: Vec3, a: Vec3, b: Vec3, n: Vec3) -> f64 {
+    let c = cross(e, a);
+    let len = norm(c);
+    if len > 0.0 {
+        dot(n, c) * angle_over(len, dot(a, b))
+    } else {
+        0.0
+    }
+}
+
+/// Half the sum of the edge terms.
+#[inline(always)]
+fn finish(sum: f64) -> f64 {
     // The clipped light is above the horizon, so the true value is not
     // negative; when the edge terms (each of order one) cancel, rounding
     // can leave a few ulps below zero.

@@ -45,6 +45,7 @@ struct Scratch {
     stack_verts: Vec<Vec3>,
     stack: Vec<(Range<u32>, u32)>,
     cur: Vec<Vec3>,
+    dist: Vec<f64>,
     inside: Vec<Vec3>,
     outside: Vec<Vec3>,
 }
@@ -62,8 +63,9 @@ enum Split {
     Outside,
     /// Wholly inside.
     Inside,
-    /// On both sides: the inside and outside parts were written out.
-    Both,
+    /// On both sides: the inside and outside parts were written out, with
+    /// these numbers of vertices.
+    Both(usize, usize),
 }
 
 /// Where convex `poly` lies with respect to `h`: whether some vertex is
@@ -80,34 +82,61 @@ fn classify(poly: &[Vec3], h: &HalfSpace) -> (bool, bool) {
     (pos, neg)
 }
 
-/// Splits convex `poly` by `h`; on [`Split::Both`], `inside` and `outside`
-/// hold the two parts.
-fn split(poly: &[Vec3], h: &HalfSpace, inside: &mut Vec<Vec3>, outside: &mut Vec<Vec3>) -> Split {
-    match classify(poly, h) {
+/// Splits convex `poly` by `h`; on [`Split::Both`]`(ni, no)`, `inside[..ni]`
+/// and `outside[..no]` hold the two parts (the buffers are only grown,
+/// never shrunk). `dist` is scratch for the signed distances, each computed
+/// once.
+///
+/// The split has no data-dependent branch: every vertex and crossing point
+/// is written to the next slot of both outputs, and each output's length
+/// advances by whether it keeps it (the side of a vertex is as hard to
+/// predict as a coin toss).
+fn split(
+    poly: &[Vec3],
+    h: &HalfSpace,
+    dist: &mut Vec<f64>,
+    inside: &mut Vec<Vec3>,
+    outside: &mut Vec<Vec3>,
+) -> Split {
+    dist.clear();
+    dist.extend(poly.iter().map(|v| dot(h.m, sub(*v, h.q))));
+    let mut pos = false;
+    let mut neg = false;
+    for &s in dist.iter() {
+        pos |= s > 0.0;
+        neg |= s < 0.0;
+    }
+    match (pos, neg) {
         (false, _) => Split::Outside,
         (true, false) => Split::Inside,
         (true, true) => {
-            inside.clear();
-            outside.clear();
+            // At most two slots per vertex.
+            let cap = 2 * poly.len();
+            if inside.len() < cap {
+                inside.resize(cap, [0.0; 3]);
+            }
+            if outside.len() < cap {
+                outside.resize(cap, [0.0; 3]);
+            }
+            let (mut ni, mut no) = (0, 0);
             let mut prev = poly[poly.len() - 1];
-            let mut sp = dot(h.m, sub(prev, h.q));
-            for &v in poly {
-                let sv = dot(h.m, sub(v, h.q));
-                if (sp > 0.0 && sv < 0.0) || (sp < 0.0 && sv > 0.0) {
-                    let x = lerp(prev, v, sp / (sp - sv));
-                    inside.push(x);
-                    outside.push(x);
-                }
-                if sv >= 0.0 {
-                    inside.push(v);
-                }
-                if sv <= 0.0 {
-                    outside.push(v);
-                }
+            let mut sp = dist[dist.len() - 1];
+            for (&v, &sv) in poly.iter().zip(dist.iter()) {
+                let crosses = (sp > 0.0 && sv < 0.0) | (sp < 0.0 && sv > 0.0);
+                // Used only when the edge crosses, so sp != sv.
+                let x = lerp(prev, v, sp / (sp - sv));
+                inside[ni] = x;
+                outside[no] = x;
+                ni += crosses as usize;
+                no += crosses as usize;
+                inside[ni] = v;
+                outside[no] = v;
+                ni += (sv >= 0.0) as usize;
+                no += (sv <= 0.0) as usize;
                 prev = v;
                 sp = sv;
             }
-            Split::Both
+            Split::Both(ni, no)
         }
     }
 }
@@ -240,17 +269,18 @@ impl VisiblePart {
                 while straddled != 0 {
                     let h = &planes[straddled.trailing_zeros() as usize];
                     straddled &= straddled - 1;
-                    match split(&sc.cur, h, &mut sc.inside, &mut sc.outside) {
+                    match split(&sc.cur, h, &mut sc.dist, &mut sc.inside, &mut sc.outside) {
                         // Once cut, what is left may be outside a later plane.
                         Split::Outside => continue 'occluders,
                         Split::Inside => {}
-                        Split::Both => {
-                            if sc.outside.len() >= 3 {
+                        Split::Both(ni, no) => {
+                            if no >= 3 {
                                 let start = sc.stack_verts.len() as u32;
-                                sc.stack_verts.extend_from_slice(&sc.outside);
+                                sc.stack_verts.extend_from_slice(&sc.outside[..no]);
                                 sc.stack.push((start..sc.stack_verts.len() as u32, next));
                             }
                             std::mem::swap(&mut sc.cur, &mut sc.inside);
+                            sc.cur.truncate(ni);
                         }
                     }
                 }
