@@ -159,6 +159,11 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
     }
     let candidates = options.candidates.clamp(1, n);
     let sample = options.sample.clamp(1, n);
+    let try_axis = options.axis_planes && n >= 16;
+    if candidates == 1 && !try_axis {
+        // A lone candidate wins whatever its score.
+        return first;
+    }
     let score = |plane: &Plane| {
         let (mut front, mut back, mut cut) = (0_i64, 0_i64, 0_u64);
         for s in 0..sample {
@@ -184,7 +189,7 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
             best = (s, plane);
         }
     }
-    if options.axis_planes && n >= 16 {
+    if try_axis {
         if let Some(plane) = median_axis_plane(arena, list, sample) {
             let (s, front, back, cut) = score(&plane);
             // It must separate the sample (so each side shrinks) and cut
