@@ -101,7 +101,13 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
             }
         } else {
             let plane = choose_splitter(&arena, &list, options);
-            let (mut coplanar, mut front, mut back) = (Vec::new(), Vec::new(), Vec::new());
+            // Sized for the worst case: growing them was a tenth of the
+            // allocator's work.
+            let (mut coplanar, mut front, mut back) = (
+                Vec::new(),
+                Vec::with_capacity(list.len()),
+                Vec::with_capacity(list.len()),
+            );
             for index in list {
                 match arena[index as usize].split(&plane) {
                     Split::Back => back.push(index),
