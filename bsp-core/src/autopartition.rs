@@ -101,7 +101,13 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
             }
         } else {
             let plane = choose_splitter(&arena, &list, options);
-            let (mut coplanar, mut front, mut back) = (Vec::new(), Vec::new(), Vec::new());
+            // Sized for the worst case: growing them was a tenth of the
+            // allocator's work.
+            let (mut coplanar, mut front, mut back) = (
+                Vec::new(),
+                Vec::with_capacity(list.len()),
+                Vec::with_capacity(list.len()),
+            );
             for index in list {
                 match arena[index as usize].split(&plane) {
                     Split::Back => back.push(index),
@@ -159,8 +165,18 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
     }
     let candidates = options.candidates.clamp(1, n);
     let sample = options.sample.clamp(1, n);
-    let score = |plane: &Plane| {
+    let try_axis = options.axis_planes && n >= 16;
+    if candidates == 1 && !try_axis {
+        // A lone candidate wins whatever its score.
+        return first;
+    }
+    // The score of a plane, or `None` as soon as it cannot beat `bound`:
+    // the cuts only grow, and the imbalance can shrink by at most one per
+    // polygon still to classify. The choice is the same as with full
+    // scores.
+    let score = |plane: &Plane, bound: u64| {
         let (mut front, mut back, mut cut) = (0_i64, 0_i64, 0_u64);
+        let weight = u64::from(options.split_weight);
         for s in 0..sample {
             match arena[list[s * n / sample] as usize].classify(plane) {
                 PolygonSide::Front => front += 1,
@@ -168,29 +184,35 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
                 PolygonSide::Both => cut += 1,
                 PolygonSide::Coplanar(_) => {}
             }
+            let left = (sample - 1 - s) as u64;
+            let imbalance = (front - back).unsigned_abs();
+            if cut * weight + imbalance.saturating_sub(left) >= bound {
+                return None;
+            }
         }
-        (
-            cut * u64::from(options.split_weight) + (front - back).unsigned_abs(),
+        Some((
+            cut * weight + (front - back).unsigned_abs(),
             front,
             back,
             cut,
-        )
+        ))
     };
     let mut best = (u64::MAX, first);
     for c in 0..candidates {
         let plane = *arena[list[c * n / candidates] as usize].support();
-        let (s, ..) = score(&plane);
-        if s < best.0 {
+        if let Some((s, ..)) = score(&plane, best.0) {
+            // `score` gives a value only below the bound.
             best = (s, plane);
         }
     }
-    if options.axis_planes && n >= 16 {
+    if try_axis {
         if let Some(plane) = median_axis_plane(arena, list, sample) {
-            let (s, front, back, cut) = score(&plane);
             // It must separate the sample (so each side shrinks) and cut
             // few, and beat every face on the same score.
-            if s < best.0 && front > 0 && back > 0 && 2 * cut < sample as u64 {
-                best = (s, plane);
+            if let Some((s, front, back, cut)) = score(&plane, best.0) {
+                if front > 0 && back > 0 && 2 * cut < sample as u64 {
+                    best = (s, plane);
+                }
             }
         }
     }

@@ -244,7 +244,7 @@ pub fn weld(polygons: &[ConvexPolygon]) -> IndexedMesh {
     // 1. Unique vertices, through a hash of f64 cells checked in the 27
     //    cells around each vertex.
     let cell = |p: [f64; 3]| p.map(|c| (c / (4.0 * NEAR)).floor() as i64);
-    let mut buckets: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    let mut buckets: HashMap<[i64; 3], Vec<u32>, FastHash> = HashMap::default();
     let mut representative: Vec<VertexRef> = Vec::new();
     let mut vertices: Vec<[f64; 3]> = Vec::new();
     let mut ids: Vec<Vec<u32>> = Vec::with_capacity(polygons.len());
@@ -281,20 +281,9 @@ pub fn weld(polygons: &[ConvexPolygon]) -> IndexedMesh {
         ids.push(face_ids);
     }
 
-    // 2. Vertices sorted along each axis, to find the candidates in an
-    //    edge's box through the axis where the box holds fewest.
-    let sorted: [Vec<u32>; 3] = std::array::from_fn(|axis| {
-        let mut order: Vec<u32> = (0..vertices.len() as u32).collect();
-        order.sort_by(|&i, &j| vertices[i as usize][axis].total_cmp(&vertices[j as usize][axis]));
-        order
-    });
-    let range = |axis: usize, lo: f64, hi: f64| {
-        let list = &sorted[axis];
-        let start = list.partition_point(|&i| vertices[i as usize][axis] < lo);
-        let end = list.partition_point(|&i| vertices[i as usize][axis] <= hi);
-        &list[start..end.max(start)]
-    };
-
+    // 2. Vertices bucketed in a uniform grid of cells about as wide as an
+    //    average edge, to find the candidates in an edge's box.
+    let cells = CellGrid::new(&vertices, polygons, &ids);
     // 3. Faces with the vertices on their edges inserted.
     let mut faces = Vec::with_capacity(polygons.len());
     let mut on_edge: Vec<(f64, u32)> = Vec::new();
@@ -308,13 +297,9 @@ pub fn weld(polygons: &[ConvexPolygon]) -> IndexedMesh {
             let (pu, pv) = (vertices[u as usize], vertices[v as usize]);
             let lo: [f64; 3] = std::array::from_fn(|k| pu[k].min(pv[k]) - NEAR);
             let hi: [f64; 3] = std::array::from_fn(|k| pu[k].max(pv[k]) + NEAR);
-            let candidates = (0..3)
-                .map(|axis| range(axis, lo[axis], hi[axis]))
-                .min_by_key(|r| r.len())
-                .expect("three axes");
             on_edge.clear();
             let dir = [pv[0] - pu[0], pv[1] - pu[1], pv[2] - pu[2]];
-            for &w in candidates {
+            for w in cells.in_box(lo, hi) {
                 if w == u || w == v {
                     continue;
                 }
@@ -338,6 +323,155 @@ pub fn weld(polygons: &[ConvexPolygon]) -> IndexedMesh {
         vertices,
         faces,
         face_polygon: (0..polygons.len() as u32).collect(),
+    }
+}
+
+/// A multiplicative hash for integer cell keys (deterministic; the keys are
+/// not adversarial).
+type FastHash = std::hash::BuildHasherDefault<CellHasher>;
+
+/// The hasher of [`FastHash`].
+#[derive(Default)]
+struct CellHasher(u64);
+
+impl std::hash::Hasher for CellHasher {
+    fn finish(&self) -> u64 {
+        self.0
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for chunk in bytes.chunks(8) {
+            let mut word = [0_u8; 8];
+            word[..chunk.len()].copy_from_slice(chunk);
+            self.write_u64(u64::from_le_bytes(word));
+        }
+    }
+
+    fn write_u64(&mut self, v: u64) {
+        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+
+    fn write_i64(&mut self, v: i64) {
+        self.write_u64(v as u64);
+    }
+
+    fn write_usize(&mut self, v: usize) {
+        self.write_u64(v as u64);
+    }
+}
+
+/// Vertices bucketed in a uniform grid over their bounding box (counting
+/// sort: each cell's vertices are a range of one list, in index order).
+struct CellGrid {
+    lo: [f64; 3],
+    size: f64,
+    dims: [usize; 3],
+    start: Vec<u32>,
+    ids: Vec<u32>,
+}
+
+impl CellGrid {
+    fn new(vertices: &[[f64; 3]], polygons: &[ConvexPolygon], face_ids: &[Vec<u32>]) -> Self {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for v in vertices {
+            for k in 0..3 {
+                lo[k] = lo[k].min(v[k]);
+                hi[k] = hi[k].max(v[k]);
+            }
+        }
+        // Cells as wide as the mean longest extent of an edge, but no more
+        // cells than about eight per vertex.
+        let (mut sum, mut count) = (0.0, 0_usize);
+        for (polygon, ids) in polygons.iter().zip(face_ids) {
+            let n = polygon.len();
+            for e in 0..n {
+                let (p, q) = (
+                    vertices[ids[e] as usize],
+                    vertices[ids[(e + 1) % n] as usize],
+                );
+                sum += (0..3).map(|k| (p[k] - q[k]).abs()).fold(0.0, f64::max);
+                count += 1;
+            }
+        }
+        let extent = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        let budget = (8 * vertices.len().max(1)) as f64;
+        let mut size = if count > 0 {
+            sum / count as f64
+        } else {
+            extent
+        };
+        let cells_for = |size: f64| {
+            (0..3)
+                .map(|k| ((hi[k] - lo[k]) / size).floor() + 1.0)
+                .product::<f64>()
+        };
+        if size.is_nan() || size <= 0.0 || !size.is_finite() {
+            size = extent.max(1.0);
+        }
+        while cells_for(size) > budget {
+            size *= 2.0;
+        }
+        if vertices.is_empty() {
+            lo = [0.0; 3];
+        }
+        let dims: [usize; 3] = std::array::from_fn(|k| {
+            if vertices.is_empty() {
+                1
+            } else {
+                ((hi[k] - lo[k]) / size).floor() as usize + 1
+            }
+        });
+        let mut grid = Self {
+            lo,
+            size,
+            dims,
+            start: Vec::new(),
+            ids: Vec::new(),
+        };
+        let cell_of: Vec<usize> = vertices.iter().map(|v| grid.index(grid.cell(*v))).collect();
+        let mut start = vec![0_u32; dims[0] * dims[1] * dims[2] + 1];
+        for &c in &cell_of {
+            start[c + 1] += 1;
+        }
+        for i in 1..start.len() {
+            start[i] += start[i - 1];
+        }
+        let mut fill = start.clone();
+        let mut ids = vec![0_u32; vertices.len()];
+        for (v, &c) in cell_of.iter().enumerate() {
+            ids[fill[c] as usize] = v as u32;
+            fill[c] += 1;
+        }
+        grid.start = start;
+        grid.ids = ids;
+        grid
+    }
+
+    fn cell(&self, p: [f64; 3]) -> [usize; 3] {
+        std::array::from_fn(|k| {
+            let c = ((p[k] - self.lo[k]) / self.size).floor();
+            (c.max(0.0) as usize).min(self.dims[k] - 1)
+        })
+    }
+
+    fn index(&self, c: [usize; 3]) -> usize {
+        (c[2] * self.dims[1] + c[1]) * self.dims[0] + c[0]
+    }
+
+    /// Every vertex in the cells that meet the box `[lo, hi]` (a superset
+    /// of the vertices in the box).
+    fn in_box(&self, lo: [f64; 3], hi: [f64; 3]) -> impl Iterator<Item = u32> + '_ {
+        let (a, b) = (self.cell(lo), self.cell(hi));
+        (a[2]..=b[2]).flat_map(move |z| {
+            (a[1]..=b[1]).flat_map(move |y| {
+                let row = self.index([a[0], y, z]);
+                let end = self.index([b[0], y, z]);
+                self.ids[self.start[row] as usize..self.start[end + 1] as usize]
+                    .iter()
+                    .copied()
+            })
+        })
     }
 }
 

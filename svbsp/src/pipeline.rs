@@ -120,12 +120,12 @@ pub fn compute_shadows(
         })
         .collect::<Result<_, _>>()?;
     let started = Instant::now();
-    let bsp = SceneBsp::build(originals.clone(), options);
+    let bsp = SceneBsp::build(originals, options);
     let bsp_seconds = started.elapsed().as_secs_f64();
     let started = Instant::now();
     let mut stats = vec![LightStats::default(); lights.len()];
     for (i, light) in lights.iter().enumerate() {
-        for piece in &originals {
+        for piece in pieces {
             if light.source.side(piece.support()) == Side::Front {
                 stats[i].front_facing_polygons += 1;
                 stats[i].front_facing_edges += piece.len();
@@ -191,7 +191,7 @@ pub fn compute_shadows(
                 }
                 let casts = flags[piece].casts_shadows;
                 let mut cast = |tree: &mut ShadowVolumeTree, polygon: &ConvexPolygon, slot| {
-                    if let Some(volume) = shadow_volume(polygon, &originals[piece], light.source) {
+                    if let Some(volume) = shadow_volume(polygon, &pieces[piece], light.source) {
                         stats[i].whole_piece_volumes += usize::from(volume.whole_piece);
                         let (_, skipped) =
                             tree.insert_volume(slot, &volume.shadow_planes, volume.cap);

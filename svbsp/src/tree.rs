@@ -123,15 +123,15 @@ impl ShadowVolumeTree {
                 Split::Front => true,
                 Split::Back => false,
                 Split::Both(back, front) => {
-                    let mut out = Filtered::default();
+                    let mut out = Filtered {
+                        lit: Vec::with_capacity(4),
+                        shadowed: Vec::with_capacity(4),
+                    };
                     // Popped front first, as `filter` does.
-                    self.filter_pieces(
-                        vec![
-                            (node.back, Slot::Back(i), back),
-                            (node.front, Slot::Front(i), front),
-                        ],
-                        &mut out,
-                    );
+                    let mut stack = Vec::with_capacity(8);
+                    stack.push((node.back, Slot::Back(i), back));
+                    stack.push((node.front, Slot::Front(i), front));
+                    self.filter_pieces(stack, &mut out);
                     return Filtering::Pieces(out);
                 }
                 // In a cap's plane: not behind it, so on the light's side.
