@@ -21,7 +21,7 @@
 //! occluders there, and re-illumination evaluates only vertices whose
 //! covering occluders changed. A receiver that many occluders reach starts
 //! as a balanced tree of tiles (construction lines, about one tile per
-//! eight units), so that those subtrees stay within the tiles an occluder
+//! four units), so that those subtrees stay within the tiles an occluder
 //! met rather than spanning half of a big floor.
 //!
 //! Receivers are independent: casting and illumination run over them in
