@@ -19,7 +19,16 @@
 //! [`DmScene::remove_object`], [`DmScene::move_object`]); a removal collapses
 //! only the subtrees its discontinuities made and re-inserts the later
 //! occluders there, and re-illumination evaluates only vertices whose
-//! covering occluders changed.
+//! covering occluders changed. A receiver that many occluders reach starts
+//! as a balanced tree of tiles (construction lines, about one tile per
+//! four units), so that those subtrees stay within the tiles an occluder
+//! met rather than spanning half of a big floor.
+//!
+//! Receivers are independent: casting and illumination run over them in
+//! parallel with rayon (and a big receiver's vertices in parallel chunks).
+//! Every tree sees its own units in the same order whatever the thread
+//! count, so results are identical with any number of threads; call the
+//! library inside `rayon::ThreadPool::install` to choose it.
 //!
 //! Inside each penumbra the internal EV and VE discontinuities (a light
 //! vertex crossing an occluder edge, an occluder vertex crossing a light

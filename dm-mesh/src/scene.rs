@@ -28,7 +28,7 @@ new_key_type! {
 type Order = (u32, Vec<(PieceId, u8)>);
 
 /// Units per tile of a new receiver (see [`ReceiverDm::tile`]).
-const TILE_UNITS: usize = 8;
+const TILE_UNITS: usize = 4;
 /// At most `2^MAX_TILE_DEPTH` tiles per receiver.
 const MAX_TILE_DEPTH: u32 = 12;
 

@@ -14,6 +14,10 @@
 //! Only the planes that cut a cell make nodes, so every node's line spans
 //! just its own cell (the sub-hyperplane is the mesh edge it made).
 //!
+//! A receiver many units reach is first cut into tiles
+//! ([`ReceiverDm::tile`]): construction nodes like the light planes', never
+//! removed, that keep every later subtree local.
+//!
 //! Every path from the root meets units in insertion order, so removing a
 //! unit collapses the subtrees under its topmost nodes back into the cells
 //! they were (merging faces, condensing straight vertices) and re-inserts

@@ -73,9 +73,14 @@ fn main() -> ExitCode {
     }
     // DELETES (optional): removals of OBJECT from copies of the state.
     let deletes: u32 = args.get(4).and_then(|d| d.parse().ok()).unwrap_or(0);
+    // (With DM_COST_CLONE_ONLY set the copies are made but nothing is
+    // removed: the difference is the removals alone.)
+    let clone_only = std::env::var_os("DM_COST_CLONE_ONLY").is_some();
     for _ in 0..deletes {
         let mut copy = run.dm.clone();
-        copy.remove_object(id).expect("removable");
+        if !clone_only {
+            copy.remove_object(id).expect("removable");
+        }
         std::hint::black_box(copy);
     }
     for _ in 0..rebuilds {
