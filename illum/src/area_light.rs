@@ -1,6 +1,6 @@
 //! A validated convex polygonal Lambertian light.
 
-use crate::contour_integral::integrate_front;
+use crate::contour_integral::integrate_front_with_edges;
 use crate::error::IllumError;
 use crate::point_light::Sidedness;
 use crate::vec3::{Vec3, area_normal, cross, dot, norm, scale, sub};
@@ -17,7 +17,10 @@ const SHAPE_TOLERANCE: f64 = 1e-9;
 /// it, receives nothing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AreaLight {
-    vertices: SmallVec<[Vec3; 8]>,
+    /// The vertices, then the edge vectors `vertices[i] - vertices[i - 1]`
+    /// (cyclically) for the contour integral: one buffer, so that a quad
+    /// light stays inline in a value no larger than before.
+    points: SmallVec<[Vec3; 8]>,
     /// Unit normal, towards the emitting side.
     normal: Vec3,
     /// Mean of the vertices (a point of the plane).
@@ -85,8 +88,10 @@ impl AreaLight {
             }
         }
         let center = scale(center, 1.0 / n as f64);
+        let mut points = SmallVec::from_slice(vertices);
+        points.extend((0..n).map(|i| sub(vertices[i], vertices[(i + n - 1) % n])));
         Ok(Self {
-            vertices: SmallVec::from_slice(vertices),
+            points,
             normal,
             center,
             radiance,
@@ -95,7 +100,7 @@ impl AreaLight {
 
     /// The polygon, counter-clockwise seen from the lit side.
     pub fn vertices(&self) -> &[Vec3] {
-        &self.vertices
+        &self.points[..self.points.len() / 2]
     }
 
     /// Unit normal pointing to the emitting side.
@@ -110,7 +115,7 @@ impl AreaLight {
 
     /// Area of the polygon.
     pub fn area(&self) -> f64 {
-        0.5 * norm(area_normal(&self.vertices))
+        0.5 * norm(area_normal(self.vertices()))
     }
 
     /// Signed distance of `p` to the light's plane, positive on the lit side.
@@ -133,11 +138,12 @@ impl AreaLight {
         if !self.lights_side_of(p) {
             return 0.0;
         }
+        let (vertices, edges) = self.points.split_at(self.points.len() / 2);
         let e = match sidedness {
-            Sidedness::OneSided => integrate_front(&self.vertices, p, n),
+            Sidedness::OneSided => integrate_front_with_edges(vertices, edges, p, n),
             Sidedness::TwoSided => {
-                integrate_front(&self.vertices, p, n)
-                    + integrate_front(&self.vertices, p, scale(n, -1.0))
+                integrate_front_with_edges(vertices, edges, p, n)
+                    + integrate_front_with_edges(vertices, edges, p, scale(n, -1.0))
             }
         };
         self.radiance * e

@@ -33,6 +33,21 @@ pub(crate) type ClipBuf = SmallVec<[Vec3; 16]>;
 /// clipped polygon is summed instead when some is.
 #[inline]
 pub(crate) fn integrate_front(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
+    integrate_front_by(poly, |i, prev| sub(poly[i], prev), p, n)
+}
+
+/// [`integrate_front`] with the edge vectors given: `edges[i] = poly[i] -
+/// poly[i - 1]` (cyclically), as [`AreaLight`](crate::AreaLight) keeps them.
+#[inline]
+pub(crate) fn integrate_front_with_edges(poly: &[Vec3], edges: &[Vec3], p: Vec3, n: Vec3) -> f64 {
+    debug_assert_eq!(poly.len(), edges.len());
+    integrate_front_by(poly, |i, _| edges[i], p, n)
+}
+
+/// [`integrate_front`] with `edge(i, poly[i - 1])` giving `poly[i] -
+/// poly[i - 1]`.
+#[inline(always)]
+fn integrate_front_by(poly: &[Vec3], edge: impl Fn(usize, Vec3) -> Vec3, p: Vec3, n: Vec3) -> f64 {
     let Some(&last) = poly.last() else {
         return 0.0;
     };
@@ -41,12 +56,12 @@ pub(crate) fn integrate_front(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
     let mut prev = last;
     let mut a = sub(prev, p);
     let mut sum = 0.0;
-    for &v in poly {
+    for (i, &v) in poly.iter().enumerate() {
         let b = sub(v, p);
         let s = dot(b, n);
         above |= s > 0.0;
         below |= s < 0.0;
-        sum += edge_term(sub(v, prev), a, b, n);
+        sum += edge_term(edge(i, prev), a, b, n);
         a = b;
         prev = v;
     }

@@ -242,16 +242,21 @@ impl VisiblePart {
         sc.stack_verts.extend_from_slice(light.vertices());
         sc.stack.push((0..sc.stack_verts.len() as u32, 0));
         while let Some((r, mut next)) = sc.stack.pop() {
-            // The run popped is the last one of stack_verts.
-            sc.cur.clear();
-            sc.cur
-                .extend_from_slice(&sc.stack_verts[r.start as usize..r.end as usize]);
-            sc.stack_verts.truncate(r.start as usize);
+            // The run popped is the last one of stack_verts; it is read in
+            // place until it must be split (or is done with), then moved to
+            // cur.
+            let r = r.start as usize..r.end as usize;
+            let mut in_stack = true;
             'occluders: loop {
+                let piece = if in_stack {
+                    &sc.stack_verts[r.clone()]
+                } else {
+                    &sc.cur[..]
+                };
                 let Some(run) = sc.runs.get(next as usize) else {
                     // Past every occluder: visible.
                     let start = self.verts.len() as u32;
-                    self.verts.extend_from_slice(&sc.cur);
+                    self.verts.extend_from_slice(piece);
                     self.pieces.push(start..self.verts.len() as u32);
                     break;
                 };
@@ -260,11 +265,17 @@ impl VisiblePart {
                 // Bit k: the piece straddles planes[k] (at most 9).
                 let mut straddled = 0u32;
                 for (k, h) in planes.iter().enumerate() {
-                    match classify(&sc.cur, h) {
+                    match classify(piece, h) {
                         (false, _) => continue 'occluders,
                         (true, false) => {}
                         (true, true) => straddled |= 1 << k,
                     }
+                }
+                if straddled != 0 && in_stack {
+                    sc.cur.clear();
+                    sc.cur.extend_from_slice(&sc.stack_verts[r.clone()]);
+                    sc.stack_verts.truncate(r.start);
+                    in_stack = false;
                 }
                 while straddled != 0 {
                     let h = &planes[straddled.trailing_zeros() as usize];
@@ -286,6 +297,9 @@ impl VisiblePart {
                 }
                 // What is left lies inside every half-space: hidden.
                 break;
+            }
+            if in_stack {
+                sc.stack_verts.truncate(r.start);
             }
         }
     }
