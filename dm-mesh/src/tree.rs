@@ -89,6 +89,9 @@ pub struct ReceiverDm<K> {
     /// Faces whose shape or list changed since [`Self::take_touched`]
     /// (some may be gone since).
     touched: Vec<FaceKey>,
+    /// Whether changes are recorded in `touched` (not before the first
+    /// illumination, which looks at every face anyway).
+    tracking: bool,
 }
 
 /// The region of a unit on a receiver: `polygon` clipped by `planes`.
@@ -121,6 +124,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             units: Vec::new(),
             next_unit: 0,
             touched: Vec::new(),
+            tracking: false,
         };
         for (i, light) in lights.iter().enumerate() {
             let reach = match light.side_of(dm.polygon.support()) {
@@ -240,6 +244,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         self.reach.iter().all(|r| *r == Reach::None)
     }
 
+    /// Forgets the changes so far and records those from now on (called by
+    /// the first illumination, which looks at every face).
+    pub(crate) fn start_tracking(&mut self) {
+        self.touched.clear();
+        self.tracking = true;
+    }
+
     /// Whether some face changed since the last [`Self::take_touched`].
     pub(crate) fn has_touched(&self) -> bool {
         !self.touched.is_empty()
@@ -330,7 +341,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     fn cell_mut(&mut self, leaf: u32) -> &mut Cell {
         let f = self.face_of(leaf);
-        self.touched.push(f);
+        if self.tracking {
+            self.touched.push(f);
+        }
         self.mesh.face_data_mut(f).expect("a leaf's face exists")
     }
 
