@@ -201,8 +201,13 @@ fn illuminate_receiver(
     scratch: &mut VisiblePart,
 ) -> IllumStats {
     let mut stats = IllumStats::default();
-    let touched = dm.take_touched();
     let everything = !state.fresh;
+    let touched = if everything {
+        dm.start_tracking();
+        Vec::new()
+    } else {
+        dm.take_touched()
+    };
     if !everything && touched.is_empty() {
         return stats;
     }

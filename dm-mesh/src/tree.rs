@@ -31,7 +31,7 @@ use bsp_core::predicates::{self, Side};
 use bsp_core::{
     ConvexPolygon, FaceKey, FaceSplit, Plane, PolygonSide, Split, VertexKey, WingedMesh,
 };
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
 /// The unit number of the light-plane splits made when a receiver is
 /// created (they are never removed).
@@ -81,14 +81,17 @@ pub struct ReceiverDm<K> {
     /// Per unit, the leaves where its single tree was grown (its topmost
     /// nodes, or cells it only listed or was culled in). Entries go stale
     /// when a collapse frees them and are checked before use.
-    roots: BTreeMap<u32, Vec<u32>>,
+    roots: Vec<Vec<u32>>,
     root: u32,
     reach: Vec<Reach>,
-    units: BTreeMap<u32, UnitRef<K>>,
+    units: Vec<Option<UnitRef<K>>>,
     next_unit: u32,
     /// Faces whose shape or list changed since [`Self::take_touched`]
     /// (some may be gone since).
     touched: Vec<FaceKey>,
+    /// Whether changes are recorded in `touched` (not before the first
+    /// illumination, which looks at every face anyway).
+    tracking: bool,
 }
 
 /// The region of a unit on a receiver: `polygon` clipped by `planes`.
@@ -115,12 +118,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             nodes: vec![Node::Leaf(face)],
             parent: vec![0],
             free: Vec::new(),
-            roots: BTreeMap::new(),
+            roots: Vec::new(),
             root: 0,
             reach: Vec::with_capacity(lights.len()),
-            units: BTreeMap::new(),
+            units: Vec::new(),
             next_unit: 0,
             touched: Vec::new(),
+            tracking: false,
         };
         for (i, light) in lights.iter().enumerate() {
             let reach = match light.side_of(dm.polygon.support()) {
@@ -240,6 +244,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         self.reach.iter().all(|r| *r == Reach::None)
     }
 
+    /// Forgets the changes so far and records those from now on (called by
+    /// the first illumination, which looks at every face).
+    pub(crate) fn start_tracking(&mut self) {
+        self.touched.clear();
+        self.tracking = true;
+    }
+
     /// Whether some face changed since the last [`Self::take_touched`].
     pub(crate) fn has_touched(&self) -> bool {
         !self.touched.is_empty()
@@ -283,7 +294,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// The occluder piece and light of a unit listed in a cell's entries.
     pub fn unit_source(&self, unit: u32) -> Option<(K, usize)> {
-        self.units.get(&unit).map(|(k, l)| (*k, usize::from(*l)))
+        self.unit(unit).map(|(k, l)| (k, usize::from(l)))
     }
 
     /// Inner nodes of the tree.
@@ -301,12 +312,24 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// The occluder and light of a unit.
     pub(crate) fn unit(&self, unit: u32) -> Option<UnitRef<K>> {
-        self.units.get(&unit).copied()
+        self.units.get(unit as usize).copied().flatten()
     }
 
     /// The units, in insertion order.
     pub(crate) fn units(&self) -> impl Iterator<Item = (u32, UnitRef<K>)> + '_ {
-        self.units.iter().map(|(k, v)| (*k, *v))
+        self.units
+            .iter()
+            .enumerate()
+            .filter_map(|(u, v)| v.map(|v| (u as u32, v)))
+    }
+
+    /// The recorded roots of `unit` (see [`Self::remove_units`]).
+    fn roots_of(&mut self, unit: u32) -> &mut Vec<u32> {
+        let u = unit as usize;
+        if self.roots.len() <= u {
+            self.roots.resize_with(u + 1, Vec::new);
+        }
+        &mut self.roots[u]
     }
 
     fn face_of(&self, leaf: u32) -> FaceKey {
@@ -318,7 +341,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     fn cell_mut(&mut self, leaf: u32) -> &mut Cell {
         let f = self.face_of(leaf);
-        self.touched.push(f);
+        if self.tracking {
+            self.touched.push(f);
+        }
         self.mesh.face_data_mut(f).expect("a leaf's face exists")
     }
 
@@ -414,7 +439,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     pub(crate) fn insert(&mut self, key: K, light: u8, planes: &UnitPlanes) -> u32 {
         let unit = self.next_unit;
         self.next_unit += 1;
-        self.units.insert(unit, (key, light));
+        debug_assert_eq!(self.units.len(), unit as usize);
+        self.units.push(Some((key, light)));
         self.merge_unit(self.root, None, unit, light, planes);
         unit
     }
@@ -470,7 +496,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             return;
         }
         let in_umbra = cell.in_umbra(usize::from(light));
-        self.roots.entry(unit).or_default().push(leaf);
+        self.roots_of(unit).push(leaf);
         if in_umbra {
             // Umbra already: the occluder changes nothing here, unless the
             // occluder making the umbra goes; remember it for then.
@@ -581,7 +607,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         }
         let recorded: Vec<u32> = gone
             .iter()
-            .filter_map(|u| self.roots.remove(u))
+            .filter_map(|&u| self.roots.get_mut(u as usize).map(std::mem::take))
             .flatten()
             .collect();
         let mut starts: Vec<u32> = recorded
@@ -598,7 +624,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 .any(|a| all.contains(&a) || self.owned_by(a, gone))
         });
         for unit in gone {
-            self.units.remove(unit);
+            if let Some(slot) = self.units.get_mut(*unit as usize) {
+                *slot = None;
+            }
         }
         for n in starts {
             let (kept, redo) = self.units_under(n, gone);
@@ -607,14 +635,14 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             cell.entries = kept.iter().copied().collect();
             cell.culled.clear();
             for e in &kept {
-                self.roots.entry(e.unit).or_default().push(n);
+                self.roots_of(e.unit).push(n);
             }
             let face = self.face_of(n);
             let Ok(region) = self.mesh.face_polygon(face, 0) else {
                 continue;
             };
             for unit in redo {
-                if let Some(&(key, light)) = self.units.get(&unit) {
+                if let Some((key, light)) = self.unit(unit) {
                     self.merge_unit(n, Some(&region), unit, light, planes(key, light));
                 }
             }
@@ -777,7 +805,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                         .data
                         .entries
                         .iter()
-                        .any(|e| !self.units.contains_key(&e.unit))
+                        .any(|e| self.unit(e.unit).is_none())
                     {
                         return Err(format!("leaf {n} lists a removed unit"));
                     }
