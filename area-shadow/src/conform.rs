@@ -128,23 +128,27 @@ impl Buckets {
         p.map(|c| (c / self.cell).floor() as i64)
     }
 
-    /// Indices in the cells that the box `[lo, hi]` touches, in index order
-    /// within each cell.
+    /// Indices in the cells that the box `[lo, hi]` touches, in (cell,
+    /// index) order.
     fn query(&self, lo: [f64; 3], hi: [f64; 3], out: &mut Vec<u32>) {
         out.clear();
         let (a, b) = (self.key(lo), self.key(hi));
-        let cells = (0..3).map(|i| (b[i] - a[i] + 1) as f64).product::<f64>();
-        if cells > self.entries.len() as f64 {
-            // A box over more cells than there are points: scan them all.
+        let in_box = |k: &[i64; 3]| (0..3).all(|i| a[i] <= k[i] && k[i] <= b[i]);
+        // Cells with the same x and y are contiguous, and so are cells
+        // with x in a range: one binary search per (x, y) column while
+        // there are few columns, else one scan of the slab of x.
+        let columns = (b[0] - a[0] + 1).saturating_mul(b[1] - a[1] + 1);
+        if columns > 64 {
+            let from = self.entries.partition_point(|(k, _)| k[0] < a[0]);
             out.extend(
-                self.entries
+                self.entries[from..]
                     .iter()
-                    .filter(|(k, _)| (0..3).all(|i| a[i] <= k[i] && k[i] <= b[i]))
+                    .take_while(|(k, _)| k[0] <= b[0])
+                    .filter(|(k, _)| in_box(k))
                     .map(|&(_, id)| id),
             );
             return;
         }
-        // Cells with the same x and y are contiguous: one range per (x, y).
         for x in a[0]..=b[0] {
             for y in a[1]..=b[1] {
                 let from = self.entries.partition_point(|(k, _)| *k < [x, y, a[2]]);
@@ -179,41 +183,61 @@ pub fn conform(fragments: &[ConvexPolygon]) -> ConformingMesh {
     let extent = (0..3).map(|i| hi[i] - lo[i]).fold(1.0, f64::max);
     let cell = (extent / (corners.max(1) as f64).sqrt()).max(1.0);
 
-    // Every corner, exact and in f64, fragment after fragment.
-    let corner_points: Vec<(MeshPoint, [f64; 3])> = fragments
-        .par_iter()
-        .flat_map_iter(|f| (0..f.len()).map(move |k| (MeshPoint::vertex(f, k), f.vertex_f64(k))))
+    // Every corner as (fragment, vertex) and in f64, fragment after
+    // fragment; its exact point is made only when compared (an implicit
+    // point is a few hundred bytes: too many to keep for every corner).
+    let corners: Vec<(u32, u32)> = fragments
+        .iter()
+        .enumerate()
+        .flat_map(|(i, f)| (0..f.len() as u32).map(move |k| (i as u32, k)))
         .collect();
-    let corner_coords: Vec<[f64; 3]> = corner_points.iter().map(|(_, c)| *c).collect();
+    let exact = |c: usize| {
+        let (i, k) = corners[c];
+        MeshPoint::vertex(&fragments[i as usize], k as usize)
+    };
+    let corner_coords: Vec<[f64; 3]> = corners
+        .par_iter()
+        .map(|&(i, k)| fragments[i as usize].vertex_f64(k as usize))
+        .collect();
     let corner_buckets = Buckets::new(cell, &corner_coords);
     // Each corner's first corner at the same point (exact), found in
     // parallel: the same point's corners lie within the margin of each
     // other, so the buckets around it hold them all.
-    let first_same: Vec<u32> = (0..corner_points.len())
+    let first_same: Vec<u32> = (0..corners.len())
         .into_par_iter()
         .map_init(Vec::new, |found, i| {
-            let (point, c) = &corner_points[i];
+            let c = corner_coords[i];
             corner_buckets.query(c.map(|x| x - MARGIN), c.map(|x| x + MARGIN), found);
-            found
-                .iter()
-                .copied()
-                .filter(|&j| (j as usize) < i && corner_points[j as usize].0.same_point(point))
+            let mut near = found.iter().copied().filter(|&j| {
+                let d = corner_coords[j as usize];
+                (j as usize) < i && (0..3).all(|a| (d[a] - c[a]).abs() <= 2.0 * MARGIN)
+            });
+            let Some(first) = near.next() else {
+                return i as u32;
+            };
+            let point = exact(i);
+            std::iter::once(first)
+                .chain(near)
+                .filter(|&j| exact(j as usize).same_point(&point))
                 .min()
                 .unwrap_or(i as u32)
         })
         .collect();
     // Distinct points numbered in order of first appearance.
-    let mut corner_ids: Vec<u32> = Vec::with_capacity(corner_points.len());
+    let firsts: Vec<usize> = (0..corners.len())
+        .filter(|&i| first_same[i] as usize == i)
+        .collect();
+    mesh.points = firsts.par_iter().map(|&i| exact(i)).collect();
+    mesh.coords = firsts.iter().map(|&i| corner_coords[i]).collect();
+    let mut corner_ids: Vec<u32> = Vec::with_capacity(corners.len());
+    let mut next_id = 0;
     for (i, &first) in first_same.iter().enumerate() {
-        let id = if first as usize == i {
-            let id = mesh.points.len() as u32;
-            mesh.points.push(corner_points[i].0);
-            mesh.coords.push(corner_points[i].1);
-            id
+        if first as usize == i {
+            corner_ids.push(next_id);
+            next_id += 1;
         } else {
-            corner_ids[first as usize]
-        };
-        corner_ids.push(id);
+            corner_ids.push(corner_ids[first as usize]);
+        }
     }
     let mut outlines: Vec<Vec<u32>> = Vec::with_capacity(fragments.len());
     let mut next = 0;
