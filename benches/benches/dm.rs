@@ -5,21 +5,11 @@
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
 
-use bsp_core::{ConvexPolygon, GridPoint};
+use bsp_core::ConvexPolygon;
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use umbra::dm_scene;
-use umbra_benches::dm_table::demo;
-
-fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
-    let points: Vec<GridPoint> = (0..p.len())
-        .map(|k| {
-            let g = p.vertex_grid_point(k).expect("grid vertex").to_i64();
-            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).expect("on the grid")
-        })
-        .collect();
-    ConvexPolygon::from_grid_points(&points, p.source()).expect("still convex")
-}
+use umbra_benches::dm_table::{demo, translated};
 
 fn build(c: &mut Criterion) {
     let dir = tempfile::tempdir().unwrap();

@@ -12,67 +12,9 @@
 //! Divide the total instruction count by the printed number of evaluations
 //! (setup is a small, fixed part).
 
-use illum::{AreaLight, Receiver, Sidedness::OneSided, Vec3, VisiblePart, visible_irradiance};
-use rand::{Rng, SeedableRng};
-use rand_pcg::Pcg64;
+use illum::{Sidedness::OneSided, VisiblePart, visible_irradiance};
 use std::hint::black_box;
-
-const BATCH: usize = 4096;
-
-fn light() -> AreaLight {
-    AreaLight::new(
-        &[
-            [-1.0, 10.0, -1.0],
-            [1.0, 10.0, -1.0],
-            [1.0, 10.0, 1.0],
-            [-1.0, 10.0, 1.0],
-        ],
-        1.0,
-    )
-    .unwrap()
-}
-
-fn receivers(n: usize, seed: u64) -> Vec<Receiver> {
-    let mut rng = Pcg64::seed_from_u64(seed);
-    (0..n)
-        .map(|_| {
-            let d: [f64; 3] = [
-                rng.random_range(-0.8..0.8),
-                1.0,
-                rng.random_range(-0.8..0.8),
-            ];
-            let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-            Receiver {
-                position: [
-                    rng.random_range(-4.0..4.0),
-                    rng.random_range(0.0..1.0),
-                    rng.random_range(-4.0..4.0),
-                ],
-                normal: [d[0] / l, d[1] / l, d[2] / l],
-            }
-        })
-        .collect()
-}
-
-fn occluders(seed: u64) -> Vec<[Vec3; 3]> {
-    let mut rng = Pcg64::seed_from_u64(seed);
-    (0..10)
-        .map(|_| {
-            let c = [
-                rng.random_range(-2.0..2.0),
-                rng.random_range(3.0..8.0),
-                rng.random_range(-2.0..2.0),
-            ];
-            std::array::from_fn(|_| {
-                [
-                    c[0] + rng.random_range(-1.0..1.0),
-                    c[1] + rng.random_range(-0.3..0.3),
-                    c[2] + rng.random_range(-1.0..1.0),
-                ]
-            })
-        })
-        .collect()
-}
+use umbra_benches::illum_scene::{BATCH, light, occluders, receivers};
 
 fn main() {
     let mode = std::env::args().nth(1).unwrap_or_else(|| "visible".into());

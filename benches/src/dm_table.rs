@@ -2,9 +2,21 @@
 //! build and illumination of scenes of 92-184 polygons, and moving an
 //! object of 5-30 % of the scene against rebuilding.
 
+use bsp_core::{ConvexPolygon, GridPoint};
 use std::path::Path;
 use std::time::Instant;
 use umbra::{DmOptions, DmRun, Scene, dm_scene, dm_scene_with, write_demo};
+
+/// `p` moved by `d` grid units (its vertices are grid points).
+pub fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
+    let points: Vec<GridPoint> = (0..p.len())
+        .map(|k| {
+            let g = p.vertex_grid_point(k).expect("grid vertex").to_i64();
+            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).expect("on the grid")
+        })
+        .collect();
+    ConvexPolygon::from_grid_points(&points, p.source()).expect("still convex")
+}
 
 /// A demo written into `dir` and loaded.
 pub fn demo(dir: &Path, name: &str) -> Scene {

@@ -6,6 +6,7 @@
 //! build the scenes of the papers.
 
 pub mod dm_table;
+pub mod illum_scene;
 pub mod random;
 pub mod rooms;
 pub mod scene;

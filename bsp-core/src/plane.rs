@@ -222,28 +222,6 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
 }
 
 #[cfg(test)]
-fn gcd_u128(mut a: u128, mut b: u128) -> u128 {
-    if a == 0 {
-        return b;
-    }
-    if b == 0 {
-        return a;
-    }
-    let shift = (a | b).trailing_zeros();
-    a >>= a.trailing_zeros();
-    loop {
-        b >>= b.trailing_zeros();
-        if a > b {
-            std::mem::swap(&mut a, &mut b);
-        }
-        b -= a;
-        if b == 0 {
-            return a << shift;
-        }
-    }
-}
-
-#[cfg(test)]
 mod tests {
     use super::*;
 
@@ -285,7 +263,14 @@ mod tests {
                 continue;
             };
             let [a, b, c] = plane.normal().map(|v| v.unsigned_abs() as u128);
-            let g = gcd_u128(gcd_u128(gcd_u128(a, b), c), plane.offset().unsigned_abs());
+            // Euclid's algorithm: an oracle independent of the binary gcd.
+            let gcd = |mut x: u128, mut y: u128| {
+                while y != 0 {
+                    (x, y) = (y, x % y);
+                }
+                x
+            };
+            let g = gcd(gcd(gcd(a, b), c), plane.offset().unsigned_abs());
             assert_eq!(g, 1);
             // The same plane from a scaled normal.
             let m = n.map(|v| v / k);

@@ -11,18 +11,9 @@
 
 use std::process::ExitCode;
 
-use bsp_core::{ConvexPolygon, GridPoint};
+use bsp_core::ConvexPolygon;
 use umbra::{Scene, dm_scene};
-
-fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
-    let points: Vec<GridPoint> = (0..p.len())
-        .map(|k| {
-            let g = p.vertex_grid_point(k).expect("grid vertex").to_i64();
-            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).expect("on the grid")
-        })
-        .collect();
-    ConvexPolygon::from_grid_points(&points, p.source()).expect("still convex")
-}
+use umbra_benches::dm_table::translated;
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
