@@ -12,10 +12,6 @@ use crate::conform::MeshPoint;
 use bsp_core::ConvexPolygon;
 use bsp_core::predicates::Side;
 
-fn vertex(p: &ConvexPolygon, k: usize) -> MeshPoint {
-    MeshPoint::vertex(p, k)
-}
-
 /// `a ∪ b` when they share a whole edge and their union is convex.
 pub fn merge_pair(a: &ConvexPolygon, b: &ConvexPolygon) -> Option<ConvexPolygon> {
     let (n, m) = (a.len(), b.len());
@@ -24,8 +20,8 @@ pub fn merge_pair(a: &ConvexPolygon, b: &ConvexPolygon) -> Option<ConvexPolygon>
         Some((k, l))
     })?;
     // The same segment: a's edge k runs p -> q, b's edge l runs q -> p.
-    if !vertex(a, k).same_point(&vertex(b, (l + 1) % m))
-        || !vertex(a, (k + 1) % n).same_point(&vertex(b, l))
+    if !MeshPoint::vertex(a, k).same_point(&MeshPoint::vertex(b, (l + 1) % m))
+        || !MeshPoint::vertex(a, (k + 1) % n).same_point(&MeshPoint::vertex(b, l))
     {
         return None;
     }
@@ -45,8 +41,8 @@ pub fn merge_pair(a: &ConvexPolygon, b: &ConvexPolygon) -> Option<ConvexPolygon>
     let a_last = a.edges()[(k + n - 1) % n];
     let (b_first, b_last) = ((l + 1) % m, (l + m - 1) % m);
     // The far vertex of a's last edge and of a's first edge.
-    let before_p = vertex(a, (k + n - 1) % n);
-    let after_q = vertex(a, (k + 2) % n);
+    let before_p = MeshPoint::vertex(a, (k + n - 1) % n);
+    let after_q = MeshPoint::vertex(a, (k + 2) % n);
     for i in 1..m {
         let e = (l + i) % m;
         let plane = b.edges()[e];
@@ -147,19 +143,12 @@ pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolyg
                     for (e, plane) in union.edges().iter().enumerate() {
                         let key = plane_key(plane);
                         let t = edge_position(&union, e);
-                        match line_of(&lines, &key) {
-                            Some(line) => {
-                                let list = &mut lines[line].1;
-                                let at = list.partition_point(|(u, _)| *u <= t);
-                                list.insert(at, (t, k));
-                            }
-                            None => {
-                                // Only when `from_planes` dropped or
-                                // reoriented an edge: a line of its own.
-                                let at = lines.partition_point(|(l, _)| *l < key);
-                                lines.insert(at, (key, vec![(t, k)]));
-                            }
-                        }
+                        // A union's edges are its pieces' edges: the
+                        // line is listed.
+                        let line = line_of(&lines, &key).expect("every edge's line is listed");
+                        let list = &mut lines[line].1;
+                        let at = list.partition_point(|(u, _)| *u <= t);
+                        list.insert(at, (t, k));
                     }
                     pieces[i] = None;
                     pieces[j] = None;
