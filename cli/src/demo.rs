@@ -15,6 +15,7 @@ use std::path::{Path, PathBuf};
 
 use crate::atomic::write_atomic;
 use crate::error::{Error, Result};
+use crate::vec3::{cross, dot, sub};
 
 /// The names of the built-in scenes.
 pub const DEMOS: &[&str] = &["room", "room1", "tetra", "window", "office", "cubes"];
@@ -328,20 +329,6 @@ fov_deg = 60.0
 width = 800
 height = 600
 "#;
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
 
 #[cfg(test)]
 mod tests {

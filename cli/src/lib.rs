@@ -63,6 +63,7 @@ mod shadow;
 mod stats;
 mod svg;
 mod transform;
+mod vec3;
 
 pub use atomic::write_atomic;
 pub use bsp_core;

@@ -8,6 +8,7 @@ use serde::Deserialize;
 use crate::error::{Error, Result};
 use crate::obj::ObjMesh;
 use crate::transform::Transform;
+use crate::vec3::{cross, dot, norm, sub};
 
 /// Most lights a scene may have: one bit each in `lit_mask` / `umbra_mask`.
 pub const MAX_LIGHTS: usize = 32;
@@ -677,23 +678,6 @@ fn check_convex_planar(v: &[[f64; 3]]) -> std::result::Result<(), String> {
         return Err("not convex (the outline winds more than once)".into());
     }
     Ok(())
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
 }
 
 #[cfg(test)]

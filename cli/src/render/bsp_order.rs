@@ -15,6 +15,7 @@ use bsp_core::{BuildOptions, ConvexPolygon, Grid, GridPoint, SceneBsp, Viewpoint
 use crate::decompose::Pieces;
 use crate::error::{Error, Result};
 use crate::scene::Scene;
+use crate::vec3::{cross, dot, sub};
 
 /// The scene's pieces as BSP parts in back-to-front order from `eye`
 /// (world units): each part with the index of the piece it came from.
@@ -101,22 +102,6 @@ pub(crate) fn clip_to_region(
         }
     }
     out
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! coordinates and depth.
 
 use crate::scene::Camera;
+use crate::vec3::{cross, dot, normalize, sub};
 
 /// A [`Camera`] ready to project: an orthonormal right-handed view frame
 /// (right, up, forward) at the eye, and the focal length in pixels.
@@ -75,27 +76,6 @@ impl Projection {
         let [x, y] = self.view_to_pixel(v);
         Some([x, y, v[2]])
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-fn normalize(a: [f64; 3]) -> [f64; 3] {
-    let n = dot(a, a).sqrt();
-    [a[0] / n, a[1] / n, a[2] / n]
 }
 
 #[cfg(test)]

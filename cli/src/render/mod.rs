@@ -37,6 +37,7 @@ use crate::shadow::{ShadowOptions, ShadowResult, shadow_scene_with};
 /// Gridding `render_scene` uses for scenes with area lights (cells of
 /// 1/40 of the scene, 1/80 in penumbra).
 pub const RENDER_GRID: u32 = 40;
+use crate::vec3::{dot, sub};
 use raster::{Corner, EMPTY, Samples};
 
 /// Samples per pixel side: 3 x 3 samples per pixel.
@@ -523,14 +524,6 @@ fn lights_on_seen_side(
         }
     }
     seen
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The part of a convex polygon (view frame, with values) at depth `near`

@@ -35,6 +35,7 @@ use crate::error::{Error, Result};
 use crate::illuminate::IllumLight;
 use crate::scene::Scene;
 use crate::shadow::illum_lights;
+use crate::vec3::{dot, sub};
 
 /// Renders `scene` from its camera with shadows found by counting shadow
 /// polygons along eye rays.
@@ -398,14 +399,6 @@ fn shade(
     let scale = super::ALBEDO * 1.75 / reference;
     samples.set_values(values.iter().map(|c| c.map(|x| (scale * x) as f32)));
     Ok(())
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
