@@ -68,6 +68,9 @@ pub(crate) struct BuiltNode {
 pub(crate) struct Built {
     pub nodes: Vec<BuiltNode>,
     pub root: Link,
+    /// With `keep_cut`: entry `i` holds input polygon `i` as it was given,
+    /// if some plane cut it (empty otherwise).
+    pub cut: Vec<Option<ConvexPolygon>>,
 }
 
 /// Where a subtree built from a work item hangs.
@@ -85,8 +88,14 @@ enum Slot {
 /// Polygons stay in one arena and work lists hold their indices, so a level
 /// of the tree moves four bytes per polygon, not the polygon. A split puts
 /// its back part in the cut polygon's slot, so the arena ends at the number
-/// of fragments.
-pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Built {
+/// of fragments. With `keep_cut`, an input polygon is moved aside, whole,
+/// when it is first cut (its slot then holds its back part).
+pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions, keep_cut: bool) -> Built {
+    let inputs = polygons.len();
+    let mut cut: Vec<Option<ConvexPolygon>> = Vec::new();
+    if keep_cut {
+        cut.resize_with(inputs, || None);
+    }
     let mut arena = polygons;
     let mut nodes: Vec<BuiltNode> = Vec::new();
     let mut node_members: Vec<Vec<u32>> = Vec::new();
@@ -113,7 +122,12 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
                     Split::Back => back.push(index),
                     Split::Front => front.push(index),
                     Split::Both(b, f) => {
-                        arena[index as usize] = b;
+                        let i = index as usize;
+                        if keep_cut && i < inputs && cut[i].is_none() {
+                            cut[i] = Some(std::mem::replace(&mut arena[i], b));
+                        } else {
+                            arena[i] = b;
+                        }
                         back.push(index);
                         front.push(arena.len() as u32);
                         arena.push(f);
@@ -152,7 +166,7 @@ pub(crate) fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Bui
             })
             .collect();
     }
-    Built { nodes, root }
+    Built { nodes, root, cut }
 }
 
 /// The plane that splits `list` best: a candidate polygon's support plane,

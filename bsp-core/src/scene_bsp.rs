@@ -75,7 +75,24 @@ pub struct SceneBsp {
 impl SceneBsp {
     /// Builds the tree over `polygons` (see [`BuildOptions`]).
     pub fn build(polygons: Vec<ConvexPolygon>, options: &BuildOptions) -> Self {
-        let built = autopartition::build(polygons, options);
+        Self::from_built(autopartition::build(polygons, options, false))
+    }
+
+    /// [`build`](Self::build), also giving back, whole, every input polygon
+    /// that a node's plane cut: entry `i` is input polygon `i` if it was
+    /// cut, `None` if it sits in the tree unchanged. A caller that finds
+    /// all the pieces of a polygon alike can then use the polygon itself
+    /// instead of its pieces, without copying every polygon beforehand.
+    pub fn build_keeping_cut(
+        polygons: Vec<ConvexPolygon>,
+        options: &BuildOptions,
+    ) -> (Self, Vec<Option<ConvexPolygon>>) {
+        let mut built = autopartition::build(polygons, options, true);
+        let cut = std::mem::take(&mut built.cut);
+        (Self::from_built(built), cut)
+    }
+
+    fn from_built(built: autopartition::Built) -> Self {
         let mut leaf_count = 0_u32;
         let mut link = |l: Link| match l {
             Link::Node(i) => SceneChild::Node(i),

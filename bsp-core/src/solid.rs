@@ -129,7 +129,7 @@ impl BspSolid {
             axis_planes: false,
             ..*options
         };
-        let built = autopartition::build(boundary, &options);
+        let built = autopartition::build(boundary, &options, false);
         let link = |l: Link| match l {
             Link::Node(i) => SolidChild::Node(i),
             Link::EmptyFront => SolidChild::Leaf(Region::Out),

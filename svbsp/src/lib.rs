@@ -46,10 +46,12 @@
 
 mod balanced;
 pub mod bergeron;
+mod cones;
 mod csg;
 mod error;
 mod light;
 mod merge;
+mod pass;
 mod pipeline;
 mod polyhedron;
 mod tree;
@@ -62,7 +64,10 @@ pub use csg::{CsgBoundary, IndexedMesh, boundary, boundary_pieces, weld};
 pub use error::Error;
 pub use light::{Light, LightSource};
 pub use merge::{SetOp, merge};
-pub use pipeline::{Fragment, LightStats, MAX_LIGHTS, PieceFlags, ShadowOutput, compute_shadows};
+pub use pipeline::{
+    Fragment, LightStats, MAX_LIGHTS, PieceFlags, ShadowOptions, ShadowOutput, compute_shadows,
+    compute_shadows_with,
+};
 pub use polyhedron::{
     CellParts, CellSplit, ConvexPolyhedron, SECTION_SOURCE, plane_in_box, plane_parallelogram,
 };

@@ -7,7 +7,10 @@ use crate::scenes::{boxes_on_floor, gp, triangles_over_floor};
 use bsp_core::predicates::Side;
 use bsp_core::{BuildOptions, ConvexPolygon};
 use proptest::prelude::*;
-use svbsp::{Light, LightSource, PieceFlags, ShadowOutput, compute_shadows};
+use svbsp::{
+    Light, LightSource, PieceFlags, ShadowOptions, ShadowOutput, compute_shadows,
+    compute_shadows_with,
+};
 
 fn run(pieces: &[ConvexPolygon], lights: &[Light]) -> ShadowOutput {
     compute_shadows(
@@ -15,6 +18,22 @@ fn run(pieces: &[ConvexPolygon], lights: &[Light]) -> ShadowOutput {
         &vec![PieceFlags::default(); pieces.len()],
         lights,
         &BuildOptions::default(),
+    )
+    .unwrap()
+}
+
+/// A run whose cones hold at most `cone_pieces` pieces: small cones cut
+/// the scene by many planes through the light.
+fn run_in_cones(pieces: &[ConvexPolygon], lights: &[Light], cone_pieces: usize) -> ShadowOutput {
+    let options = ShadowOptions {
+        cone_pieces,
+        ..ShadowOptions::default()
+    };
+    compute_shadows_with(
+        pieces,
+        &vec![PieceFlags::default(); pieces.len()],
+        lights,
+        &options,
     )
     .unwrap()
 }
@@ -161,6 +180,33 @@ proptest! {
     #![proptest_config(ProptestConfig::with_cases(48))]
 
     #[test]
+    fn small_cones_give_exact_shadows(
+        pieces in triangles_over_floor(),
+        light in light_anywhere(),
+        cone_pieces in 1_usize..6,
+    ) {
+        let out = run_in_cones(&pieces, &[light], cone_pieces);
+        check_partition(&pieces, &out)?;
+        check_oracle(&pieces, &out, &[light])?;
+        let whole = run(&pieces, &[light]);
+        prop_assert!(close(&lit_area(&out, pieces.len(), 0), &lit_area(&whole, pieces.len(), 0), 1e-9));
+    }
+
+    #[test]
+    fn small_cones_of_several_lights(
+        pieces in boxes_on_floor(),
+        a in light_above(),
+        b in light_anywhere(),
+        d in downward(7),
+        cone_pieces in 1_usize..6,
+    ) {
+        let lights = [a, Light::directional(d), b];
+        let out = run_in_cones(&pieces, &lights, cone_pieces);
+        check_partition(&pieces, &out)?;
+        check_oracle(&pieces, &out, &lights)?;
+    }
+
+    #[test]
     fn closed_surfaces_skip_their_back_faces_without_changing_shadows(pieces in boxes_on_floor(), light in light_above()) {
         let open = run(&pieces, &[light]);
         let mut flags = vec![PieceFlags { closed_surface: true, ..PieceFlags::default() }; pieces.len()];
@@ -169,7 +215,20 @@ proptest! {
         check_partition(&pieces, &closed)?;
         check_oracle(&pieces, &closed, &[light])?;
         prop_assert!(close(&lit_area(&open, pieces.len(), 0), &lit_area(&closed, pieces.len(), 0), 1e-9));
-        prop_assert!(closed.fragments.len() <= open.fragments.len());
+        // A closed surface's faces turned away from the light are settled
+        // whole, without a tree. (The faces towards it may be cut
+        // differently: their cones' scene BSPs no longer hold the others.)
+        let away = |out: &ShadowOutput| {
+            out.fragments
+                .iter()
+                .filter(|f| f.polygon.source() != 0 && light.source.side(pieces[f.polygon.source() as usize].support()) != Side::Front)
+                .count()
+        };
+        let turned_away = (1..pieces.len())
+            .filter(|&i| light.source.side(pieces[i].support()) != Side::Front)
+            .count();
+        prop_assert_eq!(away(&closed), turned_away);
+        prop_assert!(away(&closed) <= away(&open));
     }
 
     #[test]
@@ -192,6 +251,38 @@ proptest! {
                 prop_assert_eq!(sees_light(s, light.source, &casters, own), f.lit_mask == 1);
             }
         }
+    }
+}
+
+#[test]
+fn many_cones_over_a_field_of_boxes() {
+    let mut pieces = vec![crate::scenes::floor(600)];
+    for i in 0..6_i64 {
+        for j in 0..6_i64 {
+            let (x, z) = (-300 + 100 * i + 7 * j, -300 + 100 * j - 5 * i);
+            let y = 10 * ((i + j) % 3);
+            pieces.extend(crate::scenes::box_faces(
+                [x, y, z],
+                [x + 40, y + 30 + 5 * i, z + 35],
+            ));
+        }
+    }
+    for light in [
+        Light::point(gp(20, 400, -30)),
+        Light::point(gp(-10, 25, 15)),
+        Light::directional([2, -9, 1]),
+    ] {
+        let out = run_in_cones(&pieces, &[light], 4);
+        assert!(out.lights[0].cones > 16, "{} cones", out.lights[0].cones);
+        check_partition(&pieces, &out).unwrap();
+        check_oracle(&pieces, &out, &[light]).unwrap();
+        let whole = run_in_cones(&pieces, &[light], usize::MAX);
+        assert_eq!(whole.lights[0].cones, 1);
+        assert!(close(
+            &lit_area(&out, pieces.len(), 0),
+            &lit_area(&whole, pieces.len(), 0),
+            1e-9
+        ));
     }
 }
 

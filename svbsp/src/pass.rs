@@ -1,0 +1,358 @@
+//! One light's pass over the fragments: the ones that take no part are
+//! settled at once, the others are cut into the light's cones
+//! ([`crate::cones`]), and each cone gets its own scene BSP and SVBSP tree
+//! (Chin & Feiner 1989) and is shadowed on its own, in parallel. Pieces that
+//! end up alike are joined again into the fragment they were cut from.
+
+use crate::cones::{self, Common, Cones};
+use crate::pipeline::{Fragment, LightStats, PieceFlags};
+use crate::tree::{Filtering, ShadowVolumeTree};
+use crate::volume::shadow_volume;
+use crate::{Light, LightSource};
+use bsp_core::predicates::Side;
+use bsp_core::{BuildOptions, ConvexPolygon, SceneBsp};
+use rayon::prelude::*;
+use smallvec::SmallVec;
+use std::time::Instant;
+
+/// What a piece sees of the pass's light.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Class {
+    Lit,
+    Umbra,
+}
+
+/// Everything a cone needs to know of the scene.
+struct Context<'a> {
+    /// The input pieces (grid-point vertices), by piece index.
+    pieces: &'a [ConvexPolygon],
+    flags: &'a [PieceFlags],
+    light: &'a Light,
+    bsp: &'a BuildOptions,
+}
+
+/// The result of one light's pass.
+pub(crate) struct PassOutput {
+    pub(crate) fragments: Vec<Fragment>,
+    pub(crate) stats: LightStats,
+    pub(crate) scene_nodes: usize,
+    pub(crate) bsp_seconds: f64,
+    pub(crate) shadow_seconds: f64,
+}
+
+/// The fragments a cone's slot became.
+enum SlotResult {
+    /// All alike: the slot's piece, whole.
+    Whole(Class, ConvexPolygon),
+    /// Pieces of both classes.
+    Pieces(Vec<(ConvexPolygon, Class)>),
+}
+
+/// A cone with its scene BSP.
+struct ConeBsp {
+    /// Per local index (the BSP polygons' `source` during the pass): the
+    /// slot and the piece index.
+    slots: Vec<(u32, u32)>,
+    bsp: SceneBsp,
+    /// Per local index: the piece, whole, if the BSP cut it.
+    cut: Vec<Option<ConvexPolygon>>,
+}
+
+/// Figures of one cone.
+#[derive(Default)]
+struct ConeStats {
+    tree_nodes: usize,
+    planes_skipped: usize,
+    whole_piece_volumes: usize,
+}
+
+/// Shadows `fragments` by light `index` (bit `1 << index`), cutting cones
+/// of at most `cone_pieces` pieces.
+pub(crate) fn light_pass(
+    fragments: Vec<Fragment>,
+    pieces: &[ConvexPolygon],
+    flags: &[PieceFlags],
+    light: &Light,
+    index: usize,
+    bsp: &BuildOptions,
+    cone_pieces: usize,
+) -> PassOutput {
+    let bit = 1_u32 << index;
+    let started = Instant::now();
+    // Settled without a tree, or active (then the polygon moves on).
+    let mut settled: Vec<Option<Fragment>> = Vec::with_capacity(fragments.len());
+    let mut masks = Vec::with_capacity(fragments.len());
+    let mut active = Vec::new();
+    for fragment in fragments {
+        masks.push((fragment.lit_mask, fragment.umbra_mask));
+        let flags = &flags[fragment.polygon.source() as usize];
+        let facing = light.source.side(fragment.polygon.support());
+        let beyond =
+            light.range.is_some() && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
+        let receives = facing == Side::Front || flags.two_sided;
+        // Edge-on to the light, beyond its reach, or turned away and casting
+        // nothing the rest of its closed surface does not: umbra, untouched.
+        if facing == Side::On
+            || beyond
+            || (!receives && (flags.closed_surface || !flags.casts_shadows))
+        {
+            settled.push(Some(Fragment {
+                umbra_mask: fragment.umbra_mask | bit,
+                ..fragment
+            }));
+        } else {
+            settled.push(None);
+            active.push(fragment.polygon);
+        }
+    }
+    let mut cones = cones::partition(light.source, active, cone_pieces);
+    let context = Context {
+        pieces,
+        flags,
+        light,
+        bsp,
+    };
+    let cone_count = cones.len();
+    let cone_bsps: Vec<ConeBsp> = cones
+        .take_cones()
+        .into_par_iter()
+        .map(|cone| cone_bsp(cone, &context))
+        .collect();
+    let scene_nodes = cone_bsps.iter().map(|c| c.bsp.nodes().len()).sum();
+    let bsp_seconds = started.elapsed().as_secs_f64();
+
+    let started = Instant::now();
+    let shaded: Vec<(Vec<(u32, SlotResult)>, ConeStats)> = cone_bsps
+        .into_par_iter()
+        .map(|cone| shade_cone(cone, &context))
+        .collect();
+    let mut stats = LightStats {
+        cones: cone_count,
+        ..LightStats::default()
+    };
+    let mut results: Vec<Option<SlotResult>> = Vec::new();
+    results.resize_with(cones.node_of.len(), || None);
+    for (slots, cone) in shaded {
+        stats.tree_nodes += cone.tree_nodes;
+        stats.planes_skipped += cone.planes_skipped;
+        stats.whole_piece_volumes += cone.whole_piece_volumes;
+        for (slot, result) in slots {
+            results[slot as usize] = Some(result);
+        }
+    }
+    let fragments = join(&mut cones, results, settled, &masks, bit);
+    PassOutput {
+        fragments,
+        stats,
+        scene_nodes,
+        bsp_seconds,
+        shadow_seconds: started.elapsed().as_secs_f64(),
+    }
+}
+
+/// Builds a cone's scene BSP over its pieces.
+fn cone_bsp(cone: Vec<(u32, ConvexPolygon)>, context: &Context) -> ConeBsp {
+    let mut slots = Vec::with_capacity(cone.len());
+    let polygons: Vec<ConvexPolygon> = cone
+        .into_iter()
+        .enumerate()
+        .map(|(j, (slot, piece))| {
+            slots.push((slot, piece.source()));
+            piece.with_source(j as u32)
+        })
+        .collect();
+    let (bsp, cut) = SceneBsp::build_keeping_cut(polygons, context.bsp);
+    ConeBsp { slots, bsp, cut }
+}
+
+/// Shadows one cone: its pieces front-to-back from the light down its own
+/// SVBSP tree. Returns each slot's fragments.
+fn shade_cone(cone: ConeBsp, context: &Context) -> (Vec<(u32, SlotResult)>, ConeStats) {
+    let ConeBsp { slots, bsp, cut } = cone;
+    let light = context.light.source;
+    let visit: Vec<u32> = bsp
+        .front_to_back(light.viewpoint())
+        .map(|(k, _)| k)
+        .collect();
+    let mut polygons: Vec<Option<ConvexPolygon>> =
+        bsp.into_polygons().into_iter().map(Some).collect();
+    let mut tree = ShadowVolumeTree::new(light);
+    let mut stats = ConeStats::default();
+    // Per local index: its pieces so far, and whether all are alike.
+    let mut parts: Vec<SmallVec<[(ConvexPolygon, Class); 1]>> =
+        (0..slots.len()).map(|_| SmallVec::new()).collect();
+    let mut alike: Vec<bool> = vec![true; slots.len()];
+    for k in visit {
+        let polygon = polygons[k as usize].take().expect("visited once");
+        let j = polygon.source() as usize;
+        let piece = slots[j].1;
+        let polygon = polygon.with_source(piece);
+        let outcome = shade_polygon(&mut tree, polygon, context, &mut stats);
+        let list = &mut parts[j];
+        match outcome {
+            Outcome::Whole(class, polygon) => {
+                alike[j] &= list.first().is_none_or(|(_, c)| *c == class);
+                list.push((polygon, class));
+            }
+            Outcome::Pieces(pieces) => {
+                alike[j] = false;
+                list.extend(pieces);
+            }
+        }
+    }
+    stats.tree_nodes = tree.nodes().len();
+    let results = slots
+        .iter()
+        .zip(parts)
+        .zip(alike)
+        .zip(cut)
+        .map(|((((slot, piece), mut list), alike), cut)| {
+            let result = if alike {
+                let class = list[0].1;
+                let whole = match cut {
+                    Some(whole) => whole.with_source(*piece),
+                    None => list.pop().expect("an uncut piece is one polygon").0,
+                };
+                SlotResult::Whole(class, whole)
+            } else {
+                SlotResult::Pieces(list.into_vec())
+            };
+            (*slot, result)
+        })
+        .collect();
+    (results, stats)
+}
+
+/// What one scene-BSP polygon of a cone became.
+enum Outcome {
+    /// One class, the polygon whole.
+    Whole(Class, ConvexPolygon),
+    /// Lit and shadowed pieces.
+    Pieces(Vec<(ConvexPolygon, Class)>),
+}
+
+/// Filters one polygon (source: its piece) down the cone's tree and adds
+/// the volumes of its lit pieces if its piece casts shadows.
+fn shade_polygon(
+    tree: &mut ShadowVolumeTree,
+    polygon: ConvexPolygon,
+    context: &Context,
+    stats: &mut ConeStats,
+) -> Outcome {
+    let light: LightSource = context.light.source;
+    let piece = polygon.source() as usize;
+    let flags = &context.flags[piece];
+    let receives = light.side(polygon.support()) == Side::Front || flags.two_sided;
+    let casts = flags.casts_shadows;
+    let lit = if receives { Class::Lit } else { Class::Umbra };
+    let mut cast = |tree: &mut ShadowVolumeTree, polygon: &ConvexPolygon, slot| {
+        if let Some(volume) = shadow_volume(polygon, &context.pieces[piece], light) {
+            stats.whole_piece_volumes += usize::from(volume.whole_piece);
+            let (_, skipped) = tree.insert_volume(slot, &volume.shadow_planes, volume.cap);
+            stats.planes_skipped += skipped;
+        }
+    };
+    match tree.filter_ref(&polygon) {
+        Filtering::Lit(slot) => {
+            if casts {
+                cast(tree, &polygon, slot);
+            }
+            Outcome::Whole(lit, polygon)
+        }
+        Filtering::Shadowed => Outcome::Whole(Class::Umbra, polygon),
+        Filtering::Pieces(filtered) => {
+            if casts {
+                for (piece, slot) in &filtered.lit {
+                    cast(tree, piece, *slot);
+                }
+            }
+            // The tree may cut a polygon into pieces that all end up on one
+            // side (planes of neighbouring volumes cross it): then it stays
+            // whole, and only its lit pieces' volumes went in.
+            if !receives || filtered.lit.is_empty() {
+                Outcome::Whole(Class::Umbra, polygon)
+            } else if filtered.shadowed.is_empty() {
+                Outcome::Whole(Class::Lit, polygon)
+            } else {
+                let mut pieces: Vec<(ConvexPolygon, Class)> = filtered
+                    .lit
+                    .into_iter()
+                    .map(|(p, _)| (p, Class::Lit))
+                    .collect();
+                pieces.extend(filtered.shadowed.into_iter().map(|p| (p, Class::Umbra)));
+                Outcome::Pieces(pieces)
+            }
+        }
+    }
+}
+
+/// Puts the pass's fragments together in input order: settled ones as
+/// they are, active ones from their cones' results, joined back up the cut
+/// forest wherever all pieces of a fragment are alike.
+fn join(
+    cones: &mut Cones,
+    mut results: Vec<Option<SlotResult>>,
+    settled: Vec<Option<Fragment>>,
+    masks: &[(u32, u32)],
+    bit: u32,
+) -> Vec<Fragment> {
+    // The slot of each forest leaf, to find a leaf's result.
+    let mut slot_of = vec![u32::MAX; cones.forest.len()];
+    for (slot, &node) in cones.node_of.iter().enumerate() {
+        slot_of[node as usize] = slot as u32;
+    }
+    let common = cones
+        .forest
+        .common(|node| match &results[slot_of[node as usize] as usize] {
+            Some(SlotResult::Whole(class, _)) => Common::All(*class),
+            _ => Common::Mixed,
+        });
+    let mut out = Vec::with_capacity(settled.len());
+    // Active fragments are the forest's roots, in order.
+    let mut root = 0_u32;
+    let mut stack = Vec::new();
+    for (fragment, &(lit_mask, umbra_mask)) in settled.into_iter().zip(masks) {
+        if let Some(fragment) = fragment {
+            out.push(fragment);
+            continue;
+        }
+        let make = |polygon, class| match class {
+            Class::Lit => Fragment {
+                polygon,
+                lit_mask: lit_mask | bit,
+                umbra_mask,
+            },
+            Class::Umbra => Fragment {
+                polygon,
+                lit_mask,
+                umbra_mask: umbra_mask | bit,
+            },
+        };
+        stack.push(root);
+        root += 1;
+        while let Some(node) = stack.pop() {
+            let children = cones.forest.children(node);
+            match (common[node as usize], children) {
+                (Common::All(class), Some(_)) => {
+                    let whole = cones.forest.take_uncut(node).expect("a cut node's polygon");
+                    out.push(make(whole, class));
+                }
+                (Common::Mixed, Some([back, front])) => {
+                    // Back popped first, as the cut made them.
+                    stack.push(front);
+                    stack.push(back);
+                }
+                (_, None) => match results[slot_of[node as usize] as usize]
+                    .take()
+                    .expect("every slot was shaded once")
+                {
+                    SlotResult::Whole(class, polygon) => out.push(make(polygon, class)),
+                    SlotResult::Pieces(pieces) => {
+                        out.extend(pieces.into_iter().map(|(p, c)| make(p, c)));
+                    }
+                },
+            }
+        }
+    }
+    out
+}
