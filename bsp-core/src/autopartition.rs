@@ -184,6 +184,25 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
         // A lone candidate wins whatever its score.
         return first;
     }
+    if n <= sample {
+        // A small list: a candidate that cuts nothing and leaves one side
+        // empty is taken at once. It makes no fragment, and the depth it
+        // adds is bounded by the list; the faces of a convex patch (a
+        // light's cone of a closed surface) then cost two passes per node
+        // instead of a scoring of every candidate and an axis plane that
+        // would cut them. A polygon that spoils a candidate (crossing it,
+        // or on the other side from an earlier one) is tried next: it is
+        // often the one that all the others lie on one side of (a floor
+        // under a patch).
+        let mut next = list[0];
+        for _ in 0..candidates {
+            let plane = *arena[next as usize].support();
+            match one_side_or_witness(arena, list, &plane) {
+                None => return plane,
+                Some(witness) => next = witness,
+            }
+        }
+    }
     // The score of a plane, or `None` as soon as it cannot beat `bound`:
     // the cuts only grow, and the imbalance can shrink by at most one per
     // polygon still to classify. The choice is the same as with full
@@ -231,6 +250,25 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
         }
     }
     best.1
+}
+
+/// `None` if no polygon of `list` crosses `plane` and none lies strictly on
+/// one of its sides; otherwise the first polygon found crossing it or lying
+/// on the side opposite an earlier one.
+fn one_side_or_witness(arena: &[ConvexPolygon], list: &[u32], plane: &Plane) -> Option<u32> {
+    let (mut front, mut back) = (false, false);
+    for &i in list {
+        match arena[i as usize].classify(plane) {
+            PolygonSide::Front => front = true,
+            PolygonSide::Back => back = true,
+            PolygonSide::Both => return Some(i),
+            PolygonSide::Coplanar(_) => {}
+        }
+        if front && back {
+            return Some(i);
+        }
+    }
+    None
 }
 
 /// The plane perpendicular to the axis along which the sample's first

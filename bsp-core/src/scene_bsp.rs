@@ -79,16 +79,20 @@ impl SceneBsp {
     }
 
     /// [`build`](Self::build), also giving back, whole, every input polygon
-    /// that a node's plane cut: entry `i` is input polygon `i` if it was
-    /// cut, `None` if it sits in the tree unchanged. A caller that finds
-    /// all the pieces of a polygon alike can then use the polygon itself
-    /// instead of its pieces, without copying every polygon beforehand.
+    /// that a node's plane cut, with its index in the input, in index
+    /// order. A caller that finds all the pieces of a polygon alike can
+    /// then use the polygon itself instead of its pieces, without copying
+    /// every polygon beforehand.
     pub fn build_keeping_cut(
         polygons: Vec<ConvexPolygon>,
         options: &BuildOptions,
-    ) -> (Self, Vec<Option<ConvexPolygon>>) {
+    ) -> (Self, Vec<(u32, ConvexPolygon)>) {
         let mut built = autopartition::build(polygons, options, true);
-        let cut = std::mem::take(&mut built.cut);
+        let cut = std::mem::take(&mut built.cut)
+            .into_iter()
+            .enumerate()
+            .filter_map(|(i, p)| Some((i as u32, p?)))
+            .collect();
         (Self::from_built(built), cut)
     }
 

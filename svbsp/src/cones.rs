@@ -15,8 +15,9 @@
 //! than `max_pieces` polygons is halved by the plane through the light, an
 //! axis direction and the point halfway between the middle two centroids
 //! of a sample of its polygons (ordered by their angle about that axis, or
-//! for a directional light by their offset across it), trying the three axes and keeping the plane
-//! that splits the sample most evenly with fewest cuts. Each plane passes
+//! for a directional light by their offset across it), trying the three
+//! axes and keeping the plane that cuts fewest of the sample and splits it
+//! most evenly. Each plane passes
 //! through three grid points (the light, a grid point and its neighbour
 //! along the axis; for a directional light, a grid point, its neighbour and
 //! the point one light direction away), so the kernel's bounds hold.
@@ -31,7 +32,7 @@ use bsp_core::{ConvexPolygon, GridPoint, Plane, PolygonSide, Split};
 const LEAF: u32 = u32::MAX;
 
 /// Polygons of a cone sampled to choose its splitting plane.
-const SAMPLE: usize = 64;
+const SAMPLE: usize = 32;
 
 /// Cones are halved at most this many times on any path.
 const MAX_DEPTH: u32 = 40;
@@ -219,19 +220,29 @@ pub(crate) fn partition(
     }
 }
 
-/// The plane through the light that best halves a sample of `list`, or
-/// `None` if no candidate separates it.
+/// The plane through the light that best halves a sample of `list` (fewest
+/// cuts, then best balance, over the three axes), or `None` if none
+/// separates it.
 fn splitter(light: LightSource, pieces: &[ConvexPolygon], list: &[u32]) -> Option<Plane> {
     let n = list.len();
-    let sample: Vec<(u32, [f64; 3])> = (0..SAMPLE.min(n))
+    let size = SAMPLE.min(n);
+    let sample: Vec<(u32, [f64; 3])> = (0..size)
         .map(|s| {
-            let slot = list[s * n / SAMPLE.min(n)];
+            let slot = list[s * n / size];
             (slot, vertex_mean(&pieces[slot as usize]))
         })
         .collect();
     let mut best: Option<(u64, Plane)> = None;
     for axis in 0..3 {
-        let Some(plane) = median_plane(light, &sample, axis) else {
+        let Some(mut keyed) = order_about(light, &sample, axis) else {
+            continue;
+        };
+        keyed.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+        // Between the two middle centroids, so as not to cut the median
+        // polygon through its middle.
+        let m = size / 2;
+        let (p, q) = (sample[keyed[m - 1].1].1, sample[keyed[m].1].1);
+        let Some(plane) = plane_about(light, axis, [0, 1, 2].map(|a| (p[a] + q[a]) / 2.0)) else {
             continue;
         };
         let (mut front, mut back, mut cut) = (0_i64, 0_i64, 0_u64);
@@ -242,8 +253,8 @@ fn splitter(light: LightSource, pieces: &[ConvexPolygon], list: &[u32]) -> Optio
                 PolygonSide::Both => cut += 1,
             }
         }
-        if front + cut as i64 == sample.len() as i64 || back + cut as i64 == sample.len() as i64 {
-            // One side would get the whole sample: no progress.
+        // Each side must get a polygon of the sample the other does not.
+        if front == 0 || back == 0 {
             continue;
         }
         let score = 2 * cut + (front - back).unsigned_abs();
@@ -254,78 +265,96 @@ fn splitter(light: LightSource, pieces: &[ConvexPolygon], list: &[u32]) -> Optio
     best.map(|(_, plane)| plane)
 }
 
-/// The plane through the light and the axis direction `axis` that passes
-/// (snapped to the grid) halfway between the middle two centroids of the
-/// sample, ordered about that axis. `None` if it is degenerate (the centroid on the axis
-/// through the light, or the axis along a directional light's rays).
-fn median_plane(light: LightSource, sample: &[(u32, [f64; 3])], axis: usize) -> Option<Plane> {
+/// Keys that order the sample's centroids about `axis` (with their
+/// indices): for a point light, the tangent of each one's angle from the
+/// sample's mean direction about the axis through the light (no
+/// trigonometry, and the order is the angles' within a quarter turn either
+/// side); for a directional light, the offset across the planes that hold
+/// its rays and the axis. `None` if a directional light runs along the
+/// axis.
+fn order_about(
+    light: LightSource,
+    sample: &[(u32, [f64; 3])],
+    axis: usize,
+) -> Option<Vec<(f64, usize)>> {
     let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
-    let mut keyed: Vec<(f64, usize)> = match light {
+    match light {
         LightSource::Point(l) => {
             let l = l.to_f64();
-            let angles: Vec<f64> = sample
+            let v: Vec<[f64; 2]> = sample
                 .iter()
-                .map(|(_, c)| (c[b] - l[b]).atan2(c[a] - l[a]))
+                .map(|(_, c)| [c[a] - l[a], c[b] - l[b]])
                 .collect();
-            // Angles about the sample's mean direction, so that a cluster
-            // straddling the cut of atan2 stays contiguous.
-            let (sx, sy) = angles
-                .iter()
-                .fold((0.0, 0.0), |(x, y), t| (x + t.cos(), y + t.sin()));
-            let mean = sy.atan2(sx);
-            angles
-                .iter()
-                .enumerate()
-                .map(|(i, t)| {
-                    let mut r = t - mean;
-                    if r > std::f64::consts::PI {
-                        r -= std::f64::consts::TAU;
-                    } else if r <= -std::f64::consts::PI {
-                        r += std::f64::consts::TAU;
-                    }
-                    (r, i)
-                })
-                .collect()
+            let mean = v.iter().fold([0.0, 0.0], |m, v| {
+                let len = v[0].hypot(v[1]);
+                if len > 0.0 {
+                    [m[0] + v[0] / len, m[1] + v[1] / len]
+                } else {
+                    m
+                }
+            });
+            Some(
+                v.iter()
+                    .enumerate()
+                    .map(|(i, v)| {
+                        let cross = mean[0] * v[1] - mean[1] * v[0];
+                        let dot = mean[0] * v[0] + mean[1] * v[1];
+                        let key = if dot > 0.0 {
+                            cross / dot
+                        } else if cross < 0.0 {
+                            f64::MIN
+                        } else {
+                            f64::MAX
+                        };
+                        (key, i)
+                    })
+                    .collect(),
+            )
         }
         LightSource::Directional(d) => {
-            // Offset along d x e_axis, the normal of the planes that hold
-            // the rays and the axis.
-            let d = d.map(f64::from);
-            let mut e = [0.0; 3];
-            e[axis] = 1.0;
-            let n = [
-                d[1] * e[2] - d[2] * e[1],
-                d[2] * e[0] - d[0] * e[2],
-                d[0] * e[1] - d[1] * e[0],
-            ];
-            if n == [0.0; 3] {
-                return None;
-            }
-            sample
-                .iter()
-                .enumerate()
-                .map(|(i, (_, c))| (n[0] * c[0] + n[1] * c[1] + n[2] * c[2], i))
-                .collect()
+            let n = across(d, axis)?;
+            Some(
+                sample
+                    .iter()
+                    .enumerate()
+                    .map(|(i, (_, c))| (n[0] * c[0] + n[1] * c[1] + n[2] * c[2], i))
+                    .collect(),
+            )
         }
-    };
-    keyed.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-    // Between the two middle centroids, so as not to cut the median
-    // polygon through its middle.
-    let m = keyed.len() / 2;
-    let (p, q) = (sample[keyed[m - 1].1].1, sample[keyed[m].1].1);
-    let c = [0, 1, 2].map(|a| (p[a] + q[a]) / 2.0);
+    }
+}
+
+/// The normal `d x e_axis` of the planes that hold a directional light's
+/// rays and the axis, if they are not parallel.
+fn across(d: [i32; 3], axis: usize) -> Option<[f64; 3]> {
+    let d = d.map(f64::from);
+    let mut e = [0.0; 3];
+    e[axis] = 1.0;
+    let n = [
+        d[1] * e[2] - d[2] * e[1],
+        d[2] * e[0] - d[0] * e[2],
+        d[0] * e[1] - d[1] * e[0],
+    ];
+    (n != [0.0; 3]).then_some(n)
+}
+
+/// The plane through the light that holds the direction of `axis` and
+/// passes through `at` snapped to the grid: through the light, that grid
+/// point and its neighbour along the axis. `None` if they are collinear.
+fn plane_about(light: LightSource, axis: usize, at: [f64; 3]) -> Option<Plane> {
     let g = GridPoint::new(
-        c[0].round() as i64,
-        c[1].round() as i64,
-        c[2].round() as i64,
+        at[0].round() as i64,
+        at[1].round() as i64,
+        at[2].round() as i64,
     )
     .ok()?;
-    let mut step = [0_i64; 3];
-    step[axis] = 1;
-    let h = g.to_i64();
-    let next = GridPoint::new(h[0] + step[0], h[1] + step[1], h[2] + step[2])
-        .or_else(|_| GridPoint::new(h[0] - step[0], h[1] - step[1], h[2] - step[2]))
-        .ok()?;
+    let mut h = g.to_i64();
+    h[axis] += if h[axis] < i64::from(bsp_core::GRID_LIMIT) {
+        1
+    } else {
+        -1
+    };
+    let next = GridPoint::new(h[0], h[1], h[2]).ok()?;
     light.shadow_plane(g, next)
 }
 

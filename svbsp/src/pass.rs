@@ -54,8 +54,8 @@ struct ConeBsp {
     /// slot and the piece index.
     slots: Vec<(u32, u32)>,
     bsp: SceneBsp,
-    /// Per local index: the piece, whole, if the BSP cut it.
-    cut: Vec<Option<ConvexPolygon>>,
+    /// The pieces the BSP cut, whole, by local index (in order).
+    cut: Vec<(u32, ConvexPolygon)>,
 }
 
 /// Figures of one cone.
@@ -79,32 +79,36 @@ pub(crate) fn light_pass(
 ) -> PassOutput {
     let bit = 1_u32 << index;
     let started = Instant::now();
-    // Settled without a tree, or active (then the polygon moves on).
-    let mut settled: Vec<Option<Fragment>> = Vec::with_capacity(fragments.len());
+    // Settled without a tree, or active (then the polygon moves on). The
+    // settled list takes the input's buffer.
     let mut masks = Vec::with_capacity(fragments.len());
     let mut active = Vec::new();
-    for fragment in fragments {
-        masks.push((fragment.lit_mask, fragment.umbra_mask));
-        let flags = &flags[fragment.polygon.source() as usize];
-        let facing = light.source.side(fragment.polygon.support());
-        let beyond =
-            light.range.is_some() && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
-        let receives = facing == Side::Front || flags.two_sided;
-        // Edge-on to the light, beyond its reach, or turned away and casting
-        // nothing the rest of its closed surface does not: umbra, untouched.
-        if facing == Side::On
-            || beyond
-            || (!receives && (flags.closed_surface || !flags.casts_shadows))
-        {
-            settled.push(Some(Fragment {
-                umbra_mask: fragment.umbra_mask | bit,
-                ..fragment
-            }));
-        } else {
-            settled.push(None);
-            active.push(fragment.polygon);
-        }
-    }
+    let settled: Vec<Option<Fragment>> = fragments
+        .into_iter()
+        .map(|fragment| {
+            masks.push((fragment.lit_mask, fragment.umbra_mask));
+            let flags = &flags[fragment.polygon.source() as usize];
+            let facing = light.source.side(fragment.polygon.support());
+            let beyond = light.range.is_some()
+                && light.wholly_beyond_range(&fragment.polygon.vertices_f64());
+            let receives = facing == Side::Front || flags.two_sided;
+            // Edge-on to the light, beyond its reach, or turned away and
+            // casting nothing the rest of its closed surface does not:
+            // umbra, untouched.
+            if facing == Side::On
+                || beyond
+                || (!receives && (flags.closed_surface || !flags.casts_shadows))
+            {
+                Some(Fragment {
+                    umbra_mask: fragment.umbra_mask | bit,
+                    ..fragment
+                })
+            } else {
+                active.push(fragment.polygon);
+                None
+            }
+        })
+        .collect();
     let mut cones = cones::partition(light.source, active, cone_pieces);
     let context = Context {
         pieces,
@@ -201,15 +205,17 @@ fn shade_cone(cone: ConeBsp, context: &Context) -> (Vec<(u32, SlotResult)>, Cone
         }
     }
     stats.tree_nodes = tree.nodes().len();
+    let mut cut = cut.into_iter().peekable();
     let results = slots
         .iter()
         .zip(parts)
         .zip(alike)
-        .zip(cut)
-        .map(|((((slot, piece), mut list), alike), cut)| {
+        .enumerate()
+        .map(|(j, (((slot, piece), mut list), alike))| {
+            let whole = cut.next_if(|(k, _)| *k as usize == j).map(|(_, p)| p);
             let result = if alike {
                 let class = list[0].1;
-                let whole = match cut {
+                let whole = match whole {
                     Some(whole) => whole.with_source(*piece),
                     None => list.pop().expect("an uncut piece is one polygon").0,
                 };
@@ -307,7 +313,18 @@ fn join(
             Some(SlotResult::Whole(class, _)) => Common::All(*class),
             _ => Common::Mixed,
         });
-    let mut out = Vec::with_capacity(settled.len());
+    // At most one fragment per settled one and per piece a slot became:
+    // the exact size, so that a million fragments are not copied into a
+    // buffer twice as large.
+    let most = settled.iter().filter(|f| f.is_some()).count()
+        + results
+            .iter()
+            .map(|r| match r {
+                Some(SlotResult::Pieces(pieces)) => pieces.len(),
+                _ => 1,
+            })
+            .sum::<usize>();
+    let mut out = Vec::with_capacity(most);
     // Active fragments are the forest's roots, in order.
     let mut root = 0_u32;
     let mut stack = Vec::new();
