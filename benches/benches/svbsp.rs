@@ -18,9 +18,10 @@ fn prepare(triangles: &[[[f64; 3]; 3]], light: [f64; 3]) -> (Vec<ConvexPolygon>,
 fn tetras(c: &mut Criterion) {
     for (name, depth) in [("svbsp_tetra256", 4), ("svbsp_tetra1024", 5)] {
         let mut triangles = tetra::tetra_triangles(depth);
+        let closed = triangles.len();
         triangles.extend(tetra::ground(1.0, 8.0));
         let (pieces, light) = prepare(&triangles, tetra::LIGHT);
-        let flags = vec![PieceFlags::default(); pieces.len()];
+        let flags = tetra::flags(closed, pieces.len());
         c.bench_function(name, |b| {
             b.iter(|| {
                 black_box(

@@ -9,6 +9,19 @@ pub const LIGHT: [f64; 3] = [2.0, -18.0, -5.0];
 /// `umbra demo tetra`.
 pub use umbra::tetra_triangles;
 
+/// Flags for a scene of `tetra` tetra triangles followed by other pieces:
+/// each leaf tetrahedron is a closed surface (as `umbra shadow` finds it,
+/// every edge shared by two faces, and as Chin & Feiner process only the
+/// faces towards the light), the rest is not.
+pub fn flags(tetra: usize, pieces: usize) -> Vec<svbsp::PieceFlags> {
+    (0..pieces)
+        .map(|i| svbsp::PieceFlags {
+            closed_surface: i < tetra,
+            ..svbsp::PieceFlags::default()
+        })
+        .collect()
+}
+
 /// The ground: two triangles in the plane `x + y - z = offset`, facing the
 /// light (normal along `(-1, -1, 1)`). With `offset = 1` the tetrahedra's
 /// bottom faces lie in it (coplanar contact). Corners are binary fractions,

@@ -64,6 +64,10 @@ struct ConeStats {
     tree_nodes: usize,
     planes_skipped: usize,
     whole_piece_volumes: usize,
+    scene_nodes: usize,
+    /// Thread seconds building the scene BSP, and in all.
+    bsp_seconds: f64,
+    seconds: f64,
 }
 
 /// Shadows `fragments` by light `index` (bit `1 << index`), cutting cones
@@ -117,40 +121,53 @@ pub(crate) fn light_pass(
         bsp,
     };
     let cone_count = cones.len();
-    let cone_bsps: Vec<ConeBsp> = cones
+    let partition_seconds = started.elapsed().as_secs_f64();
+    // Each cone's scene BSP is built and used at once, on one thread:
+    // the cone's pieces are still in cache.
+    let started = Instant::now();
+    let shaded: Vec<(Vec<(u32, SlotResult)>, ConeStats)> = cones
         .take_cones()
         .into_par_iter()
-        .map(|cone| cone_bsp(cone, &context))
+        .map(|cone| {
+            let begun = Instant::now();
+            let cone = cone_bsp(cone, &context);
+            let bsp_seconds = begun.elapsed().as_secs_f64();
+            let (results, mut stats) = shade_cone(cone, &context);
+            stats.bsp_seconds = bsp_seconds;
+            stats.seconds = begun.elapsed().as_secs_f64();
+            (results, stats)
+        })
         .collect();
-    let scene_nodes = cone_bsps.iter().map(|c| c.bsp.nodes().len()).sum();
-    let bsp_seconds = started.elapsed().as_secs_f64();
-
-    let started = Instant::now();
-    let shaded: Vec<(Vec<(u32, SlotResult)>, ConeStats)> = cone_bsps
-        .into_par_iter()
-        .map(|cone| shade_cone(cone, &context))
-        .collect();
+    let cones_seconds = started.elapsed().as_secs_f64();
     let mut stats = LightStats {
         cones: cone_count,
         ..LightStats::default()
     };
+    let (mut scene_nodes, mut bsp_cpu, mut cpu) = (0, 0.0, 0.0);
     let mut results: Vec<Option<SlotResult>> = Vec::new();
     results.resize_with(cones.node_of.len(), || None);
     for (slots, cone) in shaded {
         stats.tree_nodes += cone.tree_nodes;
         stats.planes_skipped += cone.planes_skipped;
         stats.whole_piece_volumes += cone.whole_piece_volumes;
+        scene_nodes += cone.scene_nodes;
+        bsp_cpu += cone.bsp_seconds;
+        cpu += cone.seconds;
         for (slot, result) in slots {
             results[slot as usize] = Some(result);
         }
     }
+    // The cones' wall time, shared between the scene BSPs and the SVBSP
+    // trees as their threads' times are.
+    let bsp_share = if cpu > 0.0 { bsp_cpu / cpu } else { 0.0 };
+    let started = Instant::now();
     let fragments = join(&mut cones, results, settled, &masks, bit);
     PassOutput {
         fragments,
         stats,
         scene_nodes,
-        bsp_seconds,
-        shadow_seconds: started.elapsed().as_secs_f64(),
+        bsp_seconds: partition_seconds + bsp_share * cones_seconds,
+        shadow_seconds: (1.0 - bsp_share) * cones_seconds + started.elapsed().as_secs_f64(),
     }
 }
 
@@ -174,6 +191,7 @@ fn cone_bsp(cone: Vec<(u32, ConvexPolygon)>, context: &Context) -> ConeBsp {
 fn shade_cone(cone: ConeBsp, context: &Context) -> (Vec<(u32, SlotResult)>, ConeStats) {
     let ConeBsp { slots, bsp, cut } = cone;
     let light = context.light.source;
+    let scene_nodes = bsp.nodes().len();
     let visit: Vec<u32> = bsp
         .front_to_back(light.viewpoint())
         .map(|(k, _)| k)
@@ -205,6 +223,7 @@ fn shade_cone(cone: ConeBsp, context: &Context) -> (Vec<(u32, SlotResult)>, Cone
         }
     }
     stats.tree_nodes = tree.nodes().len();
+    stats.scene_nodes = scene_nodes;
     let mut cut = cut.into_iter().peekable();
     let results = slots
         .iter()

@@ -84,7 +84,7 @@ impl Default for ShadowOptions {
     fn default() -> Self {
         Self {
             bsp: BuildOptions::default(),
-            cone_pieces: 64,
+            cone_pieces: 256,
         }
     }
 }
