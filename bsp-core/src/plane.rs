@@ -105,12 +105,15 @@ impl Plane {
             // gcd(gn, d) = gcd(gn, d mod gn), with gn >= 1 (normal not zero).
             u128::from(gcd_u64(gn, (d.unsigned_abs() % u128::from(gn)) as u64))
         };
-        // g >= 1 because the normal is not zero.
-        let gi = g as i128;
-        let a = (i128::from(a) / gi) as i64;
-        let b = (i128::from(b) / gi) as i64;
-        let c = (i128::from(c) / gi) as i64;
-        let d = d / gi;
+        // g >= 1 because the normal is not zero, and g <= gn fits in 64
+        // bits. Usually g = 1: no division at all (a 128-bit one is a
+        // library call).
+        let (a, b, c, d) = if g == 1 {
+            (a, b, c, d)
+        } else {
+            let g64 = g as i64;
+            (a / g64, b / g64, c / g64, d / g as i128)
+        };
         Self {
             normal: [a, b, c],
             approx_offset: d as f64,

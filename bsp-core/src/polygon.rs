@@ -242,6 +242,14 @@ impl ConvexPolygon {
                 return predicates::side_along_line(plane, &self.support, &self.edges[prev], true);
             }
         }
+        // The plane holds a line through the vertex: two of its planes'.
+        let [s, e0, e1] = planes;
+        if predicates::in_pencil(e0, e1, plane)
+            || predicates::in_pencil(s, e0, plane)
+            || predicates::in_pencil(s, e1, plane)
+        {
+            return Side::On;
+        }
         predicates::exact_side_of_implicit(planes, plane)
     }
 

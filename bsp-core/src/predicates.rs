@@ -355,6 +355,43 @@ fn dot3(u: [Wide; 3], v: [Wide; 3]) -> Wide {
     }
 }
 
+/// Whether `q` contains the line where `a` and `b` meet (`a`, `b` not
+/// parallel): the three planes lie in one pencil, their 3x4 coefficient
+/// matrix has rank 2, and all its 3x3 minors vanish. Exact.
+///
+/// A vertex on the line `a ∩ b` then lies on `q` without its 4x4
+/// determinant: the commonest exact zero after a point's own planes (two
+/// shadow planes through one occluder vertex meet in the ray from the
+/// light through it, which every other such plane holds; the shadow plane
+/// of an edge holds the edge's line).
+pub fn in_pencil(a: &Plane, b: &Plane, q: &Plane) -> bool {
+    let (na, nb, nq) = (
+        a.normal().map(i128::from),
+        b.normal().map(i128::from),
+        q.normal().map(i128::from),
+    );
+    // The line's direction (components below 2^103).
+    let d = [
+        na[1] * nb[2] - na[2] * nb[1],
+        na[2] * nb[0] - na[0] * nb[2],
+        na[0] * nb[1] - na[1] * nb[0],
+    ];
+    let wide = I256::from;
+    if (0..3).fold(I256::ZERO, |acc, k| acc + wide(nq[k]) * wide(d[k])) != I256::ZERO {
+        return false;
+    }
+    // q's normal is alpha na + beta nb: Cramer's rule on two coordinates
+    // whose 2x2 determinant (a component of d) is not zero; then q holds
+    // the line if its offset is the same combination.
+    let Some(k) = (0..3).find(|&k| d[k] != 0) else {
+        return false;
+    };
+    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+    let alpha = nq[i] * nb[j] - nq[j] * nb[i];
+    let beta = na[i] * nq[j] - na[j] * nq[i];
+    wide(q.offset()) * wide(d[k]) == wide(alpha) * wide(a.offset()) + wide(beta) * wide(b.offset())
+}
+
 /// Side of a point of the line `support ∩ edge` that lies at a grid point
 /// `g` on `q` moved along the line's direction `support.normal ×
 /// edge.normal` (`forward`) or against it, with `g` itself on `q`: the sign
@@ -571,6 +608,56 @@ mod tests {
             }
         }
         assert!(on > 1000, "only {on} points on their plane");
+    }
+
+    #[test]
+    fn pencils_are_the_planes_through_both_points_of_a_line() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(12);
+        let (mut inside, mut outside) = (0, 0);
+        for round in 0..4000 {
+            let l = if round % 2 == 0 {
+                crate::GRID_LIMIT
+            } else {
+                50
+            };
+            let mut point = || {
+                gp(
+                    rng.random_range(-l..=l),
+                    rng.random_range(-l..=l),
+                    rng.random_range(-l..=l),
+                )
+            };
+            // Two planes through the line pr, and a third through p and
+            // either r (in the pencil) or another point (usually not).
+            let (p, r) = (point(), point());
+            let (x, y, z, w) = (point(), point(), point(), point());
+            let (Some(a), Some(b)) = (Plane::through(p, r, x), Plane::through(y, p, r)) else {
+                continue;
+            };
+            if a.is_coincident(&b) {
+                continue;
+            }
+            let third = if round % 3 == 0 { w } else { r };
+            let Some(q) = Plane::through(p, z, third) else {
+                continue;
+            };
+            // Oracle: q holds the line iff it holds both of its grid points.
+            let expected = side_of_point(&q, p) == Side::On && side_of_point(&q, r) == Side::On;
+            if expected {
+                inside += 1;
+            } else {
+                outside += 1;
+            }
+            for (a, b) in [(a, b), (b, a), (a.flipped(), b)] {
+                assert_eq!(in_pencil(&a, &b, &q), expected);
+                assert_eq!(in_pencil(&a, &b, &q.flipped()), expected);
+            }
+        }
+        assert!(
+            inside > 1000 && outside > 1000,
+            "{inside} in, {outside} out"
+        );
     }
 
     #[test]
