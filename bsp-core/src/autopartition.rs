@@ -184,7 +184,7 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
         // A lone candidate wins whatever its score.
         return first;
     }
-    if n <= sample {
+    if n <= sample && candidates > 1 {
         // A small list: a candidate that cuts nothing and leaves one side
         // empty is taken at once. It makes no fragment, and the depth it
         // adds is bounded by the list; the faces of a convex patch (a
@@ -193,7 +193,7 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
         // would cut them. A polygon that spoils a candidate (crossing it,
         // or on the other side from an earlier one) is tried next: it is
         // often the one that all the others lie on one side of (a floor
-        // under a patch).
+        // under a patch). A caller asking for one candidate keeps it.
         let mut next = list[0];
         for _ in 0..candidates {
             let plane = *arena[next as usize].support();
