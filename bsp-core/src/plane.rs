@@ -95,10 +95,10 @@ impl Plane {
     fn normalized(a: i64, b: i64, c: i64, d: i128) -> Self {
         // The normal's gcd first, in 64 bits; it is usually 1, and then so
         // is the whole gcd.
-        let gn = gcd_u64(
-            gcd_u64(a.unsigned_abs(), b.unsigned_abs()),
-            c.unsigned_abs(),
-        );
+        let gn = match gcd_u64(a.unsigned_abs(), b.unsigned_abs()) {
+            1 => 1,
+            g => gcd_u64(g, c.unsigned_abs()),
+        };
         let g = if gn == 1 {
             1
         } else {
@@ -209,6 +209,9 @@ fn gcd_u64(mut a: u64, mut b: u64) -> u64 {
     }
     if b == 0 {
         return a;
+    }
+    if a == 1 || b == 1 {
+        return 1;
     }
     let shift = (a | b).trailing_zeros();
     a >>= a.trailing_zeros();

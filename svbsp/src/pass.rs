@@ -125,19 +125,25 @@ pub(crate) fn light_pass(
     // Each cone's scene BSP is built and used at once, on one thread:
     // the cone's pieces are still in cache.
     let started = Instant::now();
-    let shaded: Vec<(Vec<(u32, SlotResult)>, ConeStats)> = cones
-        .take_cones()
-        .into_par_iter()
-        .map(|cone| {
-            let begun = Instant::now();
-            let cone = cone_bsp(cone, &context);
-            let bsp_seconds = begun.elapsed().as_secs_f64();
-            let (results, mut stats) = shade_cone(cone, &context);
-            stats.bsp_seconds = bsp_seconds;
-            stats.seconds = begun.elapsed().as_secs_f64();
-            (results, stats)
-        })
-        .collect();
+    let shade = |cone| {
+        let begun = Instant::now();
+        let cone = cone_bsp(cone, &context);
+        let bsp_seconds = begun.elapsed().as_secs_f64();
+        let (results, mut stats) = shade_cone(cone, &context);
+        stats.bsp_seconds = bsp_seconds;
+        stats.seconds = begun.elapsed().as_secs_f64();
+        (results, stats)
+    };
+    let cone_list = cones.take_cones();
+    // One cone, or one thread: on this thread, so that what it allocates
+    // is freed where it was allocated (a pool thread's allocations freed
+    // here cost the allocator more than the work).
+    let shaded: Vec<(Vec<(u32, SlotResult)>, ConeStats)> =
+        if cone_list.len() == 1 || rayon::current_num_threads() == 1 {
+            cone_list.into_iter().map(shade).collect()
+        } else {
+            cone_list.into_par_iter().map(shade).collect()
+        };
     let cones_seconds = started.elapsed().as_secs_f64();
     let mut stats = LightStats {
         cones: cone_count,

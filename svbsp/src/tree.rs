@@ -202,8 +202,14 @@ impl ShadowVolumeTree {
         shadow_planes: &[Plane],
         cap: Plane,
     ) -> (usize, usize) {
-        // One walk up the tree marks the planes that already bound the leaf.
+        // One walk up the tree marks the planes that already bound the leaf;
+        // a plane and its flip share |a|, which rejects most ancestors with
+        // one comparison.
         let mut bounded: SmallVec<[bool; 8]> = SmallVec::from_elem(false, shadow_planes.len());
+        let keys: SmallVec<[u64; 8]> = shadow_planes
+            .iter()
+            .map(|p| p.normal()[0].unsigned_abs())
+            .collect();
         let leaf_parent = match slot {
             Slot::Root => None,
             Slot::Front(i) | Slot::Back(i) => Some(i),
@@ -211,8 +217,9 @@ impl ShadowVolumeTree {
         let mut at = leaf_parent;
         while let Some(i) = at {
             let node = &self.nodes[i as usize];
-            for (b, p) in bounded.iter_mut().zip(shadow_planes) {
-                *b = *b || node.plane.is_coincident(p);
+            let key = node.plane.normal()[0].unsigned_abs();
+            for ((b, p), &k) in bounded.iter_mut().zip(shadow_planes).zip(&keys) {
+                *b = *b || (k == key && node.plane.is_coincident(p));
             }
             at = node.parent;
         }
