@@ -2,12 +2,22 @@
 //! lights, on the exact kernel of [`bsp_core`].
 //!
 //! [`compute_shadows`] takes convex pieces with grid-point vertices and any
-//! number (up to 32) of [`Light`]s, builds the scene BSP once, and for each
-//! light filters the pieces front-to-back down a [`ShadowVolumeTree`]: each
-//! piece splits exactly into fragments the light reaches and fragments in
-//! shadow, and each lit occluder enlarges the tree by its shadow volume.
-//! Every polygon of a shadow-casting piece blocks light whichever side faces
-//! it; only faces towards the light (or two-sided ones) receive.
+//! number (up to 32) of [`Light`]s, and for each light filters the pieces
+//! front-to-back down a [`ShadowVolumeTree`]: each piece splits exactly into
+//! fragments the light reaches and fragments in shadow, and each lit
+//! occluder enlarges the tree by its shadow volume. Every polygon of a
+//! shadow-casting piece blocks light whichever side faces it; only faces
+//! towards the light (or two-sided ones) receive.
+//!
+//! Each light's pass first cuts the scene by planes through the light into
+//! cones that no light ray crosses (prisms, for a directional light), so
+//! that each cone has its own small scene BSP (the front-to-back order) and
+//! its own SVBSP tree, and the cones run in parallel; a piece cut by a cone
+//! plane keeps exact shadow planes (the cut edge lies in a plane through the
+//! light), and pieces that end up alike are joined again. Large scenes no
+//! longer build one deep tree: a 100k-triangle closed mesh takes a fifth
+//! of a second, a million triangles a few seconds
+//! ([`compute_shadows_with`], [`ShadowOptions`]).
 //!
 //! # Example
 //!
