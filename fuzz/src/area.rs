@@ -75,7 +75,7 @@ fn gp(p: [i64; 3]) -> GridPoint {
     GridPoint::new(p[0], p[1], p[2]).expect("small coordinates")
 }
 
-fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+pub(crate) fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
     let p = |v: [f64; 3]| robust::Coord3D {
         x: v[0],
         y: v[1],
@@ -85,7 +85,7 @@ fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
 }
 
 /// Whether the open segment `pq` crosses the closed triangle `t`.
-fn crosses(p: [f64; 3], q: [f64; 3], t: &[[f64; 3]; 3]) -> bool {
+pub(crate) fn crosses(p: [f64; 3], q: [f64; 3], t: &[[f64; 3]; 3]) -> bool {
     let (sp, sq) = (orient(t[0], t[1], t[2], p), orient(t[0], t[1], t[2], q));
     if sp == 0.0 || sq == 0.0 || (sp > 0.0) == (sq > 0.0) {
         return false;

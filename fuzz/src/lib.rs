@@ -17,6 +17,7 @@ pub mod area;
 pub mod bergeron;
 pub mod dm_update;
 pub mod merge;
+pub mod shadows;
 pub mod split;
 
 /// Every file of a committed corpus directory (`corpus/<target>/`), sorted
