@@ -148,7 +148,7 @@ impl Cones {
     /// moved out.
     pub(crate) fn take_cones(&mut self) -> Vec<Vec<(u32, ConvexPolygon)>> {
         let cones = std::mem::take(&mut self.cones);
-        cones
+        let cones = cones
             .into_iter()
             .map(|slots| {
                 slots
@@ -161,7 +161,10 @@ impl Cones {
                     })
                     .collect()
             })
-            .collect()
+            .collect();
+        // Every slot is empty now: give its memory back at once.
+        self.pieces = Vec::new();
+        cones
     }
 }
 
