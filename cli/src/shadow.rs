@@ -176,6 +176,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
                         s.front_facing_polygons = f.front_facing_polygons as u64;
                         s.front_facing_edges = f.front_facing_edges as u64;
                         s.tree_nodes = Some(f.tree_nodes as u64);
+                        s.cones = Some(f.cones as u64);
                     }
                     LightFigures::Area(f) => {
                         s.front_facing_polygons = f.front_facing_polygons as u64;

@@ -45,6 +45,10 @@ pub struct LightStats {
     /// SVBSP nodes (point and directional lights).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tree_nodes: Option<u64>,
+    /// Cones the scene was cut into for this light, each with its own scene
+    /// BSP and SVBSP tree (point and directional lights).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cones: Option<u64>,
     /// Penumbra tree nodes (area lights).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub penumbra_nodes: Option<u64>,
@@ -99,6 +103,7 @@ mod tests {
             lights: vec![
                 LightStats {
                     tree_nodes: Some(12),
+                    cones: Some(3),
                     ..LightStats::default()
                 },
                 LightStats {
@@ -127,6 +132,8 @@ mod tests {
             assert!(point.get(key).is_some(), "{key}");
         }
         assert!(point.get("penumbra_nodes").is_none());
+        assert_eq!(point["cones"], 3);
+        assert!(v["lights"][1].get("cones").is_none());
         assert_eq!(v["lights"][1]["umbra_nodes"], 2);
         assert!(v["lights"][1].get("tree_nodes").is_none());
         let back: Stats = serde_json::from_str(&stats.to_json()).unwrap();
