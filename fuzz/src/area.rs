@@ -11,9 +11,10 @@
 //! tested against the triangles with Shewchuk's exact orientation), and
 //! that the conforming mesh has no T-vertex.
 
+use crate::scene::{check_partition, crosses, floor_and, gp, samples};
 use arbitrary::{Arbitrary, Unstructured};
 use area_shadow::{AreaSource, Class, SceneLight, compute_shadows, conform_fragments};
-use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
+use bsp_core::{BuildOptions, ConvexPolygon};
 use svbsp::PieceFlags;
 
 /// One decoded input of the `area` target; its `Debug` output is Rust code.
@@ -71,52 +72,10 @@ pub fn run(data: &[u8]) {
     }
 }
 
-fn gp(p: [i64; 3]) -> GridPoint {
-    GridPoint::new(p[0], p[1], p[2]).expect("small coordinates")
-}
-
-pub(crate) fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
-    let p = |v: [f64; 3]| robust::Coord3D {
-        x: v[0],
-        y: v[1],
-        z: v[2],
-    };
-    robust::orient3d(p(a), p(b), p(c), p(d))
-}
-
-/// Whether the open segment `pq` crosses the closed triangle `t`.
-pub(crate) fn crosses(p: [f64; 3], q: [f64; 3], t: &[[f64; 3]; 3]) -> bool {
-    let (sp, sq) = (orient(t[0], t[1], t[2], p), orient(t[0], t[1], t[2], q));
-    if sp == 0.0 || sq == 0.0 || (sp > 0.0) == (sq > 0.0) {
-        return false;
-    }
-    let s = [
-        orient(p, q, t[0], t[1]),
-        orient(p, q, t[1], t[2]),
-        orient(p, q, t[2], t[0]),
-    ];
-    s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0)
-}
-
 /// Classifies, conforms and checks; `Err` describes the first violated
 /// invariant.
 pub fn check_area(case: &AreaCase) -> Result<(), String> {
-    let floor = ConvexPolygon::from_grid_points(
-        &[
-            gp([-20, 0, 20]),
-            gp([20, 0, 20]),
-            gp([20, 0, -20]),
-            gp([-20, 0, -20]),
-        ],
-        0,
-    )
-    .expect("the floor");
-    let mut pieces = vec![floor];
-    for t in &case.triangles {
-        if let Ok(p) = ConvexPolygon::from_grid_points(&t.map(gp), 0) {
-            pieces.push(p);
-        }
-    }
+    let pieces = floor_and(&case.triangles);
     let ([x, y, z], [w, d], rise) = case.light;
     let quad = [
         gp([x, y, z]),
@@ -145,24 +104,7 @@ pub fn check_area(case: &AreaCase) -> Result<(), String> {
     )
     .map_err(|e| e.to_string())?;
 
-    let mut area = vec![0.0; pieces.len()];
-    for f in &out.fragments {
-        f.polygon.check_invariants()?;
-        let k = f.polygon.source() as usize;
-        if f.polygon.support() != pieces[k].support() {
-            return Err(format!("a fragment of piece {k} left its plane"));
-        }
-        area[k] += f.polygon.area();
-    }
-    for (k, p) in pieces.iter().enumerate() {
-        if (area[k] - p.area()).abs() > 1e-9 * p.area() {
-            return Err(format!(
-                "piece {k}: fragments cover {} of {}",
-                area[k],
-                p.area()
-            ));
-        }
-    }
+    check_partition(&pieces, out.fragments.iter().map(|f| &f.polygon))?;
 
     let triangles: Vec<(usize, [[f64; 3]; 3])> = pieces
         .iter()
@@ -198,15 +140,7 @@ pub fn check_area(case: &AreaCase) -> Result<(), String> {
             }
             continue;
         }
-        let centroid = f.polygon.centroid();
-        let mut samples = vec![centroid];
-        samples.extend(
-            f.polygon
-                .vertices_f64()
-                .iter()
-                .map(|v| [0, 1, 2].map(|i| 0.8 * v[i] + 0.2 * centroid[i])),
-        );
-        for (c, &x) in samples
+        for (c, &x) in samples(&f.polygon)
             .iter()
             .flat_map(|&c| targets.iter().map(move |x| (c, x)))
         {

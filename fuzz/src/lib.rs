@@ -17,6 +17,7 @@ pub mod area;
 pub mod bergeron;
 pub mod dm_update;
 pub mod merge;
+mod scene;
 pub mod shadows;
 pub mod split;
 

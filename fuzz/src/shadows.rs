@@ -14,10 +14,10 @@
 //! orientation), and that the lit area of every piece is the one a single
 //! cone gives.
 
-use crate::area::crosses;
+use crate::scene::{check_partition, crosses, floor_and, gp, samples};
 use arbitrary::{Arbitrary, Unstructured};
 use bsp_core::predicates::Side;
-use bsp_core::{ConvexPolygon, GridPoint};
+
 use svbsp::{Light, LightSource, PieceFlags, ShadowOptions, ShadowOutput, compute_shadows_with};
 
 /// One decoded input of the `shadows` target; its `Debug` output is Rust
@@ -78,10 +78,6 @@ pub fn run(data: &[u8]) {
     }
 }
 
-fn gp(p: [i64; 3]) -> GridPoint {
-    GridPoint::new(p[0], p[1], p[2]).expect("small coordinates")
-}
-
 /// The lit area of every piece.
 fn lit_area(out: &ShadowOutput, pieces: usize) -> Vec<f64> {
     let mut area = vec![0.0; pieces];
@@ -94,22 +90,7 @@ fn lit_area(out: &ShadowOutput, pieces: usize) -> Vec<f64> {
 /// Shadows the case in small cones and in one, and checks; returns the
 /// number of cones, or `Err` with the first violated invariant.
 pub fn check_shadows(case: &ShadowsCase) -> Result<usize, String> {
-    let floor = ConvexPolygon::from_grid_points(
-        &[
-            gp([-20, 0, 20]),
-            gp([20, 0, 20]),
-            gp([20, 0, -20]),
-            gp([-20, 0, -20]),
-        ],
-        0,
-    )
-    .expect("the floor");
-    let mut pieces = vec![floor];
-    for t in &case.triangles {
-        if let Ok(p) = ConvexPolygon::from_grid_points(&t.map(gp), 0) {
-            pieces.push(p);
-        }
-    }
+    let pieces = floor_and(&case.triangles);
     let source = if case.directional {
         LightSource::Directional(case.light.map(|c| c as i32))
     } else {
@@ -135,26 +116,12 @@ pub fn check_shadows(case: &ShadowsCase) -> Result<usize, String> {
     };
     let out = run(case.cone_pieces)?;
 
-    let mut area = vec![0.0; pieces.len()];
+    check_partition(&pieces, out.fragments.iter().map(|f| &f.polygon))?;
     for f in &out.fragments {
-        f.polygon.check_invariants()?;
-        let k = f.polygon.source() as usize;
-        if f.polygon.support() != pieces[k].support() {
-            return Err(format!("a fragment of piece {k} left its plane"));
-        }
         if (f.lit_mask & 1 != 0) == (f.umbra_mask & 1 != 0) {
             return Err(format!(
-                "a fragment of piece {k} is lit and umbra, or neither"
-            ));
-        }
-        area[k] += f.polygon.area();
-    }
-    for (k, p) in pieces.iter().enumerate() {
-        if (area[k] - p.area()).abs() > 1e-9 * p.area() {
-            return Err(format!(
-                "piece {k}: fragments cover {} of {}",
-                area[k],
-                p.area()
+                "a fragment of piece {} is lit and umbra, or neither",
+                f.polygon.source()
             ));
         }
     }
@@ -180,15 +147,7 @@ pub fn check_shadows(case: &ShadowsCase) -> Result<usize, String> {
             }
             continue;
         }
-        let centroid = f.polygon.centroid();
-        let mut samples = vec![centroid];
-        samples.extend(
-            f.polygon
-                .vertices_f64()
-                .iter()
-                .map(|v| [0, 1, 2].map(|i| 0.8 * v[i] + 0.2 * centroid[i])),
-        );
-        for c in samples {
+        for c in samples(&f.polygon) {
             // The light, or a point far back along a directional light's
             // rays (beyond everything: the scene spans 40 units).
             let x = match light.source {
