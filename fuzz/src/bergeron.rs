@@ -11,6 +11,7 @@
 //! that Bergeron's eye cases add up to the eye's counts, and that every
 //! shadow polygon has a non-zero increment on an existing count.
 
+use crate::scene::orient;
 use arbitrary::{Arbitrary, Unstructured};
 use bsp_core::{ConvexPolygon, GridPoint};
 use svbsp::bergeron::{BergeronVolumes, EyeCase, Model, ModelPolygon, ShadowPolygon};
@@ -148,15 +149,6 @@ fn models(case: &BergeronCase) -> Vec<Model> {
         });
     }
     models
-}
-
-fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
-    let p = |v: [f64; 3]| robust::Coord3D {
-        x: v[0],
-        y: v[1],
-        z: v[2],
-    };
-    robust::orient3d(p(a), p(b), p(c), p(d))
 }
 
 /// Checks the case; every violated invariant is an error. Returns how many

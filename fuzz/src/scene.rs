@@ -1,6 +1,6 @@
-//! What the `area` and `shadows` targets share: their floor, the exact
-//! partition check and the sample points of a fragment, and the exact
-//! segment-against-triangle occlusion test.
+//! What the scene targets share: the floor of `area` and `shadows`, the
+//! exact partition check and the sample points of a fragment, and exact
+//! orientation and segment-against-triangle occlusion.
 
 use bsp_core::{ConvexPolygon, GridPoint};
 
@@ -70,7 +70,9 @@ pub(crate) fn samples(f: &ConvexPolygon) -> Vec<[f64; 3]> {
     samples
 }
 
-fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
+/// Shewchuk's exact orientation of `d` against the plane through `a`, `b`,
+/// `c`.
+pub(crate) fn orient(a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]) -> f64 {
     let p = |v: [f64; 3]| robust::Coord3D {
         x: v[0],
         y: v[1],
