@@ -287,6 +287,38 @@ fn many_cones_over_a_field_of_boxes() {
 }
 
 #[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let mut pieces = vec![crate::scenes::floor(600)];
+    for i in 0..5_i64 {
+        for j in 0..5_i64 {
+            let (x, z) = (-250 + 110 * i + 9 * j, -250 + 110 * j - 7 * i);
+            pieces.extend(crate::scenes::box_faces(
+                [x, 10 * (i % 2), z],
+                [x + 45, 60, z + 30],
+            ));
+        }
+    }
+    let lights = [
+        Light::point(gp(30, 500, -20)),
+        Light::directional([1, -7, 2]),
+    ];
+    let run_with = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| run_in_cones(&pieces, &lights, 3))
+    };
+    let one = run_with(1);
+    assert!(one.lights[0].cones > 8);
+    for threads in [2, 3] {
+        let many = run_with(threads);
+        assert_eq!(one.fragments, many.fragments, "{threads} threads");
+        assert_eq!(one.lights, many.lights);
+    }
+}
+
+#[test]
 fn a_directional_light_matches_a_very_far_point_light() {
     let mut pieces = vec![crate::scenes::floor(600)];
     pieces.extend(crate::scenes::box_faces([-50, 0, -40], [30, 70, 60]));
