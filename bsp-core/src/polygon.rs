@@ -206,7 +206,7 @@ impl ConvexPolygon {
     }
 
     /// Side of vertex `i` with respect to `plane`, exact.
-    #[inline]
+    #[inline(always)]
     pub fn vertex_side(&self, i: usize, plane: &Plane) -> Side {
         match &self.vertices[i] {
             Vertex::Grid(p) => side_of_point(plane, *p),
