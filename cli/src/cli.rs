@@ -389,6 +389,7 @@ fn encoding(ascii: bool) -> PlyEncoding {
 fn dm_options(outer_only: bool) -> DmOptions {
     DmOptions {
         internal_discontinuities: !outer_only,
+        ..DmOptions::default()
     }
 }
 

@@ -85,4 +85,4 @@ pub use cell::{Cell, CellClass, Entry};
 pub use error::Error;
 pub use illuminate::IllumStats;
 pub use scene::{DmLight, DmOptions, DmScene, ObjectId, PieceId};
-pub use tree::ReceiverDm;
+pub use tree::{Deletion, ReceiverDm};

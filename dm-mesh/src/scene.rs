@@ -6,7 +6,7 @@ use crate::error::Error;
 use crate::illuminate::ReceiverIllum;
 use crate::order::unit_order;
 use crate::overlap::Overlap;
-use crate::tree::ReceiverDm;
+use crate::tree::{Deletion, ReceiverDm};
 use area_shadow::{AreaSource, SourceSide, volume_planes};
 use bsp_core::ConvexPolygon;
 use rayon::prelude::*;
@@ -85,12 +85,16 @@ pub struct DmOptions {
     /// irradiance is exact either way, but inside a cell it is no longer
     /// smooth).
     pub internal_discontinuities: bool,
+    /// How removals (and moves) take an occluder's discontinuities out of
+    /// the trees: by default the paper's local deletion.
+    pub deletion: Deletion,
 }
 
 impl Default for DmOptions {
     fn default() -> Self {
         Self {
             internal_discontinuities: true,
+            deletion: Deletion::default(),
         }
     }
 }
@@ -228,6 +232,23 @@ impl DmScene {
             .values()
             .flat_map(|o| o.pieces.iter())
             .map(|&p| (p, &self.receivers[p]))
+    }
+
+    /// Checks every receiver: its tree and mesh
+    /// ([`ReceiverDm::check_invariants`]), and every cell's occluder list
+    /// against the occluders' volumes and internal discontinuities, exactly
+    /// (a cell lists an occluder only if it lies in its penumbra, wholly in
+    /// or out of its umbra as marked, crossed by none of its internal
+    /// discontinuities; a cell that meets an occluder's penumbra lists it,
+    /// unless another's umbra culled it there). For tests and fuzz targets:
+    /// it looks at every cell and unit.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        for (piece, dm) in self.receivers() {
+            dm.check_invariants()
+                .and_then(|()| dm.check_lists(|k, l| &self.pieces[k].volumes[usize::from(l)]))
+                .map_err(|e| format!("receiver {piece:?}: {e}"))?;
+        }
+        Ok(())
     }
 
     /// The flags a piece was added with.
@@ -413,7 +434,11 @@ impl DmScene {
                 continue;
             }
             let pieces = &self.pieces;
-            dm.remove_units(&units, |key, light| &pieces[key].volumes[light as usize]);
+            dm.remove_units(
+                &units,
+                |key, light| &pieces[key].volumes[light as usize],
+                self.options.deletion,
+            );
         }
         for p in gone_pieces {
             self.overlap.remove(p);

@@ -12,6 +12,7 @@ use svbsp::PieceFlags;
 
 fn check_against_area_shadow(t: &TestScene) -> Result<(), TestCaseError> {
     let (scene, ids) = t.build();
+    scene.check_invariants().map_err(TestCaseError::fail)?;
     let polygons = t.polygons();
     let flags: Vec<PieceFlags> = t
         .objects
