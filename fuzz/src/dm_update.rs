@@ -4,16 +4,18 @@
 //!
 //! [`DmCase::arbitrary`] decodes a floor, up to four objects of one or two
 //! triangles with small coordinates (they touch, share planes and cross
-//! the light's plane), a parallelogram light and up to six operations.
-//! [`check_dm_update`] applies them and checks the trees' invariants after
-//! every one, then that every receiver has the lit, penumbra and umbra
-//! areas of a from-scratch build of the final scene and of area-shadow's
-//! independent classification.
+//! the light's plane), a parallelogram light, up to six operations and the
+//! way removals work (the paper's local deletion unless the last byte asks
+//! for collapse and re-merge). [`check_dm_update`] applies them and checks
+//! the scene's invariants after every one (trees, meshes, and every cell's
+//! occluder list against the volumes, exactly), then that every receiver
+//! has the lit, penumbra and umbra areas of a from-scratch build of the
+//! final scene and of area-shadow's independent classification.
 
 use arbitrary::{Arbitrary, Unstructured};
 use area_shadow::{AreaSource, Class, SceneLight, compute_shadows};
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
-use dm_mesh::{CellClass, DmLight, DmScene, ObjectId, PieceId};
+use dm_mesh::{CellClass, Deletion, DmLight, DmOptions, DmScene, ObjectId, PieceId};
 use svbsp::PieceFlags;
 
 /// One operation on object `object % objects`.
@@ -37,6 +39,8 @@ pub struct DmCase {
     pub light: ([i64; 3], [i64; 2], i64),
     /// The operations, in order.
     pub ops: Vec<Op>,
+    /// How removals take discontinuities out.
+    pub deletion: Deletion,
 }
 
 fn coordinate(u: &mut Unstructured<'_>, lo: i8, hi: i8) -> arbitrary::Result<i64> {
@@ -87,10 +91,17 @@ impl<'a> Arbitrary<'a> for DmCase {
                 _ => Op::ReAdd(object),
             });
         }
+        // Past the end of the data this reads `false`: local deletion.
+        let deletion = if u.arbitrary::<bool>()? {
+            Deletion::Collapse
+        } else {
+            Deletion::Local
+        };
         Ok(Self {
             objects,
             light: (corner, size, rise),
             ops,
+            deletion,
         })
     }
 }
@@ -190,17 +201,19 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
             .iter()
             .map(|ts| (triangles(ts, [0; 3]), two_sided())),
     );
-    let (mut scene, ids) =
-        DmScene::build(vec![light.clone()], objects.clone()).map_err(|e| e.to_string())?;
+    let options = DmOptions {
+        deletion: case.deletion,
+        ..DmOptions::default()
+    };
+    let (mut scene, ids) = DmScene::build_with(vec![light.clone()], objects.clone(), options)
+        .map_err(|e| e.to_string())?;
     // The model: per object its offset and whether it is present.
     let mut state: Vec<(Option<ObjectId>, [i64; 3])> =
         ids.iter().map(|id| (Some(*id), [0; 3])).collect();
     let check = |scene: &DmScene, what: &str| -> Result<(), String> {
-        for (_, dm) in scene.receivers() {
-            dm.check_invariants()
-                .map_err(|e| format!("after {what}: {e}"))?;
-        }
-        Ok(())
+        scene
+            .check_invariants()
+            .map_err(|e| format!("after {what}: {e}"))
     };
     check(&scene, "the build")?;
     let movable = case.objects.len();
