@@ -7,7 +7,7 @@
 use crate::common::{Object, TestScene, class_areas, scene, scene_with, translated};
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
-use dm_mesh::{Deletion, DmLight, DmOptions, DmScene, ObjectId, PieceId};
+use dm_mesh::{Deletion, DmLight, DmOptions, DmScene, ObjectId, OverlapKind, PieceId};
 use proptest::prelude::*;
 use std::collections::BTreeMap;
 
@@ -226,6 +226,13 @@ proptest! {
     #[test]
     fn collapsing_updates_agree_with_a_rebuild(t in scene_with(3..10), ops in ops()) {
         let options = DmOptions { deletion: Deletion::Collapse, ..DmOptions::default() };
+        run_with(&t, &ops, options)?;
+    }
+
+    /// Updates through the shadow overlap cube agree too.
+    #[test]
+    fn updates_through_the_cube_agree_with_a_rebuild(t in scene_with(3..10), ops in ops()) {
+        let options = DmOptions { overlap: OverlapKind::Cube, ..DmOptions::default() };
         run_with(&t, &ops, options)?;
     }
 }
