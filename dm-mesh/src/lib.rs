@@ -84,6 +84,6 @@ pub use bsp_core;
 pub use cell::{Cell, CellClass, Entry};
 pub use error::Error;
 pub use illuminate::IllumStats;
-pub use overlap::OverlapKind;
+pub use overlap::{OverlapFigures, OverlapKind};
 pub use scene::{DmLight, DmOptions, DmScene, ObjectId, PieceId};
 pub use tree::{Deletion, ReceiverDm};

@@ -5,7 +5,7 @@ use crate::critical::{UnitPlanes, internal_planes};
 use crate::error::Error;
 use crate::illuminate::ReceiverIllum;
 use crate::order::unit_order;
-use crate::overlap::{Overlap, OverlapKind};
+use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
 use crate::tree::{Deletion, ReceiverDm};
 use area_shadow::{AreaSource, SourceSide, volume_planes};
 use bsp_core::ConvexPolygon;
@@ -254,6 +254,28 @@ impl DmScene {
                 .map_err(|e| format!("receiver {piece:?}: {e}"))?;
         }
         Ok(())
+    }
+
+    /// How well the overlap structure localises: the occluder / receiver
+    /// pairs it gives over every receiver, and how many of them pass the
+    /// exact quick reject. A diagnostic: it looks at every pair it counts.
+    pub fn overlap_figures(&mut self) -> OverlapFigures {
+        self.overlap.refresh(&self.pieces);
+        let mut figures = OverlapFigures::default();
+        for r in self.pieces.keys() {
+            let receiver = &self.pieces[r].polygon;
+            for o in self.overlap.occluders_near(r, &self.pieces) {
+                figures.candidates += 1;
+                let shadows = self.pieces[o].volumes.iter().any(|v| {
+                    v.volumes
+                        .penumbra
+                        .iter()
+                        .any(|part| crate::tree::clip(receiver, part).is_some())
+                });
+                figures.shadowing += usize::from(shadows);
+            }
+        }
+        figures
     }
 
     /// The flags a piece was added with.

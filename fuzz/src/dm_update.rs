@@ -333,6 +333,34 @@ mod tests {
         }
     }
 
+    /// Found by libFuzzer: a cell split after it culled a unit keeps the
+    /// unit in both parts, one of which no longer meets its penumbra; a
+    /// removal must still find it (it floods from the cells it reaches).
+    #[test]
+    fn culled_unit_in_a_split_cell() {
+        let case = DmCase {
+            objects: vec![
+                vec![
+                    [[6, 2, 8], [4, 10, 3], [-8, 4, 5]],
+                    [[-7, 1, 8], [5, 11, 1], [6, 9, -8]],
+                ],
+                vec![
+                    [[8, 3, -3], [-1, 3, 0], [4, 1, -5]],
+                    [[-3, 13, -2], [-4, 1, 3], [0, 3, -6]],
+                ],
+            ],
+            light: ([-4, 11, 0], [3, 1], -2),
+            ops: vec![
+                Op::Move(23, [0, 0, 2]),
+                Op::ReAdd(109),
+                Op::Move(0, [-3, -2, -3]),
+                Op::Move(0, [-3, -2, -3]),
+            ],
+            deletion: Deletion::Local,
+        };
+        check_dm_update(&case).unwrap();
+    }
+
     #[test]
     fn pseudo_random_inputs_pass() {
         for seed in 0..400 {

@@ -44,6 +44,17 @@ pub enum OverlapKind {
     Cube,
 }
 
+/// How well an overlap structure localises, for a scene as it is
+/// ([`DmScene::overlap_figures`](crate::DmScene::overlap_figures)).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct OverlapFigures {
+    /// Occluder / receiver pairs the structure gives (after the box test).
+    pub candidates: usize,
+    /// Those that pass the exact quick reject: the receiver clipped by one
+    /// of the occluder's penumbra volumes keeps some area.
+    pub shadowing: usize,
+}
+
 /// An axis-aligned box: low and high corners.
 pub(crate) type Box3 = [[f64; 3]; 2];
 

@@ -133,58 +133,72 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         freed
     }
 
-    /// The leaves whose cells list or culled unit `u`. Those are the cells
-    /// that meet its penumbra region (outside the part its light does not
-    /// reach): with a single, convex, region they are connected through
-    /// shared edges, and are flooded over the mesh from the unit's seed
-    /// cell; otherwise (no seed listing it any more, several regions) they
-    /// are found by filtering its regions down the tree, exactly.
+    /// The leaves whose cells list or culled unit `u`. A cell lists it only
+    /// inside its penumbra region, and every cell that meets the region
+    /// lists or culled it (outside the part its light does not reach); a
+    /// cell split after culling it keeps it in both parts. So these cells
+    /// are connected through shared edges (a convex region, and the parts
+    /// of split cells), and are flooded over the mesh from the unit's seed
+    /// cell, or, when that no longer holds the unit or the unit has several
+    /// penumbra regions, from the cells its regions reach down the tree.
     fn cells_of(&self, u: u32, planes: &UnitPlanes) -> Vec<u32> {
-        let holds = |f: FaceKey| {
-            self.mesh
-                .face(f)
-                .is_some_and(|face| face.data.has_unit(u) || face.data.culled.contains(&u))
+        let seed = self
+            .seeds
+            .get(u as usize)
+            .copied()
+            .filter(|&f| self.holds(f, u))
+            .filter(|_| planes.volumes.penumbra.len() == 1);
+        let out = match seed {
+            Some(seed) => self.flood(u, vec![seed]),
+            None => self.flood(u, self.cells_by_descent(u, planes)),
         };
-        let seed = self.seeds.get(u as usize).copied().filter(|&f| holds(f));
-        if let (Some(seed), 1) = (seed, planes.volumes.penumbra.len()) {
-            let mut seen = HashSet::from([seed]);
-            let mut stack = vec![seed];
-            while let Some(f) = stack.pop() {
-                for e in self.mesh.face_edges(f) {
-                    let edge = self.mesh.edge(e).expect("face edge");
-                    let other = if edge.left == Some(f) {
-                        edge.right
-                    } else {
-                        edge.left
-                    };
-                    if let Some(g) = other
-                        && !seen.contains(&g)
-                        && holds(g)
-                    {
-                        seen.insert(g);
-                        stack.push(g);
-                    }
-                }
-            }
-            let mut out: Vec<u32> = seen
-                .into_iter()
-                .map(|f| self.mesh.face(f).expect("face").data.leaf)
-                .collect();
-            out.sort_unstable();
-            debug_assert_eq!(out, self.cells_by_descent(u, planes), "flood of unit {u}");
-            return out;
-        }
-        self.cells_by_descent(u, planes)
+        debug_assert!(
+            seed.is_none() || out == self.flood(u, self.cells_by_descent(u, planes)),
+            "flood of unit {u} from its seed"
+        );
+        out
     }
 
-    /// [`Self::cells_of`] by filtering the unit's penumbra regions down the
-    /// tree.
-    fn cells_by_descent(&self, u: u32, planes: &UnitPlanes) -> Vec<u32> {
-        let holds = |f: FaceKey| {
-            self.mesh
-                .face(f)
-                .is_some_and(|face| face.data.has_unit(u) || face.data.culled.contains(&u))
-        };
+    /// Whether face `f` exists and lists or culled unit `u`.
+    fn holds(&self, f: FaceKey, u: u32) -> bool {
+        self.mesh
+            .face(f)
+            .is_some_and(|face| face.data.has_unit(u) || face.data.culled.contains(&u))
+    }
+
+    /// The leaves of the faces holding unit `u` connected to `starts`
+    /// (faces that hold it) through shared edges, ascending.
+    fn flood(&self, u: u32, starts: Vec<FaceKey>) -> Vec<u32> {
+        let mut seen: HashSet<FaceKey> = starts.iter().copied().collect();
+        let mut stack = starts;
+        while let Some(f) = stack.pop() {
+            for e in self.mesh.face_edges(f) {
+                let edge = self.mesh.edge(e).expect("face edge");
+                let other = if edge.left == Some(f) {
+                    edge.right
+                } else {
+                    edge.left
+                };
+                if let Some(g) = other
+                    && !seen.contains(&g)
+                    && self.holds(g, u)
+                {
+                    seen.insert(g);
+                    stack.push(g);
+                }
+            }
+        }
+        let mut out: Vec<u32> = seen
+            .into_iter()
+            .map(|f| self.mesh.face(f).expect("face").data.leaf)
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
+    /// The faces holding unit `u` that its penumbra regions reach with
+    /// area, filtered down the tree exactly.
+    fn cells_by_descent(&self, u: u32, planes: &UnitPlanes) -> Vec<FaceKey> {
         let mut out = Vec::new();
         for part in &planes.volumes.penumbra {
             let Some(region) = clip(&self.polygon, part) else {
@@ -193,8 +207,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             out.extend(
                 self.descend(self.root, region)
                     .into_iter()
-                    .map(|(leaf, _)| leaf)
-                    .filter(|&leaf| holds(self.face_of(leaf))),
+                    .map(|(leaf, _)| self.face_of(leaf))
+                    .filter(|&f| self.holds(f, u)),
             );
         }
         out.sort_unstable();
