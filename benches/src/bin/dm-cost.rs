@@ -10,7 +10,9 @@
 //! the difference of their MOVES; likewise for rebuilds.
 //!
 //! `DM_COST_DELETION=collapse` removes by collapsing and re-merging
-//! ([`Deletion::Collapse`]) instead of the paper's local deletion.
+//! ([`Deletion::Collapse`]) instead of the paper's local deletion;
+//! `DM_COST_OUTER=1` leaves the internal discontinuities out (as
+//! `paper-tables dm` builds the hall).
 
 use std::process::ExitCode;
 
@@ -45,6 +47,7 @@ fn main() -> ExitCode {
     };
     let options = DmOptions {
         deletion,
+        internal_discontinuities: std::env::var_os("DM_COST_OUTER").is_none(),
         ..DmOptions::default()
     };
     let mut run = dm_scene_with(&scene, options).expect("the scene builds");
