@@ -12,12 +12,14 @@
 //! `DM_COST_DELETION=collapse` removes by collapsing and re-merging
 //! ([`Deletion::Collapse`]) instead of the paper's local deletion;
 //! `DM_COST_OUTER=1` leaves the internal discontinuities out (as
-//! `paper-tables dm` builds the hall).
+//! `paper-tables dm` builds the hall); `DM_COST_OVERLAP=cube` pairs
+//! occluders and receivers through the shadow overlap cube instead of the
+//! grid.
 
 use std::process::ExitCode;
 
 use bsp_core::ConvexPolygon;
-use umbra::{Deletion, DmOptions, Scene, dm_scene_with};
+use umbra::{Deletion, DmOptions, OverlapKind, Scene, dm_scene_with};
 use umbra_benches::dm_table::translated;
 
 fn main() -> ExitCode {
@@ -48,7 +50,10 @@ fn main() -> ExitCode {
     let options = DmOptions {
         deletion,
         internal_discontinuities: std::env::var_os("DM_COST_OUTER").is_none(),
-        ..DmOptions::default()
+        overlap: match std::env::var("DM_COST_OVERLAP").as_deref() {
+            Ok("cube") => OverlapKind::Cube,
+            _ => OverlapKind::Grid,
+        },
     };
     let mut run = dm_scene_with(&scene, options).expect("the scene builds");
     let (id, ks) = run.objects[index].clone();

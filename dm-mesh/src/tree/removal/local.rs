@@ -5,12 +5,12 @@
 //!    anything of its own; the nodes of either subtree whose lines ended on
 //!    it are *dangling*.
 //! 2. **Choose the subtree to keep**, `a`, by the expected cost
-//!    `E[cost_a] = D_a * size_b`: `D_a` the dangling nodes of `a` (its
-//!    nodes whose lines the other half of the cell crosses: they must be
-//!    expanded across it), `size_b` the cells of the other subtree `b`
-//!    (each is filtered through the expansion). A leaf costs nothing to
-//!    keep. The sizes are counted lazily, only as far as the decision
-//!    needs.
+//!    `E[cost_a] = D_a * size_b`: `D_a` the dangling nodes of `a` (one less
+//!    than its cells along the line, counted on the mesh: those lines must
+//!    be expanded across the other half of the cell), `size_b` the cells of
+//!    the other subtree `b` (each is filtered through the expansion). A
+//!    leaf costs nothing to keep. The sizes are counted lazily, only as far
+//!    as the decision needs, and no geometry is computed.
 //! 3. **Expand and insert.** `a` takes the node's place and now spans the
 //!    whole cell: every one of its nodes keeps its line, extended across
 //!    `b`'s half. Each cell of `b` is filtered down `a`, split (exactly, in

@@ -2,16 +2,26 @@
 //!
 //! Three passes, whichever [`Deletion`] is chosen:
 //!
-//! 1. the removed units leave the occluder lists: every cell their
-//!    penumbra regions reach (filtered down the tree, exactly) drops their
-//!    entries and the units they had culled; where a removed unit's umbra
-//!    was the only one, the units it culled there are set free;
+//! 1. the removed units leave the occluder lists: every cell that lists or
+//!    culled one (flooded over the mesh from a cell that does) drops it;
+//!    where a removed unit's umbra was the only one, the units it culled
+//!    there are set free;
 //! 2. their nodes go: deleted in place one by one ([`Deletion::Local`], the
 //!    paper's method, module `local`), or the subtrees under their topmost
 //!    nodes collapsed and re-merged ([`Deletion::Collapse`], module
 //!    `collapse`);
-//! 3. the units set free are merged again into the removed units' umbra
-//!    regions (cells that already hold them are left alone).
+//! 3. construction nodes over changed cells that separate nothing any
+//!    more are condensed, and the units set free are merged again into the
+//!    removed units' umbra regions (cells that already hold them are left
+//!    alone).
+//!
+//! Measured by callgrind instruction counts (`dm-cost`, one removal from a
+//! fresh build, 1 thread): office desk_1 local 6.26M / collapse 6.20M,
+//! monitor_1 5.81M / 3.85M, cubes cube_1 17.4M / 28.3M; after 40 moves back
+//! and forth either way the trees have as many cells as a fresh build
+//! (office 2915; cubes 4567 built, 4576 after). The paper's method is the
+//! default: it never re-merges the occluders that came later, which is
+//! what costs most where many reach the removed one's cells.
 
 use super::{ReceiverDm, clip};
 use crate::critical::UnitPlanes;
