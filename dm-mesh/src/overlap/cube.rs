@@ -26,7 +26,7 @@
 //! the tiles of the box around the projected points, opened to infinity
 //! along every such `e`, a little widened against rounding: conservative.
 
-use super::{Box3, bounding_box, light_plane, may_shadow_box};
+use super::{Box3, bounding_box, light_plane};
 use crate::scene::{DmLight, Piece, PieceId};
 use slotmap::{SecondaryMap, SlotMap};
 use std::collections::BTreeSet;
@@ -207,31 +207,17 @@ impl Cube {
         }
     }
 
-    /// Whether occluder `o` may shadow receiver `r` (the box test).
-    pub(crate) fn may_shadow(
-        &self,
-        o: PieceId,
-        r: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> bool {
-        o != r
-            && self
-                .boxes
-                .get(r)
-                .is_some_and(|bx| may_shadow_box(bx, &pieces[o]))
+    /// A receiver's box.
+    pub(crate) fn receiver_box(&self, r: PieceId) -> Option<&Box3> {
+        self.boxes.get(r)
     }
 
-    /// Occluders whose shadows share a tile with receiver `r`, and pass
-    /// the box test, in key order.
-    pub(crate) fn occluders_near(
-        &self,
-        r: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> Vec<PieceId> {
-        let Some(all) = self.receiver_tiles.get(r) else {
-            return Vec::new();
-        };
+    /// Occluders whose shadows share a tile with receiver `r`.
+    pub(crate) fn occluders_of(&self, r: PieceId) -> BTreeSet<PieceId> {
         let mut out = BTreeSet::new();
+        let Some(all) = self.receiver_tiles.get(r) else {
+            return out;
+        };
         for (cube, tiles) in self.cubes.iter().zip(all) {
             match tiles {
                 Tiles::All => out.extend(cube.casters.iter().copied()),
@@ -243,28 +229,19 @@ impl Cube {
                 }
             }
         }
-        out.into_iter()
-            .filter(|&o| self.may_shadow(o, r, pieces))
-            .collect()
+        out
     }
 
-    /// Receivers sharing a tile with occluder `o`'s shadow, and passing
-    /// the box test, in key order.
-    pub(crate) fn receivers_near(
-        &self,
-        o: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> Vec<PieceId> {
-        let Some(all) = self.shadow_tiles.get(o) else {
-            return Vec::new();
-        };
+    /// Receivers sharing a tile with occluder `o`'s shadow.
+    pub(crate) fn receivers_of(&self, o: PieceId) -> BTreeSet<PieceId> {
         let mut out = BTreeSet::new();
+        let Some(all) = self.shadow_tiles.get(o) else {
+            return out;
+        };
         for (cube, tiles) in self.cubes.iter().zip(all) {
             match tiles {
                 None => {}
-                Some(Tiles::All) => {
-                    out.extend(self.boxes.keys());
-                }
+                Some(Tiles::All) => out.extend(self.boxes.keys()),
                 Some(Tiles::Some(list)) => {
                     out.extend(cube.every_receiver.iter().copied());
                     for &t in list {
@@ -273,9 +250,7 @@ impl Cube {
                 }
             }
         }
-        out.into_iter()
-            .filter(|&r| self.may_shadow(o, r, pieces))
-            .collect()
+        out
     }
 }
 

@@ -16,7 +16,7 @@
 //! Lists of pieces are returned in key order, so results do not depend on
 //! the grid.
 
-use super::{Box3, grow, light_plane, may_shadow_box};
+use super::{Box3, grow, light_plane};
 use crate::scene::{DmLight, Piece, PieceId};
 use slotmap::{SecondaryMap, SlotMap};
 use std::collections::{BTreeSet, HashMap};
@@ -272,49 +272,24 @@ impl Grid {
         out
     }
 
-    /// Whether occluder `o` may shadow receiver `r` under some light.
-    pub(crate) fn may_shadow(
-        &self,
-        o: PieceId,
-        r: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> bool {
-        o != r
-            && self
-                .boxes
-                .get(r)
-                .is_some_and(|bx| may_shadow_box(bx, &pieces[o]))
+    /// A receiver's box.
+    pub(crate) fn receiver_box(&self, r: PieceId) -> Option<&Box3> {
+        self.boxes.get(r)
     }
 
-    /// Occluders that may shadow receiver `r`, in key order (call
-    /// [`refresh`](Self::refresh) first).
-    pub(crate) fn occluders_near(
-        &self,
-        r: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> Vec<PieceId> {
-        let Some(b) = self.boxes.get(r) else {
-            return Vec::new();
-        };
-        self.near(*b, true)
-            .into_iter()
-            .filter(|&o| self.may_shadow(o, r, pieces))
-            .collect()
+    /// Occluders whose penumbra boxes share a cell with receiver `r`'s box.
+    pub(crate) fn occluders_of(&self, r: PieceId) -> BTreeSet<PieceId> {
+        self.boxes
+            .get(r)
+            .map(|b| self.near(*b, true))
+            .unwrap_or_default()
     }
 
-    /// Receivers that occluder `o` may shadow, in key order (call
-    /// [`refresh`](Self::refresh) first).
-    pub(crate) fn receivers_near(
-        &self,
-        o: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> Vec<PieceId> {
-        let Some(b) = self.shadow_boxes.get(o) else {
-            return Vec::new();
-        };
-        self.near(*b, false)
-            .into_iter()
-            .filter(|&r| self.may_shadow(o, r, pieces))
-            .collect()
+    /// Receivers whose boxes share a cell with occluder `o`'s penumbra box.
+    pub(crate) fn receivers_of(&self, o: PieceId) -> BTreeSet<PieceId> {
+        self.shadow_boxes
+            .get(o)
+            .map(|b| self.near(*b, false))
+            .unwrap_or_default()
     }
 }

@@ -194,10 +194,11 @@ impl Overlap {
         r: PieceId,
         pieces: &SlotMap<PieceId, Piece>,
     ) -> bool {
-        match self {
-            Self::Grid(g) => g.may_shadow(o, r, pieces),
-            Self::Cube(c) => c.may_shadow(o, r, pieces),
-        }
+        let bx = match self {
+            Self::Grid(g) => g.receiver_box(r),
+            Self::Cube(c) => c.receiver_box(r),
+        };
+        o != r && bx.is_some_and(|bx| may_shadow_box(bx, &pieces[o]))
     }
 
     /// Occluders that may shadow receiver `r`, in key order.
@@ -206,10 +207,13 @@ impl Overlap {
         r: PieceId,
         pieces: &SlotMap<PieceId, Piece>,
     ) -> Vec<PieceId> {
-        match self {
-            Self::Grid(g) => g.occluders_near(r, pieces),
-            Self::Cube(c) => c.occluders_near(r, pieces),
-        }
+        let near = match self {
+            Self::Grid(g) => g.occluders_of(r),
+            Self::Cube(c) => c.occluders_of(r),
+        };
+        near.into_iter()
+            .filter(|&o| self.may_shadow(o, r, pieces))
+            .collect()
     }
 
     /// Receivers that occluder `o` may shadow, in key order.
@@ -218,9 +222,12 @@ impl Overlap {
         o: PieceId,
         pieces: &SlotMap<PieceId, Piece>,
     ) -> Vec<PieceId> {
-        match self {
-            Self::Grid(g) => g.receivers_near(o, pieces),
-            Self::Cube(c) => c.receivers_near(o, pieces),
-        }
+        let near = match self {
+            Self::Grid(g) => g.receivers_of(o),
+            Self::Cube(c) => c.receivers_of(o),
+        };
+        near.into_iter()
+            .filter(|&r| self.may_shadow(o, r, pieces))
+            .collect()
     }
 }
