@@ -83,6 +83,7 @@
 mod cell;
 mod critical;
 mod error;
+mod hash;
 mod illuminate;
 mod order;
 mod overlap;

@@ -16,17 +16,23 @@
 //!    alone).
 //!
 //! Measured by callgrind instruction counts (`dm-cost`, one removal from a
-//! fresh build, 1 thread): office desk_1 local 6.26M / collapse 6.20M,
-//! monitor_1 5.81M / 3.85M, cubes cube_1 17.4M / 28.3M; after 40 moves back
-//! and forth either way the trees have as many cells as a fresh build
-//! (office 2915; cubes 4567 built, 4576 after). The paper's method is the
-//! default: it never re-merges the occluders that came later, which is
-//! what costs most where many reach the removed one's cells.
+//! fresh build, 1 thread; a rebuild with illumination is 146.5M for the
+//! office, 322.2M for the cubes): office desk_1 local 4.77M (3.3 % of a
+//! rebuild) / collapse 4.61M, monitor_1 5.14M (3.5 %) / 3.11M, cubes
+//! cube_1 16.2M (5.0 %) / 26.4M; moving a box of the 10k hall three times
+//! (`umbra update`, loaded machine) took 57-61 ms a step locally and 51 ms
+//! to 1.97 s by collapsing (a collapsed tile re-merges every occluder that
+//! reached it). After 40 moves back and forth either way the trees have as
+//! many cells as a fresh build (office 2915; cubes 4567 built, 4576 after).
+//! The paper's method is the default: it never re-merges the occluders
+//! that came later, which is what costs most where many reach the removed
+//! one's cells.
 
 use super::{ReceiverDm, clip};
 use crate::critical::UnitPlanes;
+use crate::hash::KeySet;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, VertexKey};
-use std::collections::{BTreeMap, BTreeSet, HashSet};
+use std::collections::{BTreeMap, BTreeSet};
 
 mod collapse;
 mod local;
@@ -179,7 +185,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// The leaves of the faces holding unit `u` connected to `starts`
     /// (faces that hold it) through shared edges, ascending.
     fn flood(&self, u: u32, starts: Vec<FaceKey>) -> Vec<u32> {
-        let mut seen: HashSet<FaceKey> = starts.iter().copied().collect();
+        let mut seen: KeySet<FaceKey> = starts.iter().copied().collect();
         let mut stack = starts;
         while let Some(f) = stack.pop() {
             for e in self.mesh.face_edges(f) {
@@ -231,14 +237,22 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// the face that remains (its payload is one of theirs: the caller sets
     /// it).
     fn merge_cells(&mut self, a: FaceKey, b: FaceKey) -> FaceKey {
-        let shared: Vec<VertexKey> = {
-            let vb = self.mesh.face_vertices(b);
-            self.mesh
-                .face_vertices(a)
-                .into_iter()
-                .filter(|v| vb.contains(v))
-                .collect()
-        };
+        // The edges between the two, and their ends (the vertices that may
+        // become straight).
+        let mut edge = None;
+        let mut shared: Vec<VertexKey> = Vec::with_capacity(4);
+        for e in self.mesh.face_edges(a) {
+            let x = self.mesh.edge(e).expect("face edge");
+            if x.left == Some(b) || x.right == Some(b) {
+                edge.get_or_insert(e);
+                for v in [x.start, x.end] {
+                    if !shared.contains(&v) {
+                        shared.push(v);
+                    }
+                }
+            }
+        }
+        let edge = edge.expect("sibling cells share an edge");
         let units: Vec<u32> = [a, b]
             .iter()
             .flat_map(|&f| {
@@ -249,15 +263,6 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     .chain(data.culled.iter().copied())
             })
             .collect();
-        let edge = self
-            .mesh
-            .face_edges(a)
-            .into_iter()
-            .find(|&e| {
-                let edge = self.mesh.edge(e).expect("face edge");
-                edge.left == Some(b) || edge.right == Some(b)
-            })
-            .expect("sibling cells share an edge");
         let kept = self
             .mesh
             .merge_faces(edge)
