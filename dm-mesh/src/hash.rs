@@ -32,3 +32,6 @@ impl Hasher for KeyHasher {
 
 /// A `HashSet` keyed by the crate's keys.
 pub(crate) type KeySet<T> = std::collections::HashSet<T, BuildHasherDefault<KeyHasher>>;
+
+/// A `HashMap` keyed by the crate's keys.
+pub(crate) type KeyMap<K, V> = std::collections::HashMap<K, V, BuildHasherDefault<KeyHasher>>;

@@ -3,6 +3,7 @@
 
 use crate::critical::{UnitPlanes, internal_planes};
 use crate::error::Error;
+use crate::hash::KeyMap;
 use crate::illuminate::ReceiverIllum;
 use crate::order::unit_order;
 use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
@@ -11,7 +12,7 @@ use area_shadow::{AreaSource, SourceSide, volume_planes};
 use bsp_core::ConvexPolygon;
 use rayon::prelude::*;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 use svbsp::PieceFlags;
 
 new_key_type! {
@@ -419,7 +420,7 @@ impl DmScene {
             }
             return;
         }
-        let mut work: HashMap<PieceId, Order> = jobs.into_iter().collect();
+        let mut work: KeyMap<PieceId, Order> = jobs.into_iter().collect();
         let mut trees: Vec<(&mut ReceiverDm<PieceId>, Order)> = self
             .receivers
             .iter_mut()

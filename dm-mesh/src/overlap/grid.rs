@@ -17,9 +17,10 @@
 //! the grid.
 
 use super::{Box3, grow, light_plane};
+use crate::hash::KeyMap;
 use crate::scene::{DmLight, Piece, PieceId};
 use slotmap::{SecondaryMap, SlotMap};
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 
 /// A box spanning more grid cells than this is kept in a list of its own.
 const BIG: i64 = 4096;
@@ -35,8 +36,8 @@ pub(crate) struct Grid {
     cell: f64,
     boxes: SecondaryMap<PieceId, Box3>,
     shadow_boxes: SecondaryMap<PieceId, Box3>,
-    receivers: HashMap<[i64; 3], Vec<PieceId>>,
-    shadows: HashMap<[i64; 3], Vec<PieceId>>,
+    receivers: KeyMap<[i64; 3], Vec<PieceId>>,
+    shadows: KeyMap<[i64; 3], Vec<PieceId>>,
     big_receivers: BTreeSet<PieceId>,
     big_shadows: BTreeSet<PieceId>,
     /// Pieces whose penumbra box is still to be made.
