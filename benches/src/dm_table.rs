@@ -91,6 +91,7 @@ pub fn print() {
             10,
             DmOptions {
                 internal_discontinuities: false,
+                ..DmOptions::default()
             },
         );
         let run = best_build(&scene, 10, DmOptions::default());
@@ -151,6 +152,7 @@ pub fn print() {
     let start = Instant::now();
     let outer = DmOptions {
         internal_discontinuities: false,
+        ..DmOptions::default()
     };
     let mut run = dm_scene_with(&hall, outer).expect("the hall builds");
     let build = start.elapsed().as_secs_f64();

@@ -8,9 +8,9 @@ use std::path::PathBuf;
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    DemoFiles, DmOptions, Error, ObjMesh, Pieces, PlyEncoding, Result, Scene, ShadowOptions, csg,
-    dm_scene_with, render_scene_with, save_csg_obj, save_obj, save_ply, shadow_scene,
-    shadow_scene_with,
+    Deletion, DemoFiles, DmOptions, Error, ObjMesh, OverlapKind, Pieces, PlyEncoding, Result,
+    Scene, ShadowOptions, csg, dm_scene_with, render_scene_with, save_csg_obj, save_obj, save_ply,
+    shadow_scene, shadow_scene_with,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -115,6 +115,26 @@ pub enum Order {
     Bsp,
 }
 
+/// How `umbra update` takes a moved object's discontinuities out.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
+pub enum DeletionArg {
+    /// Chrysanthou & Slater's local deletion, node by node.
+    #[default]
+    Local,
+    /// Collapse the subtrees the object grew and re-merge the others there.
+    Collapse,
+}
+
+/// Which structure pairs occluders with the receivers they may shadow.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ValueEnum)]
+pub enum OverlapArg {
+    /// A uniform grid of receiver boxes and penumbra boxes.
+    #[default]
+    Grid,
+    /// The paper's shadow overlap cube (direction tiles around each light).
+    Cube,
+}
+
 /// Options of `umbra render`.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
@@ -151,6 +171,9 @@ pub struct DmArgs {
     /// faster; vertex irradiance stays exact).
     #[arg(long)]
     pub outer_only: bool,
+    /// Which structure pairs occluders with the receivers they may shadow.
+    #[arg(long, value_enum, default_value_t = OverlapArg::Grid)]
+    pub overlap: OverlapArg,
     /// Write ASCII PLY instead of binary little-endian.
     #[arg(long)]
     pub ascii: bool,
@@ -182,6 +205,12 @@ pub struct UpdateArgs {
     /// faster; vertex irradiance stays exact).
     #[arg(long)]
     pub outer_only: bool,
+    /// How each step takes the object's discontinuities out of the trees.
+    #[arg(long, value_enum, default_value_t = DeletionArg::Local)]
+    pub deletion: DeletionArg,
+    /// Which structure pairs occluders with the receivers they may shadow.
+    #[arg(long, value_enum, default_value_t = OverlapArg::Grid)]
+    pub overlap: OverlapArg,
     /// Write ASCII PLY instead of binary little-endian.
     #[arg(long)]
     pub ascii: bool,
@@ -386,9 +415,17 @@ fn encoding(ascii: bool) -> PlyEncoding {
     }
 }
 
-fn dm_options(outer_only: bool) -> DmOptions {
+fn dm_options(outer_only: bool, deletion: DeletionArg, overlap: OverlapArg) -> DmOptions {
     DmOptions {
         internal_discontinuities: !outer_only,
+        deletion: match deletion {
+            DeletionArg::Local => Deletion::Local,
+            DeletionArg::Collapse => Deletion::Collapse,
+        },
+        overlap: match overlap {
+            OverlapArg::Grid => OverlapKind::Grid,
+            OverlapArg::Cube => OverlapKind::Cube,
+        },
     }
 }
 
@@ -397,7 +434,8 @@ fn run_dm(args: &DmArgs) -> Result<()> {
     let progress = Progress::start("loading the scene");
     let scene = Scene::load(&args.scene)?;
     progress.say("building discontinuity meshes");
-    let run = dm_scene_with(&scene, dm_options(args.outer_only))?;
+    let options = dm_options(args.outer_only, DeletionArg::Local, args.overlap);
+    let run = dm_scene_with(&scene, options)?;
     progress.say("writing");
     save_ply(&args.output, &run.mesh(), encoding(args.ascii))?;
     if let Some(stats) = &args.stats {
@@ -431,7 +469,8 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
         });
     }
     progress.say("building discontinuity meshes");
-    let mut run = dm_scene_with(&scene, dm_options(args.outer_only))?;
+    let options = dm_options(args.outer_only, args.deletion, args.overlap);
+    let mut run = dm_scene_with(&scene, options)?;
     progress.say("moving");
     let mut lines = Vec::new();
     let figures = run.move_steps(
@@ -514,6 +553,7 @@ pub fn run(cli: Cli) -> Result<()> {
                     stats: Some(path.with_extension("json")),
                     ascii: false,
                     outer_only: false,
+                    overlap: OverlapArg::Grid,
                 });
             }
             // ... and run it, as `umbra shadow` would.

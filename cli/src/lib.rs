@@ -73,7 +73,7 @@ pub use decompose::{
 };
 pub use demo::{DEMOS, DemoFiles, TETRA_DEPTH, tetra_triangles, write_demo};
 pub use dm::{DmFigures, DmRun, DmStats, UpdateFigures, dm_scene, dm_scene_with};
-pub use dm_mesh::DmOptions;
+pub use dm_mesh::{Deletion, DmOptions, OverlapKind};
 pub use error::{Error, Result};
 pub use mesh::{OutputFace, OutputMesh};
 pub use obj::{ObjFace, ObjMesh};

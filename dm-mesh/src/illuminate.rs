@@ -24,6 +24,7 @@
 //! changed are evaluated again.
 
 use crate::cell::Cell;
+use crate::hash::{KeyMap, KeySet};
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
 use crate::tree::ReceiverDm;
 use bsp_core::{FaceKey, Side, VertexKey};
@@ -32,7 +33,7 @@ use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use slotmap::SlotMap;
 use smallvec::SmallVec;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 
 /// Vertices of one receiver to evaluate from which on they are shared out
 /// among threads.
@@ -161,7 +162,7 @@ impl DmScene {
             }
             return stats;
         }
-        let mut states: HashMap<PieceId, &mut ReceiverIllum> = self
+        let mut states: KeyMap<PieceId, &mut ReceiverIllum> = self
             .illum
             .iter_mut()
             .filter(|(r, _)| pending.contains(r))
@@ -226,11 +227,15 @@ fn illuminate_receiver(
         touched
     };
     let values = &mut state.values;
-    let mut seen: SecondaryMap<VertexKey, ()> = SecondaryMap::new();
+    // A hash set, not a secondary map: after a move only a few faces of a
+    // big receiver are looked at, and a secondary map would be as long as
+    // the receiver's vertex arena.
+    let mut seen: KeySet<VertexKey> = KeySet::default();
+    seen.reserve(4 * faces.len());
     let mut todo: Vec<(VertexKey, [f64; 3], SmallVec<[Cover; 2]>)> = Vec::new();
     for f in faces {
         for v in mesh.face_vertices(f) {
-            if seen.insert(v, ()).is_some() {
+            if !seen.insert(v) {
                 continue;
             }
             stats.vertices += 1;

@@ -16,13 +16,19 @@
 //! paper's three cases, asking [`illum`] for the visible part of a light only
 //! past the occluders every cell around the vertex lists. Objects can be
 //! added, removed and moved ([`DmScene::add_object`],
-//! [`DmScene::remove_object`], [`DmScene::move_object`]); a removal collapses
-//! only the subtrees its discontinuities made and re-inserts the later
-//! occluders there, and re-illumination evaluates only vertices whose
-//! covering occluders changed. A receiver that many occluders reach starts
-//! as a balanced tree of tiles (construction lines, about one tile per
-//! four units), so that those subtrees stay within the tiles an occluder
-//! met rather than spanning half of a big floor.
+//! [`DmScene::remove_object`], [`DmScene::move_object`]). A removal drops
+//! the occluder from the lists of the cells it covered and deletes its
+//! discontinuity nodes by the paper's three steps ([`Deletion::Local`], the
+//! default): the node's edge leaves the mesh, the subtree with the smaller
+//! expected cost `D_a * size_b` is kept and its dangling lines expanded
+//! across the node's cell, the other subtree's cells are inserted into it,
+//! and cells no discontinuity separates any more are merged.
+//! [`Deletion::Collapse`] instead collapses the subtrees the occluder grew
+//! and merges the later occluders there again. Re-illumination evaluates
+//! only vertices whose covering occluders changed. A receiver that many
+//! occluders reach starts as a balanced tree of tiles (construction lines,
+//! about one tile per four units), so that every change stays within the
+//! tiles an occluder met rather than spanning half of a big floor.
 //!
 //! Receivers are independent: casting and illumination run over them in
 //! parallel with rayon (and a big receiver's vertices in parallel chunks).
@@ -35,8 +41,12 @@
 //! edge) split the cells too, where their wedges cross them, so that the
 //! irradiance is smooth inside every cell. Which occluders can shadow which
 //! receivers is found through a uniform grid of receiver boxes and penumbra
-//! boxes rather than the paper's shadow overlap cube (a linear scan of all
-//! pairs took a fifth of a 10k-polygon build; the grid removes it).
+//! boxes ([`OverlapKind::Grid`], the default) or the paper's shadow overlap
+//! cube ([`OverlapKind::Cube`]: direction tiles around each light); the
+//! grid gives a few per cent fewer pairs on the benchmark scenes
+//! ([`DmScene::overlap_figures`]). [`DmScene::check_invariants`] checks
+//! every tree, mesh and occluder list against the occluders' volumes,
+//! exactly.
 //!
 //! # Example
 //!
@@ -73,6 +83,7 @@
 mod cell;
 mod critical;
 mod error;
+mod hash;
 mod illuminate;
 mod order;
 mod overlap;
@@ -84,5 +95,6 @@ pub use bsp_core;
 pub use cell::{Cell, CellClass, Entry};
 pub use error::Error;
 pub use illuminate::IllumStats;
+pub use overlap::{OverlapFigures, OverlapKind};
 pub use scene::{DmLight, DmOptions, DmScene, ObjectId, PieceId};
-pub use tree::ReceiverDm;
+pub use tree::{Deletion, ReceiverDm};

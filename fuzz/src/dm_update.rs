@@ -4,16 +4,18 @@
 //!
 //! [`DmCase::arbitrary`] decodes a floor, up to four objects of one or two
 //! triangles with small coordinates (they touch, share planes and cross
-//! the light's plane), a parallelogram light and up to six operations.
-//! [`check_dm_update`] applies them and checks the trees' invariants after
-//! every one, then that every receiver has the lit, penumbra and umbra
-//! areas of a from-scratch build of the final scene and of area-shadow's
-//! independent classification.
+//! the light's plane), a parallelogram light, up to six operations and the
+//! way removals work (the paper's local deletion unless the last byte asks
+//! for collapse and re-merge). [`check_dm_update`] applies them and checks
+//! the scene's invariants after every one (trees, meshes, and every cell's
+//! occluder list against the volumes, exactly), then that every receiver
+//! has the lit, penumbra and umbra areas of a from-scratch build of the
+//! final scene and of area-shadow's independent classification.
 
 use arbitrary::{Arbitrary, Unstructured};
 use area_shadow::{AreaSource, Class, SceneLight, compute_shadows};
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
-use dm_mesh::{CellClass, DmLight, DmScene, ObjectId, PieceId};
+use dm_mesh::{CellClass, Deletion, DmLight, DmOptions, DmScene, ObjectId, PieceId};
 use svbsp::PieceFlags;
 
 /// One operation on object `object % objects`.
@@ -37,6 +39,8 @@ pub struct DmCase {
     pub light: ([i64; 3], [i64; 2], i64),
     /// The operations, in order.
     pub ops: Vec<Op>,
+    /// How removals take discontinuities out.
+    pub deletion: Deletion,
 }
 
 fn coordinate(u: &mut Unstructured<'_>, lo: i8, hi: i8) -> arbitrary::Result<i64> {
@@ -87,10 +91,17 @@ impl<'a> Arbitrary<'a> for DmCase {
                 _ => Op::ReAdd(object),
             });
         }
+        // Past the end of the data this reads `false`: local deletion.
+        let deletion = if u.arbitrary::<bool>()? {
+            Deletion::Collapse
+        } else {
+            Deletion::Local
+        };
         Ok(Self {
             objects,
             light: (corner, size, rise),
             ops,
+            deletion,
         })
     }
 }
@@ -190,17 +201,19 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
             .iter()
             .map(|ts| (triangles(ts, [0; 3]), two_sided())),
     );
-    let (mut scene, ids) =
-        DmScene::build(vec![light.clone()], objects.clone()).map_err(|e| e.to_string())?;
+    let options = DmOptions {
+        deletion: case.deletion,
+        ..DmOptions::default()
+    };
+    let (mut scene, ids) = DmScene::build_with(vec![light.clone()], objects.clone(), options)
+        .map_err(|e| e.to_string())?;
     // The model: per object its offset and whether it is present.
     let mut state: Vec<(Option<ObjectId>, [i64; 3])> =
         ids.iter().map(|id| (Some(*id), [0; 3])).collect();
     let check = |scene: &DmScene, what: &str| -> Result<(), String> {
-        for (_, dm) in scene.receivers() {
-            dm.check_invariants()
-                .map_err(|e| format!("after {what}: {e}"))?;
-        }
-        Ok(())
+        scene
+            .check_invariants()
+            .map_err(|e| format!("after {what}: {e}"))
     };
     check(&scene, "the build")?;
     let movable = case.objects.len();
@@ -318,6 +331,34 @@ mod tests {
                 panic!("corpus/dm_update/{name}: {problem}\n{case:?}");
             }
         }
+    }
+
+    /// Found by libFuzzer: a cell split after it culled a unit keeps the
+    /// unit in both parts, one of which no longer meets its penumbra; a
+    /// removal must still find it (it floods from the cells it reaches).
+    #[test]
+    fn culled_unit_in_a_split_cell() {
+        let case = DmCase {
+            objects: vec![
+                vec![
+                    [[6, 2, 8], [4, 10, 3], [-8, 4, 5]],
+                    [[-7, 1, 8], [5, 11, 1], [6, 9, -8]],
+                ],
+                vec![
+                    [[8, 3, -3], [-1, 3, 0], [4, 1, -5]],
+                    [[-3, 13, -2], [-4, 1, 3], [0, 3, -6]],
+                ],
+            ],
+            light: ([-4, 11, 0], [3, 1], -2),
+            ops: vec![
+                Op::Move(23, [0, 0, 2]),
+                Op::ReAdd(109),
+                Op::Move(0, [-3, -2, -3]),
+                Op::Move(0, [-3, -2, -3]),
+            ],
+            deletion: Deletion::Local,
+        };
+        check_dm_update(&case).unwrap();
     }
 
     #[test]

@@ -8,11 +8,18 @@
 //! result, then rebuilds the scene REBUILDS times.
 //! The cost of one move is the difference of two runs' counts divided by
 //! the difference of their MOVES; likewise for rebuilds.
+//!
+//! `DM_COST_DELETION=collapse` removes by collapsing and re-merging
+//! ([`Deletion::Collapse`]) instead of the paper's local deletion;
+//! `DM_COST_OUTER=1` leaves the internal discontinuities out (as
+//! `paper-tables dm` builds the hall); `DM_COST_OVERLAP=cube` pairs
+//! occluders and receivers through the shadow overlap cube instead of the
+//! grid.
 
 use std::process::ExitCode;
 
 use bsp_core::ConvexPolygon;
-use umbra::{Scene, dm_scene};
+use umbra::{Deletion, DmOptions, OverlapKind, Scene, dm_scene_with};
 use umbra_benches::dm_table::translated;
 
 fn main() -> ExitCode {
@@ -36,11 +43,26 @@ fn main() -> ExitCode {
         eprintln!("dm-cost: no object `{object}`");
         return ExitCode::FAILURE;
     };
-    let mut run = dm_scene(&scene).expect("the scene builds");
+    let deletion = match std::env::var("DM_COST_DELETION").as_deref() {
+        Ok("collapse") => Deletion::Collapse,
+        _ => Deletion::Local,
+    };
+    let options = DmOptions {
+        deletion,
+        internal_discontinuities: std::env::var_os("DM_COST_OUTER").is_none(),
+        overlap: match std::env::var("DM_COST_OVERLAP").as_deref() {
+            Ok("cube") => OverlapKind::Cube,
+            _ => OverlapKind::Grid,
+        },
+    };
+    let mut run = dm_scene_with(&scene, options).expect("the scene builds");
     let (id, ks) = run.objects[index].clone();
     let step = (0.05 * run.pieces.grid.scale()).round() as i64;
     let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
     let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
+    let cells =
+        |dm: &umbra::DmRun| -> usize { dm.dm.receivers().map(|(_, r)| r.cell_count()).sum() };
+    let cells_before = cells(&run);
     let mut evaluated = 0;
     for m in 0..moves {
         let to = if m % 2 == 0 { &there } else { &here };
@@ -64,6 +86,10 @@ fn main() -> ExitCode {
             }
         }
     }
+    eprintln!(
+        "cells: {cells_before} after the build, {} after the moves",
+        cells(&run)
+    );
     // DELETES (optional): removals of OBJECT from copies of the state.
     let deletes: u32 = args.get(4).and_then(|d| d.parse().ok()).unwrap_or(0);
     // (With DM_COST_CLONE_ONLY set the copies are made but nothing is
@@ -77,7 +103,7 @@ fn main() -> ExitCode {
         std::hint::black_box(copy);
     }
     for _ in 0..rebuilds {
-        std::hint::black_box(dm_scene(&scene).expect("builds"));
+        std::hint::black_box(dm_scene_with(&scene, options).expect("builds"));
     }
     println!("{moves} moves ({evaluated} vertices re-evaluated), {rebuilds} rebuilds");
     ExitCode::SUCCESS

@@ -160,6 +160,24 @@ fn update_ends_where_a_scene_built_there_does() {
     }
     // The umbra moved with the square: [0, 6] x [-3, 3].
     assert!((class_areas(&a, 0)[2] - 36.0).abs() < 1e-9);
+    // Collapsing instead of the paper's deletion, through the shadow
+    // overlap cube instead of the grid: the same regions.
+    let mut other = args.to_vec();
+    other[9] = "alt.ply";
+    other.truncate(10);
+    other.extend(["--deletion", "collapse", "--overlap", "cube"]);
+    let run = umbra(dir.path(), &other);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let c = load_ply(&dir.path().join("alt.ply")).unwrap();
+    for source in [0, 1] {
+        let (x, y) = (class_areas(&a, source), class_areas(&c, source));
+        for k in 0..3 {
+            assert!(
+                (x[k] - y[k]).abs() < 1e-9,
+                "source {source}: {x:?} vs {y:?}"
+            );
+        }
+    }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
     assert_eq!(

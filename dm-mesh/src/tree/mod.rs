@@ -18,26 +18,45 @@
 //! ([`ReceiverDm::tile`]): construction nodes like the light planes', never
 //! removed, that keep every later subtree local.
 //!
-//! Every path from the root meets units in insertion order, so removing a
-//! unit collapses the subtrees under its topmost nodes back into the cells
-//! they were (merging faces, condensing straight vertices) and re-inserts
-//! the later units into those cells only ([`ReceiverDm::remove_units`]).
+//! Every unit keeps the exact list of its nodes, wherever they are, so that
+//! removing it ([`ReceiverDm::remove_units`], module `removal`) finds them:
+//! by default each node is deleted in place as the paper does (its edge
+//! taken out, one subtree kept and expanded across the node's cell, the
+//! other inserted into it, what became redundant condensed), or, on
+//! request, the subtrees under the unit's topmost nodes are collapsed and
+//! the other units that reached them merged in again.
 
-use crate::cell::{Cell, CellClass, Entry};
-use crate::critical::{Critical, UnitPlanes};
+use crate::cell::{Cell, CellClass};
 use area_shadow::{AreaSource, SourceSide};
-use bsp_core::GridPoint;
-use bsp_core::predicates::{self, Side};
-use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, PolygonSide, Split, WingedMesh};
+use bsp_core::predicates::Side;
+use bsp_core::{ConvexPolygon, FaceKey, Plane, Split, WingedMesh};
 
+mod arena;
+mod check;
+mod insert;
 mod removal;
+mod tile;
 
-/// The unit number of the light-plane splits made when a receiver is
-/// created (they are never removed).
+pub use removal::Deletion;
+
+/// The unit number of the light-plane splits and tiles made when a
+/// receiver is created (they are never removed, and always above every
+/// other node).
 pub(crate) const LIGHT_UNIT: u32 = u32::MAX;
 
+/// The unit number of construction nodes made by deletions: lines that
+/// bound what one side of a deleted node holds, and that are condensed
+/// away once they separate nothing.
+pub(crate) const CONSTRUCTION: u32 = u32::MAX - 1;
+
+/// Whether nodes of `unit` are listed per unit (an occluder's, not a
+/// construction line).
+pub(crate) fn tracked(unit: u32) -> bool {
+    unit < CONSTRUCTION
+}
+
 /// A node of the 2D BSP.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Node {
     /// A cell: a face of the mesh.
     Leaf(FaceKey),
@@ -76,15 +95,17 @@ pub struct ReceiverDm<K> {
     nodes: Vec<Node>,
     /// The parent of each node (the root's is itself).
     parent: Vec<u32>,
+    /// Each node's position in its unit's list in `unit_nodes`.
+    slot: Vec<u32>,
     free: Vec<u32>,
-    /// Per unit, the leaves where its single tree was grown (its topmost
-    /// nodes, or cells it only listed or was culled in). Entries go stale
-    /// when a collapse frees them and are checked before use.
-    roots: Vec<Vec<u32>>,
+    /// Per unit, its nodes.
+    unit_nodes: Vec<Vec<u32>>,
+    /// Per unit, a face that listed or culled it when last seen (a removal
+    /// floods the unit's cells from there; stale ones are checked).
+    seeds: Vec<FaceKey>,
     root: u32,
     reach: Vec<Reach>,
     units: Vec<Option<UnitRef<K>>>,
-    next_unit: u32,
     /// Faces whose shape or list changed since [`Self::take_touched`]
     /// (some may be gone since).
     touched: Vec<FaceKey>,
@@ -116,12 +137,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             mesh,
             nodes: vec![Node::Leaf(face)],
             parent: vec![0],
+            slot: vec![u32::MAX],
             free: Vec::new(),
-            roots: Vec::new(),
+            unit_nodes: Vec::new(),
+            seeds: Vec::new(),
             root: 0,
             reach: Vec::with_capacity(lights.len()),
             units: Vec::new(),
-            next_unit: 0,
             touched: Vec::new(),
             tracking: false,
         };
@@ -149,92 +171,6 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             }
         }
         dm
-    }
-
-    /// Splits a receiver that has no unit yet into about `2^depth` tiles
-    /// by construction lines (the receiver cut by axis-aligned planes
-    /// through grid points, halving the longer side of the receiver's box
-    /// each time), so that the tree starts balanced: a unit's discontinuity
-    /// nodes then stay within the tiles its region meets, and removing it
-    /// collapses and re-merges only there, not half of a big receiver.
-    /// The tile nodes are never removed, like the light planes' splits.
-    pub(crate) fn tile(&mut self, depth: u32) {
-        if depth == 0 || !self.units.is_empty() {
-            return;
-        }
-        let n = self.polygon.support().normal();
-        // Cut across the axes other than the normal's dominant one.
-        let dominant = (0..3)
-            .max_by_key(|&a| (n[a].unsigned_abs(), std::cmp::Reverse(a)))
-            .unwrap_or(1);
-        let axes = [(dominant + 1) % 3, (dominant + 2) % 3];
-        let mut lo = [i64::MAX; 2];
-        let mut hi = [i64::MIN; 2];
-        for k in 0..self.polygon.len() {
-            let Some(g) = self.polygon.vertex_grid_point(k) else {
-                return;
-            };
-            let g = g.to_i64();
-            for (i, &a) in axes.iter().enumerate() {
-                lo[i] = lo[i].min(g[a]);
-                hi[i] = hi[i].max(g[a]);
-            }
-        }
-        for leaf in self.leaves(self.root) {
-            self.tile_leaf(leaf, axes, lo, hi, depth);
-        }
-    }
-
-    fn tile_leaf(&mut self, leaf: u32, axes: [usize; 2], lo: [i64; 2], hi: [i64; 2], depth: u32) {
-        let mut stack = vec![(leaf, lo, hi, depth)];
-        while let Some((leaf, lo, hi, depth)) = stack.pop() {
-            if depth == 0 {
-                continue;
-            }
-            let i = if hi[0] - lo[0] >= hi[1] - lo[1] { 0 } else { 1 };
-            if hi[i] - lo[i] < 2 {
-                continue;
-            }
-            let c = lo[i] + (hi[i] - lo[i]) / 2;
-            // The plane x_a = c through three grid points, with the lower
-            // half behind it.
-            let at = |da: i32, db: i32| {
-                let mut p = [0_i32; 3];
-                p[axes[i]] = c as i32;
-                p[axes[1 - i]] = da;
-                p[3 - axes[0] - axes[1]] = db;
-                GridPoint {
-                    x: p[0],
-                    y: p[1],
-                    z: p[2],
-                }
-            };
-            let Some(plane) = Plane::through(at(0, 0), at(1, 0), at(0, 1)) else {
-                continue;
-            };
-            let mut below = at(0, 0);
-            match axes[i] {
-                0 => below.x -= 1,
-                1 => below.y -= 1,
-                _ => below.z -= 1,
-            }
-            let plane = if predicates::side_of_point(&plane, below) == Side::Front {
-                plane.flipped()
-            } else {
-                plane
-            };
-            let (mut lower_hi, mut upper_lo) = (hi, lo);
-            lower_hi[i] = c;
-            upper_lo[i] = c;
-            match self.split_leaf(leaf, &plane, LIGHT_UNIT) {
-                Ok((back, front)) => {
-                    stack.push((back, lo, lower_hi, depth - 1));
-                    stack.push((front, upper_lo, hi, depth - 1));
-                }
-                Err(Side::Back) => stack.push((leaf, lo, lower_hi, depth - 1)),
-                Err(_) => stack.push((leaf, upper_lo, hi, depth - 1)),
-            }
-        }
     }
 
     /// Whether no light reaches the receiver at all (no occluder can
@@ -320,351 +256,5 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             .iter()
             .enumerate()
             .filter_map(|(u, v)| v.map(|v| (u as u32, v)))
-    }
-
-    /// The recorded roots of `unit` (see [`Self::remove_units`]).
-    fn roots_of(&mut self, unit: u32) -> &mut Vec<u32> {
-        let u = unit as usize;
-        if self.roots.len() <= u {
-            self.roots.resize_with(u + 1, Vec::new);
-        }
-        &mut self.roots[u]
-    }
-
-    fn face_of(&self, leaf: u32) -> FaceKey {
-        match self.nodes[leaf as usize] {
-            Node::Leaf(f) => f,
-            _ => unreachable!("not a leaf"),
-        }
-    }
-
-    fn cell_mut(&mut self, leaf: u32) -> &mut Cell {
-        let f = self.face_of(leaf);
-        if self.tracking {
-            self.touched.push(f);
-        }
-        self.mesh.face_data_mut(f).expect("a leaf's face exists")
-    }
-
-    fn cell(&self, leaf: u32) -> &Cell {
-        &self
-            .mesh
-            .face(self.face_of(leaf))
-            .expect("a leaf's face")
-            .data
-    }
-
-    fn alloc(&mut self, node: Node, parent: u32) -> u32 {
-        match self.free.pop() {
-            Some(k) => {
-                self.nodes[k as usize] = node;
-                self.parent[k as usize] = parent;
-                k
-            }
-            None => {
-                self.nodes.push(node);
-                self.parent.push(parent);
-                (self.nodes.len() - 1) as u32
-            }
-        }
-    }
-
-    /// The leaves under `node`.
-    fn leaves(&self, node: u32) -> Vec<u32> {
-        let mut out = Vec::new();
-        let mut stack = vec![node];
-        while let Some(n) = stack.pop() {
-            match &self.nodes[n as usize] {
-                Node::Leaf(_) => out.push(n),
-                Node::Split { back, front, .. } => {
-                    stack.push(*front);
-                    stack.push(*back);
-                }
-                Node::Free => {}
-            }
-        }
-        out
-    }
-
-    /// Splits a leaf's cell by `plane`: the leaf becomes a node, and the
-    /// new back and front leaves come back; `Err(side)` when the plane does
-    /// not cut the cell, which lies on that side of it.
-    fn split_leaf(&mut self, leaf: u32, plane: &Plane, unit: u32) -> Result<(u32, u32), Side> {
-        let face = self.face_of(leaf);
-        let (back, front) = match self.mesh.split_face(face, plane) {
-            FaceSplit::Split { back, front, .. } => (back, front),
-            FaceSplit::NotSplit(side) => return Err(side),
-        };
-        let b = self.alloc(Node::Leaf(back), leaf);
-        let f = self.alloc(Node::Leaf(front), leaf);
-        self.nodes[leaf as usize] = Node::Split {
-            line: *plane,
-            unit,
-            back: b,
-            front: f,
-        };
-        self.cell_mut(b).leaf = b;
-        self.cell_mut(f).leaf = f;
-        Ok((b, f))
-    }
-
-    /// Filters `piece` (inside `node`'s cell) down to the leaves it covers
-    /// with area, each with its part.
-    fn descend(&self, node: u32, piece: ConvexPolygon) -> Vec<(u32, ConvexPolygon)> {
-        let mut out = Vec::new();
-        let mut stack = vec![(node, piece)];
-        while let Some((n, piece)) = stack.pop() {
-            match &self.nodes[n as usize] {
-                Node::Leaf(_) => out.push((n, piece)),
-                Node::Split {
-                    line, back, front, ..
-                } => match piece.split(line) {
-                    Split::Back => stack.push((*back, piece)),
-                    Split::Front => stack.push((*front, piece)),
-                    Split::Both(b, f) => {
-                        stack.push((*front, f));
-                        stack.push((*back, b));
-                    }
-                    Split::Coplanar(_) => {}
-                },
-                Node::Free => {}
-            }
-        }
-        out
-    }
-
-    /// Appends a unit (occluder `key` under light `light`, with its volume
-    /// planes) and merges its single tree in. Returns its unit number.
-    pub(crate) fn insert(&mut self, key: K, light: u8, planes: &UnitPlanes) -> u32 {
-        let unit = self.next_unit;
-        self.next_unit += 1;
-        debug_assert_eq!(self.units.len(), unit as usize);
-        self.units.push(Some((key, light)));
-        self.merge_unit(self.root, None, unit, light, planes);
-        unit
-    }
-
-    /// Merges unit `unit`'s single tree into the subtree at `node`, whose
-    /// cell is `cell` (`None`: the whole receiver).
-    fn merge_unit(
-        &mut self,
-        node: u32,
-        cell: Option<&ConvexPolygon>,
-        unit: u32,
-        light: u8,
-        planes: &UnitPlanes,
-    ) {
-        if self.reach[usize::from(light)] == Reach::None {
-            return;
-        }
-        for part in &planes.volumes.penumbra {
-            // The quick reject: the receiver (or cell) clipped by the
-            // penumbra planes, exactly.
-            let Some(mut region) = clip(&self.polygon, part) else {
-                continue;
-            };
-            if let Some(cell) = cell {
-                let Some(inside) = clip(&region, cell.edges()) else {
-                    continue;
-                };
-                region = inside;
-            }
-            for (leaf, piece) in self.descend(node, region) {
-                let umbra = planes.volumes.umbra.as_deref();
-                self.grow_leaf(leaf, &piece, part, umbra, unit, light);
-                if !planes.internal.is_empty() {
-                    self.grow_internal(leaf, &planes.internal, unit);
-                }
-            }
-        }
-    }
-
-    /// Grows the unit's single tree at one leaf whose cell meets the
-    /// unit's penumbra region in `piece` (with area).
-    fn grow_leaf(
-        &mut self,
-        leaf: u32,
-        piece: &ConvexPolygon,
-        penumbra: &[Plane],
-        umbra: Option<&[Plane]>,
-        unit: u32,
-        light: u8,
-    ) {
-        let cell = self.cell(leaf);
-        if cell.has_unit(unit) || cell.unreached(usize::from(light)) {
-            return;
-        }
-        let in_umbra = cell.in_umbra(usize::from(light));
-        self.roots_of(unit).push(leaf);
-        if in_umbra {
-            // Umbra already: the occluder changes nothing here, unless the
-            // occluder making the umbra goes; remember it for then.
-            self.cell_mut(leaf).culled.push(unit);
-            return;
-        }
-        let Some(inner) = self.chain(leaf, penumbra, unit) else {
-            return;
-        };
-        self.cell_mut(inner).add(Entry {
-            unit,
-            light,
-            umbra: false,
-        });
-        let Some(umbra) = umbra else { return };
-        if clip(piece, umbra).is_none() {
-            return;
-        }
-        if let Some(core) = self.chain(inner, umbra, unit) {
-            self.cell_mut(core).add(Entry {
-                unit,
-                light,
-                umbra: true,
-            });
-        }
-    }
-
-    /// Splits the cells of the subtree at `node` that list `unit` outside
-    /// its umbra by its internal discontinuities, each where its wedge
-    /// crosses the cell.
-    fn grow_internal(&mut self, node: u32, internal: &[Critical], unit: u32) {
-        let mut cells: Vec<(u32, ConvexPolygon)> = self
-            .leaves(node)
-            .into_iter()
-            .filter(|&n| {
-                self.cell(n)
-                    .entries
-                    .iter()
-                    .any(|e| e.unit == unit && !e.umbra)
-            })
-            .filter_map(|n| {
-                let polygon = self.mesh.face_polygon(self.face_of(n), 0).ok()?;
-                Some((n, polygon))
-            })
-            .collect();
-        for critical in internal {
-            let mut next = Vec::with_capacity(cells.len());
-            for (leaf, polygon) in cells {
-                // The plane must cut the cell (cheap, no polygon made),
-                // and then the cell's part inside the wedge.
-                let crosses = polygon.classify(&critical.plane) == PolygonSide::Both
-                    && clip(&polygon, &critical.wedge)
-                        .is_some_and(|part| part.classify(&critical.plane) == PolygonSide::Both);
-                if !crosses {
-                    next.push((leaf, polygon));
-                    continue;
-                }
-                // The cell's polygon and its face split alike (the same
-                // exact predicates on the same vertices).
-                match (
-                    polygon.split(&critical.plane),
-                    self.split_leaf(leaf, &critical.plane, unit).ok(),
-                ) {
-                    (Split::Both(b, f), Some((back, front))) => {
-                        next.extend([(back, b), (front, f)])
-                    }
-                    (_, Some((back, front))) => {
-                        for n in [back, front] {
-                            if let Ok(p) = self.mesh.face_polygon(self.face_of(n), 0) {
-                                next.push((n, p));
-                            }
-                        }
-                    }
-                    (_, None) => next.push((leaf, polygon)),
-                }
-            }
-            cells = next;
-        }
-    }
-
-    /// Splits the cell at `leaf` by `planes` in turn, following the back;
-    /// the innermost leaf, or `None` if a plane leaves the cell in front.
-    fn chain(&mut self, leaf: u32, planes: &[Plane], unit: u32) -> Option<u32> {
-        let mut cur = leaf;
-        for plane in planes {
-            match self.split_leaf(cur, plane, unit) {
-                Ok((back, _)) => cur = back,
-                Err(Side::Front) => return None,
-                Err(_) => {}
-            }
-        }
-        Some(cur)
-    }
-
-    /// Checks the tree against the mesh: every leaf's face exists and
-    /// points back at it, every face is a leaf, units on every path come in
-    /// insertion order, and the mesh's own invariants.
-    pub fn check_invariants(&self) -> Result<(), String> {
-        self.mesh.check_invariants()?;
-        let mut leaves = 0;
-        let mut stack = vec![(self.root, 0_u32)];
-        while let Some((n, min)) = stack.pop() {
-            match &self.nodes[n as usize] {
-                Node::Leaf(f) => {
-                    leaves += 1;
-                    let face = self.mesh.face(*f).ok_or("leaf without face")?;
-                    if face.data.leaf != n {
-                        return Err(format!("face of leaf {n} points at {}", face.data.leaf));
-                    }
-                    if face
-                        .data
-                        .entries
-                        .iter()
-                        .any(|e| self.unit(e.unit).is_none())
-                    {
-                        return Err(format!("leaf {n} lists a removed unit"));
-                    }
-                }
-                Node::Split {
-                    unit, back, front, ..
-                } => {
-                    let rank = if *unit == LIGHT_UNIT { 0 } else { unit + 1 };
-                    if rank < min {
-                        return Err(format!("node {n}: unit {unit} below a later unit"));
-                    }
-                    stack.push((*back, rank));
-                    stack.push((*front, rank));
-                }
-                Node::Free => return Err(format!("free node {n} in the tree")),
-            }
-        }
-        if leaves != self.cell_count() {
-            return Err(format!("{leaves} leaves, {} faces", self.cell_count()));
-        }
-        Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn g(x: i32, y: i32, z: i32) -> GridPoint {
-        GridPoint { x, y, z }
-    }
-
-    #[test]
-    fn tiles_partition_the_receiver() {
-        let floor = ConvexPolygon::from_grid_points(
-            &[g(-40, 0, 40), g(40, 0, 40), g(40, 0, -40), g(-40, 0, -40)],
-            0,
-        )
-        .unwrap();
-        let light =
-            AreaSource::from_grid_points(&[g(-1, 10, -1), g(1, 10, -1), g(1, 10, 1), g(-1, 10, 1)])
-                .unwrap();
-        let mut dm: ReceiverDm<u32> = ReceiverDm::new(floor.clone(), false, &[light]);
-        dm.tile(3);
-        dm.check_invariants().unwrap();
-        assert_eq!(dm.cell_count(), 8);
-        let total: f64 = dm
-            .cells()
-            .map(|(f, _)| dm.mesh().face_polygon(f, 0).unwrap().area())
-            .sum();
-        assert!((total - floor.area()).abs() <= 1e-9 * floor.area());
-        // The tiles are equal quarters and eighths of the floor.
-        for (f, _) in dm.cells() {
-            let area = dm.mesh().face_polygon(f, 0).unwrap().area();
-            assert!((area - floor.area() / 8.0).abs() <= 1e-9 * floor.area());
-        }
     }
 }

@@ -6,12 +6,17 @@ use crate::common::{TestScene, class_areas, scene, scene_with};
 use crate::oracle::{hidden, interior_samples};
 use area_shadow::{Class, SceneLight, compute_shadows};
 use bsp_core::BuildOptions;
-use dm_mesh::CellClass;
+use dm_mesh::{CellClass, DmOptions, OverlapKind};
 use proptest::prelude::*;
 use svbsp::PieceFlags;
 
 fn check_against_area_shadow(t: &TestScene) -> Result<(), TestCaseError> {
-    let (scene, ids) = t.build();
+    check_against_area_shadow_with(t, DmOptions::default())
+}
+
+fn check_against_area_shadow_with(t: &TestScene, options: DmOptions) -> Result<(), TestCaseError> {
+    let (scene, ids) = t.build_with(options);
+    scene.check_invariants().map_err(TestCaseError::fail)?;
     let polygons = t.polygons();
     let flags: Vec<PieceFlags> = t
         .objects
@@ -179,5 +184,12 @@ proptest! {
     #[test]
     fn tiled_cells_agree_with_the_occlusion_oracle(t in scene_with(9..14)) {
         check_against_oracle(&t)?;
+    }
+
+    /// The shadow overlap cube finds every pair that matters too.
+    #[test]
+    fn cube_pairs_agree_with_area_shadow(t in scene_with(3..12)) {
+        let options = DmOptions { overlap: OverlapKind::Cube, ..DmOptions::default() };
+        check_against_area_shadow_with(&t, options)?;
     }
 }

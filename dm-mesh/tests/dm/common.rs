@@ -3,7 +3,7 @@
 
 use area_shadow::AreaSource;
 use bsp_core::{ConvexPolygon, GridPoint};
-use dm_mesh::{CellClass, DmLight, DmScene, PieceId};
+use dm_mesh::{CellClass, DmLight, DmOptions, DmScene, PieceId};
 use proptest::prelude::*;
 use svbsp::PieceFlags;
 
@@ -50,8 +50,12 @@ pub struct TestScene {
 
 impl TestScene {
     pub fn build(&self) -> (DmScene, Vec<dm_mesh::ObjectId>) {
+        self.build_with(DmOptions::default())
+    }
+
+    pub fn build_with(&self, options: DmOptions) -> (DmScene, Vec<dm_mesh::ObjectId>) {
         let light = DmLight::new(self.light.clone(), 1.0).unwrap();
-        DmScene::build(vec![light], self.objects.clone()).unwrap()
+        DmScene::build_with(vec![light], self.objects.clone(), options).unwrap()
     }
 
     /// Every polygon of the scene.

@@ -7,7 +7,7 @@
 use crate::common::{Object, TestScene, class_areas, scene, scene_with, translated};
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
-use dm_mesh::{DmLight, DmScene, ObjectId, PieceId};
+use dm_mesh::{Deletion, DmLight, DmOptions, DmScene, ObjectId, OverlapKind, PieceId};
 use proptest::prelude::*;
 use std::collections::BTreeMap;
 
@@ -36,10 +36,7 @@ struct Model {
 }
 
 fn check_all(scene: &DmScene) -> Result<(), TestCaseError> {
-    for (_, dm) in scene.receivers() {
-        dm.check_invariants().map_err(TestCaseError::fail)?;
-    }
-    Ok(())
+    scene.check_invariants().map_err(TestCaseError::fail)
 }
 
 fn apply(scene: &mut DmScene, model: &mut Model, op: &Op) -> Result<(), TestCaseError> {
@@ -154,7 +151,11 @@ fn compare(
 }
 
 fn run(t: &TestScene, ops: &[Op]) -> Result<(), TestCaseError> {
-    let (mut scene, ids) = t.build();
+    run_with(t, ops, DmOptions::default())
+}
+
+fn run_with(t: &TestScene, ops: &[Op], options: DmOptions) -> Result<(), TestCaseError> {
+    let (mut scene, ids) = t.build_with(options);
     scene.illuminate();
     check_all(&scene)?;
     let mut model = Model {
@@ -215,6 +216,24 @@ proptest! {
     #[test]
     fn updates_on_tiled_receivers_agree_with_a_rebuild(t in scene_with(9..14), ops in ops()) {
         run(&t, &ops)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// The other way of removing (collapse and re-merge) agrees too.
+    #[test]
+    fn collapsing_updates_agree_with_a_rebuild(t in scene_with(3..10), ops in ops()) {
+        let options = DmOptions { deletion: Deletion::Collapse, ..DmOptions::default() };
+        run_with(&t, &ops, options)?;
+    }
+
+    /// Updates through the shadow overlap cube agree too.
+    #[test]
+    fn updates_through_the_cube_agree_with_a_rebuild(t in scene_with(3..10), ops in ops()) {
+        let options = DmOptions { overlap: OverlapKind::Cube, ..DmOptions::default() };
+        run_with(&t, &ops, options)?;
     }
 }
 

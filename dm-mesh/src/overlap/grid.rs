@@ -1,7 +1,6 @@
-//! Which occluders can shadow which receivers, without looking at every
-//! pair: a uniform grid over the scene holding each receiver's bounding box
-//! and each occluder's *penumbra box*, a box around its penumbra volumes
-//! within the scene.
+//! [`OverlapKind::Grid`](super::OverlapKind::Grid): a uniform grid over
+//! the scene holding each receiver's bounding box and each occluder's
+//! *penumbra box*, a box around its penumbra volumes within the scene.
 //!
 //! The penumbra box: every point `p` of a penumbra volume lies on a ray from
 //! a light point `x` through an occluder point `y`, `p = x + t (y - x)` with
@@ -14,24 +13,21 @@
 //! the scene lies in the box of those points at `t = 1` and `t = depth / h`.
 //! An occluder touching or crossing the light's plane gets the whole scene.
 //!
-//! Pairs the grid finds are filtered by a conservative floating-point test
-//! (the receiver's box strictly in front of a penumbra plane by more than
-//! the rounding error); the exact clip of the receiver by those planes, in
-//! the tree, decides the rest. Lists of pieces are returned in key order,
-//! so results do not depend on the grid.
+//! Lists of pieces are returned in key order, so results do not depend on
+//! the grid.
 
+use super::{Box3, grow, light_plane};
+use crate::hash::KeyMap;
 use crate::scene::{DmLight, Piece, PieceId};
 use slotmap::{SecondaryMap, SlotMap};
-use std::collections::{BTreeSet, HashMap};
-
-type Box3 = [[f64; 3]; 2];
+use std::collections::BTreeSet;
 
 /// A box spanning more grid cells than this is kept in a list of its own.
 const BIG: i64 = 4096;
 
 /// The grid of receivers' boxes and occluders' penumbra boxes.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct Overlap {
+pub(crate) struct Grid {
     /// Light vertices, grid units.
     lights: Vec<Vec<[f64; 3]>>,
     /// Box of every piece and light so far (it only grows).
@@ -40,8 +36,8 @@ pub(crate) struct Overlap {
     cell: f64,
     boxes: SecondaryMap<PieceId, Box3>,
     shadow_boxes: SecondaryMap<PieceId, Box3>,
-    receivers: HashMap<[i64; 3], Vec<PieceId>>,
-    shadows: HashMap<[i64; 3], Vec<PieceId>>,
+    receivers: KeyMap<[i64; 3], Vec<PieceId>>,
+    shadows: KeyMap<[i64; 3], Vec<PieceId>>,
     big_receivers: BTreeSet<PieceId>,
     big_shadows: BTreeSet<PieceId>,
     /// Pieces whose penumbra box is still to be made.
@@ -50,30 +46,7 @@ pub(crate) struct Overlap {
     stale: bool,
 }
 
-fn grow(b: &mut Option<Box3>, p: [f64; 3]) -> bool {
-    match b {
-        None => {
-            *b = Some([p, p]);
-            true
-        }
-        Some([lo, hi]) => {
-            let mut grew = false;
-            for a in 0..3 {
-                if p[a] < lo[a] {
-                    lo[a] = p[a];
-                    grew = true;
-                }
-                if p[a] > hi[a] {
-                    hi[a] = p[a];
-                    grew = true;
-                }
-            }
-            grew
-        }
-    }
-}
-
-impl Overlap {
+impl Grid {
     pub(crate) fn new(lights: &[DmLight]) -> Self {
         let lights: Vec<Vec<[f64; 3]>> = lights
             .iter()
@@ -300,90 +273,24 @@ impl Overlap {
         out
     }
 
-    /// Whether occluder `o` may shadow receiver `r` under some light.
-    pub(crate) fn may_shadow(
-        &self,
-        o: PieceId,
-        r: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> bool {
-        if o == r {
-            return false;
-        }
-        let Some(bx) = self.boxes.get(r) else {
-            return false;
-        };
-        pieces[o].volumes.iter().any(|v| {
-            v.volumes
-                .penumbra
-                .iter()
-                .any(|planes| planes.iter().all(|p| !box_in_front(bx, p.approx())))
-        })
+    /// A receiver's box.
+    pub(crate) fn receiver_box(&self, r: PieceId) -> Option<&Box3> {
+        self.boxes.get(r)
     }
 
-    /// Occluders that may shadow receiver `r`, in key order (call
-    /// [`refresh`](Self::refresh) first).
-    pub(crate) fn occluders_near(
-        &self,
-        r: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> Vec<PieceId> {
-        let Some(b) = self.boxes.get(r) else {
-            return Vec::new();
-        };
-        self.near(*b, true)
-            .into_iter()
-            .filter(|&o| self.may_shadow(o, r, pieces))
-            .collect()
+    /// Occluders whose penumbra boxes share a cell with receiver `r`'s box.
+    pub(crate) fn occluders_of(&self, r: PieceId) -> BTreeSet<PieceId> {
+        self.boxes
+            .get(r)
+            .map(|b| self.near(*b, true))
+            .unwrap_or_default()
     }
 
-    /// Receivers that occluder `o` may shadow, in key order (call
-    /// [`refresh`](Self::refresh) first).
-    pub(crate) fn receivers_near(
-        &self,
-        o: PieceId,
-        pieces: &SlotMap<PieceId, Piece>,
-    ) -> Vec<PieceId> {
-        let Some(b) = self.shadow_boxes.get(o) else {
-            return Vec::new();
-        };
-        self.near(*b, false)
-            .into_iter()
-            .filter(|&r| self.may_shadow(o, r, pieces))
-            .collect()
+    /// Receivers whose boxes share a cell with occluder `o`'s penumbra box.
+    pub(crate) fn receivers_of(&self, o: PieceId) -> BTreeSet<PieceId> {
+        self.shadow_boxes
+            .get(o)
+            .map(|b| self.near(*b, false))
+            .unwrap_or_default()
     }
-}
-
-/// The light's plane `(a, b, c, d)` with a unit normal towards where it
-/// emits, from its first three vertices (a convex light's vertices are
-/// counter-clockwise seen from the front).
-fn light_plane(v: &[[f64; 3]]) -> [f64; 4] {
-    let u: [f64; 3] = std::array::from_fn(|a| v[1][a] - v[0][a]);
-    let w: [f64; 3] = std::array::from_fn(|a| v[2][a] - v[0][a]);
-    let n = [
-        u[1] * w[2] - u[2] * w[1],
-        u[2] * w[0] - u[0] * w[2],
-        u[0] * w[1] - u[1] * w[0],
-    ];
-    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2])
-        .sqrt()
-        .max(f64::MIN_POSITIVE);
-    let n = n.map(|c| c / len);
-    [
-        n[0],
-        n[1],
-        n[2],
-        -(n[0] * v[0][0] + n[1] * v[0][1] + n[2] * v[0][2]),
-    ]
-}
-
-/// Whether every corner of the box is strictly in front of the plane
-/// `(a, b, c, d)` by more than the evaluation's rounding error.
-fn box_in_front(bx: &Box3, [a, b, c, d]: [f64; 4]) -> bool {
-    // The corner that minimises the plane's value.
-    let pick = |n: f64, axis: usize| if n >= 0.0 { bx[0][axis] } else { bx[1][axis] };
-    let (x, y, z) = (pick(a, 0), pick(b, 1), pick(c, 2));
-    let value = a * x + b * y + c * z + d;
-    let magnitude = (a * x).abs() + (b * y).abs() + (c * z).abs() + d.abs();
-    value > magnitude * 1e-12
 }

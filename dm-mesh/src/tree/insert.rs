@@ -1,0 +1,167 @@
+//! Merging one unit's single tree into a receiver's DM-tree.
+
+use super::{Reach, ReceiverDm, clip};
+use crate::cell::Entry;
+use crate::critical::{Critical, UnitPlanes};
+use bsp_core::{ConvexPolygon, FaceKey, Plane, PolygonSide, Side, Split};
+
+impl<K: Copy + Ord> ReceiverDm<K> {
+    /// Appends a unit (occluder `key` under light `light`, with its volume
+    /// planes) and merges its single tree in. Returns its unit number.
+    pub(crate) fn insert(&mut self, key: K, light: u8, planes: &UnitPlanes) -> u32 {
+        let unit = self.units.len() as u32;
+        self.units.push(Some((key, light)));
+        self.seeds.push(FaceKey::default());
+        self.merge_unit(self.root, None, unit, light, planes);
+        unit
+    }
+
+    /// Merges unit `unit`'s single tree into the subtree at `node`, within
+    /// `cell` (`None`: all of the node's cell). Cells that already list the
+    /// unit, or culled it and are still in umbra, are left alone, so merging
+    /// a unit again where it already is changes nothing.
+    pub(super) fn merge_unit(
+        &mut self,
+        node: u32,
+        cell: Option<&ConvexPolygon>,
+        unit: u32,
+        light: u8,
+        planes: &UnitPlanes,
+    ) {
+        if self.reach[usize::from(light)] == Reach::None {
+            return;
+        }
+        for part in &planes.volumes.penumbra {
+            // The quick reject: the receiver (or cell) clipped by the
+            // penumbra planes, exactly.
+            let Some(mut region) = clip(&self.polygon, part) else {
+                continue;
+            };
+            if let Some(cell) = cell {
+                let Some(inside) = clip(&region, cell.edges()) else {
+                    continue;
+                };
+                region = inside;
+            }
+            for (leaf, piece) in self.descend(node, region) {
+                let umbra = planes.volumes.umbra.as_deref();
+                self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+                if !planes.internal.is_empty() {
+                    self.grow_internal(leaf, &planes.internal, unit);
+                }
+            }
+        }
+    }
+
+    /// Grows the unit's single tree at one leaf whose cell meets the
+    /// unit's penumbra region in `piece` (with area).
+    fn grow_leaf(
+        &mut self,
+        leaf: u32,
+        piece: &ConvexPolygon,
+        penumbra: &[Plane],
+        umbra: Option<&[Plane]>,
+        unit: u32,
+        light: u8,
+    ) {
+        let cell = self.cell(leaf);
+        if cell.has_unit(unit) || cell.culled.contains(&unit) || cell.unreached(usize::from(light))
+        {
+            return;
+        }
+        if cell.in_umbra(usize::from(light)) {
+            // Umbra already: the occluder changes nothing here, unless the
+            // occluder making the umbra goes; remember it for then.
+            self.cell_mut(leaf).culled.push(unit);
+            self.seeds[unit as usize] = self.face_of(leaf);
+            return;
+        }
+        let Some(inner) = self.chain(leaf, penumbra, unit) else {
+            return;
+        };
+        self.cell_mut(inner).add(Entry {
+            unit,
+            light,
+            umbra: false,
+        });
+        self.seeds[unit as usize] = self.face_of(inner);
+        let Some(umbra) = umbra else { return };
+        if clip(piece, umbra).is_none() {
+            return;
+        }
+        if let Some(core) = self.chain(inner, umbra, unit) {
+            self.cell_mut(core).add(Entry {
+                unit,
+                light,
+                umbra: true,
+            });
+        }
+    }
+
+    /// Splits the cells of the subtree at `node` that list `unit` outside
+    /// its umbra by its internal discontinuities, each where its wedge
+    /// crosses the cell.
+    fn grow_internal(&mut self, node: u32, internal: &[Critical], unit: u32) {
+        let mut cells: Vec<(u32, ConvexPolygon)> = self
+            .leaves(node)
+            .into_iter()
+            .filter(|&n| {
+                self.cell(n)
+                    .entries
+                    .iter()
+                    .any(|e| e.unit == unit && !e.umbra)
+            })
+            .filter_map(|n| {
+                let polygon = self.mesh.face_polygon(self.face_of(n), 0).ok()?;
+                Some((n, polygon))
+            })
+            .collect();
+        for critical in internal {
+            let mut next = Vec::with_capacity(cells.len());
+            for (leaf, polygon) in cells {
+                // The plane must cut the cell (cheap, no polygon made),
+                // and then the cell's part inside the wedge.
+                let crosses = polygon.classify(&critical.plane) == PolygonSide::Both
+                    && clip(&polygon, &critical.wedge)
+                        .is_some_and(|part| part.classify(&critical.plane) == PolygonSide::Both);
+                if !crosses {
+                    next.push((leaf, polygon));
+                    continue;
+                }
+                // The cell's polygon and its face split alike (the same
+                // exact predicates on the same vertices).
+                match (
+                    polygon.split(&critical.plane),
+                    self.split_leaf(leaf, &critical.plane, unit).ok(),
+                ) {
+                    (Split::Both(b, f), Some((back, front))) => {
+                        next.extend([(back, b), (front, f)])
+                    }
+                    (_, Some((back, front))) => {
+                        for n in [back, front] {
+                            if let Ok(p) = self.mesh.face_polygon(self.face_of(n), 0) {
+                                next.push((n, p));
+                            }
+                        }
+                    }
+                    (_, None) => next.push((leaf, polygon)),
+                }
+            }
+            cells = next;
+        }
+    }
+
+    /// Splits the cell at `leaf` by `planes` in turn, following the back;
+    /// the innermost leaf, or `None` if a plane leaves the cell in front.
+    fn chain(&mut self, leaf: u32, planes: &[Plane], unit: u32) -> Option<u32> {
+        let mut cur = leaf;
+        for plane in planes {
+            match self.split_leaf(cur, plane, unit) {
+                Ok((back, _)) => cur = back,
+                Err(Side::Front) => return None,
+                Err(_) => {}
+            }
+        }
+        Some(cur)
+    }
+}
