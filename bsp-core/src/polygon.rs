@@ -366,14 +366,25 @@ impl ConvexPolygon {
             return Split::Coplanar(facing);
         }
         let n = self.len();
-        let mut sides: SmallVec<[Side; 8]> = SmallVec::with_capacity(n);
+        // Most calls find the polygon on one side: the sides are kept in a
+        // fixed array (no length checks), and a heap list only for long
+        // polygons.
+        let mut inline = [Side::On; 8];
+        let mut heap = Vec::new();
+        let sides: &mut [Side] = if n <= inline.len() {
+            &mut inline[..n]
+        } else {
+            heap.resize(n, Side::On);
+            &mut heap
+        };
         let (mut back, mut front) = (false, false);
-        for i in 0..n {
+        for (i, slot) in sides.iter_mut().enumerate() {
             let s = self.vertex_side(i, plane);
             back |= s == Side::Back;
             front |= s == Side::Front;
-            sides.push(s);
+            *slot = s;
         }
+        let sides = &*sides;
         match (back, front) {
             (true, true) => {
                 // Each crossing vertex is made once and shared by both parts
