@@ -407,8 +407,8 @@ impl ConvexPolygon {
                 }
                 let crossings = &crossings[..count];
                 Split::Both(
-                    self.part(&sides, crossings, Side::Back, *plane),
-                    self.part(&sides, crossings, Side::Front, plane.flipped()),
+                    self.part(sides, crossings, Side::Back, *plane),
+                    self.part(sides, crossings, Side::Front, plane.flipped()),
                 )
             }
             (true, false) => Split::Back,
