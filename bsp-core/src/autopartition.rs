@@ -17,7 +17,10 @@ use crate::{ConvexPolygon, GRID_LIMIT, GridPoint, Plane, PolygonSide, Split};
 /// autopartition of them is a chain as deep as the object has faces, and
 /// building it costs `O(n^2)`. With `axis_planes`, an axis-aligned plane
 /// through the sample's median is scored too and wins where it balances
-/// better.
+/// better. A list of at most 48 polygons first tries its candidates for
+/// one that cuts nothing and leaves one side empty, and takes it at once:
+/// small convex patches then cost two passes per node (the light's cones
+/// of closed surfaces are such lists).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct BuildOptions {
     /// Candidate splitters scored per node (at least 1).
@@ -37,12 +40,16 @@ impl Default for BuildOptions {
     fn default() -> Self {
         Self {
             candidates: 8,
-            sample: 48,
+            sample: 24,
             split_weight: 6,
             axis_planes: true,
         }
     }
 }
+
+/// Lists up to this long first look for a candidate that cuts nothing and
+/// leaves one side empty (see `choose_splitter`).
+const SMALL_LIST: usize = 48;
 
 /// A child link while building: another node, or an empty region on the
 /// front or back side of its parent's plane.
@@ -184,7 +191,7 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
         // A lone candidate wins whatever its score.
         return first;
     }
-    if n <= sample && candidates > 1 {
+    if n <= SMALL_LIST && candidates > 1 {
         // A small list: a candidate that cuts nothing and leaves one side
         // empty is taken at once. It makes no fragment, and the depth it
         // adds is bounded by the list; the faces of a convex patch (a
