@@ -45,8 +45,9 @@ pub struct Shadows {
 /// Splits every piece into fragments lit, in penumbra or in umbra of each
 /// light; bit `i` of the masks is `lights[i]`.
 ///
-/// Point and directional lights run first, together (the scene BSP is
-/// built once for them); each area light then refines their fragments.
+/// Point and directional lights run first, together
+/// ([`svbsp::compute_shadows`]: each in its cones of the scene); each area
+/// light then refines their fragments.
 pub fn compute_shadows(
     pieces: &[ConvexPolygon],
     flags: &[PieceFlags],
