@@ -83,6 +83,15 @@ impl ShadowVolumeTree {
         }
     }
 
+    /// An empty tree with room for `nodes` nodes.
+    pub fn with_capacity(light: LightSource, nodes: usize) -> Self {
+        Self {
+            light,
+            nodes: Vec::with_capacity(nodes),
+            root: VolumeChild::Lit,
+        }
+    }
+
     /// The light.
     pub fn light(&self) -> LightSource {
         self.light
