@@ -94,3 +94,29 @@ pub(crate) fn crosses(p: [f64; 3], q: [f64; 3], t: &[[f64; 3]; 3]) -> bool {
     ];
     s.iter().all(|&x| x >= 0.0) || s.iter().all(|&x| x <= 0.0)
 }
+
+/// Whether `p` lies within rounding of the closed triangle `t` (the
+/// samples' coordinates are rounded): within `1e-9` of its plane, inside
+/// or on its edges.
+pub(crate) fn touches(p: [f64; 3], t: &[[f64; 3]; 3]) -> bool {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let n = cross(sub(t[1], t[0]), sub(t[2], t[0]));
+    let len = dot(n, n).sqrt();
+    if len == 0.0 || (dot(n, sub(p, t[0])) / len).abs() > 1e-9 {
+        return false;
+    }
+    // Inside or within 1e-9 of an edge, seen along the normal.
+    (0..3).all(|i| {
+        let (a, b) = (t[i], t[(i + 1) % 3]);
+        let e = sub(b, a);
+        dot(cross(e, sub(p, a)), n) / (len * dot(e, e).sqrt()) >= -1e-9
+    })
+}

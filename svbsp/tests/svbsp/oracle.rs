@@ -29,15 +29,48 @@ fn segment_hits_triangle(p: [f64; 3], q: [f64; 3], a: [f64; 3], b: [f64; 3], c: 
     (s1 >= 0.0 && s2 >= 0.0 && s3 >= 0.0) || (s1 <= 0.0 && s2 <= 0.0 && s3 <= 0.0)
 }
 
+/// Whether `p` lies within rounding of triangle `abc` (within `1e-9` of
+/// its plane, inside or on its edges).
+fn touches_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
+    let sub = |u: [f64; 3], v: [f64; 3]| [u[0] - v[0], u[1] - v[1], u[2] - v[2]];
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let dot = |u: [f64; 3], v: [f64; 3]| u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let n = cross(sub(b, a), sub(c, a));
+    let len = dot(n, n).sqrt();
+    if len == 0.0 || (dot(n, sub(p, a)) / len).abs() > 1e-9 {
+        return false;
+    }
+    [(a, b), (b, c), (c, a)].iter().all(|&(u, v)| {
+        let e = sub(v, u);
+        dot(cross(e, sub(p, u)), n) / (len * dot(e, e).sqrt()) >= -1e-9
+    })
+}
+
 /// Whether `point` sees the light past every casting polygon except those
 /// in its own plane (they meet the sight line at its start at most; the
-/// rounded sample may sit a hair behind them).
+/// rounded sample may sit a hair behind them). `None` if the point lies on
+/// another casting polygon (polygons may pierce each other): its sight line
+/// starts on it, and the sample's rounding, not the scene, would decide.
 pub fn sees_light(
     point: [f64; 3],
     light: LightSource,
     casters: &[Caster],
     own: &ConvexPolygon,
-) -> bool {
+) -> Option<bool> {
+    let on_another = casters.iter().any(|Caster { polygon, outline }| {
+        !polygon.support().is_coincident(own.support())
+            && (1..outline.len() - 1)
+                .any(|i| touches_triangle(point, outline[0], outline[i], outline[i + 1]))
+    });
+    if on_another {
+        return None;
+    }
     let target = match light {
         LightSource::Point(p) => p.to_f64(),
         LightSource::Directional(d) => [
@@ -46,12 +79,12 @@ pub fn sees_light(
             point[2] - f64::from(d[2]) * 1e6,
         ],
     };
-    !casters.iter().any(|Caster { polygon, outline }| {
+    Some(!casters.iter().any(|Caster { polygon, outline }| {
         !polygon.support().is_coincident(own.support())
             && (1..outline.len() - 1).any(|i| {
                 segment_hits_triangle(point, target, outline[0], outline[i], outline[i + 1])
             })
-    })
+    }))
 }
 
 /// Interior sample points of a fragment: its centroid and each vertex
