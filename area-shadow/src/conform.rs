@@ -107,25 +107,91 @@ pub struct ConformingMesh {
 /// Point indices over a uniform grid of cells, sorted by cell.
 struct Buckets {
     cell: f64,
-    /// (cell, index), sorted.
-    entries: Vec<([i64; 3], u32)>,
+    /// (cell, index), sorted; a cell packed into one integer (see
+    /// [`pack`]) so that the searches compare integers, not arrays.
+    entries: Vec<(u128, u32)>,
+    /// Per index, its place in `entries`.
+    position: Vec<u32>,
+    /// Per place in `entries`, the range of its cell's entries.
+    runs: Vec<(u32, u32)>,
+}
+
+/// `x` rounded down, as an integer (for cell keys; `f64::floor` is a
+/// library call).
+fn floor(x: f64) -> i64 {
+    let i = x as i64;
+    if (i as f64) > x { i - 1 } else { i }
+}
+
+/// Cell coordinates are offset by this, so that they pack unsigned.
+const CELL_OFFSET: i64 = 1 << 40;
+
+/// A cell `[x, y, z]` as one integer ordered as the cells are, x first:
+/// 42 bits per coordinate (cells are at least a grid unit, and grid
+/// coordinates stay below `2^25`).
+fn pack(k: [i64; 3]) -> u128 {
+    let c = |v: i64| (v + CELL_OFFSET) as u128;
+    (c(k[0]) << 84) | (c(k[1]) << 42) | c(k[2])
+}
+
+/// The cell of a packed key.
+fn unpack(key: u128) -> [i64; 3] {
+    let mask = (1_u128 << 42) - 1;
+    [key >> 84, (key >> 42) & mask, key & mask].map(|v| v as i64 - CELL_OFFSET)
 }
 
 impl Buckets {
     /// The buckets of `coords` (index `i` for `coords[i]`).
     fn new(cell: f64, coords: &[[f64; 3]]) -> Self {
-        let key = |p: [f64; 3]| p.map(|c| (c / cell).floor() as i64);
-        let mut entries: Vec<([i64; 3], u32)> = coords
+        let key = |p: [f64; 3]| pack(p.map(|c| floor(c / cell)));
+        let mut entries: Vec<(u128, u32)> = coords
             .par_iter()
             .enumerate()
             .map(|(i, &p)| (key(p), i as u32))
             .collect();
         entries.par_sort_unstable();
-        Self { cell, entries }
+        // Where each index sits, and the run of its cell.
+        let mut position = vec![0_u32; entries.len()];
+        let mut runs = vec![(0_u32, 0_u32); entries.len()];
+        let mut start = 0;
+        for p in 0..entries.len() {
+            position[entries[p].1 as usize] = p as u32;
+            if p + 1 == entries.len() || entries[p + 1].0 != entries[p].0 {
+                for run in &mut runs[start..=p] {
+                    *run = (start as u32, p as u32 + 1);
+                }
+                start = p + 1;
+            }
+        }
+        Self {
+            cell,
+            entries,
+            position,
+            runs,
+        }
     }
 
     fn key(&self, p: [f64; 3]) -> [i64; 3] {
-        p.map(|c| (c / self.cell).floor() as i64)
+        p.map(|c| floor(c / self.cell))
+    }
+
+    /// The indices within [`MARGIN`] of point `i` (at `p`), and maybe
+    /// more: when the margin box stays in `i`'s cell (nearly always: a cell
+    /// is many grid units), that cell's run of entries, found without a
+    /// search; else the box's cells. In (cell, index) order either way.
+    fn query_near(&self, i: usize, p: [f64; 3], out: &mut Vec<u32>) {
+        let (lo, hi) = (p.map(|x| x - MARGIN), p.map(|x| x + MARGIN));
+        if self.key(lo) != self.key(hi) {
+            self.query(lo, hi, out);
+            return;
+        }
+        let (start, end) = self.runs[self.position[i] as usize];
+        out.clear();
+        out.extend(
+            self.entries[start as usize..end as usize]
+                .iter()
+                .map(|&(_, id)| id),
+        );
     }
 
     /// Indices in the cells that the box `[lo, hi]` touches, in (cell,
@@ -133,29 +199,33 @@ impl Buckets {
     fn query(&self, lo: [f64; 3], hi: [f64; 3], out: &mut Vec<u32>) {
         out.clear();
         let (a, b) = (self.key(lo), self.key(hi));
-        let in_box = |k: &[i64; 3]| (0..3).all(|i| a[i] <= k[i] && k[i] <= b[i]);
+        let in_box = |k: [i64; 3]| (0..3).all(|i| a[i] <= k[i] && k[i] <= b[i]);
         // Cells with the same x and y are contiguous, and so are cells
         // with x in a range: one binary search per (x, y) column while
         // there are few columns, else one scan of the slab of x.
         let columns = (b[0] - a[0] + 1).saturating_mul(b[1] - a[1] + 1);
         if columns > 64 {
-            let from = self.entries.partition_point(|(k, _)| k[0] < a[0]);
+            // The first keys of x = a[0] and of x = b[0] + 1.
+            let low = -CELL_OFFSET;
+            let (from, to) = (pack([a[0], low, low]), pack([b[0] + 1, low, low]));
+            let start = self.entries.partition_point(|&(k, _)| k < from);
             out.extend(
-                self.entries[from..]
+                self.entries[start..]
                     .iter()
-                    .take_while(|(k, _)| k[0] <= b[0])
-                    .filter(|(k, _)| in_box(k))
+                    .take_while(|&&(k, _)| k < to)
+                    .filter(|&&(k, _)| in_box(unpack(k)))
                     .map(|&(_, id)| id),
             );
             return;
         }
         for x in a[0]..=b[0] {
             for y in a[1]..=b[1] {
-                let from = self.entries.partition_point(|(k, _)| *k < [x, y, a[2]]);
+                let (from, to) = (pack([x, y, a[2]]), pack([x, y, b[2]]));
+                let start = self.entries.partition_point(|&(k, _)| k < from);
                 out.extend(
-                    self.entries[from..]
+                    self.entries[start..]
                         .iter()
-                        .take_while(|(k, _)| *k <= [x, y, b[2]])
+                        .take_while(|&&(k, _)| k <= to)
                         .map(|&(_, id)| id),
                 );
             }
@@ -207,7 +277,7 @@ pub fn conform(fragments: &[ConvexPolygon]) -> ConformingMesh {
         .into_par_iter()
         .map_init(Vec::new, |found, i| {
             let c = corner_coords[i];
-            corner_buckets.query(c.map(|x| x - MARGIN), c.map(|x| x + MARGIN), found);
+            corner_buckets.query_near(i, c, found);
             let mut near = found.iter().copied().filter(|&j| {
                 let d = corner_coords[j as usize];
                 (j as usize) < i && (0..3).all(|a| (d[a] - c[a]).abs() <= 2.0 * MARGIN)
@@ -364,6 +434,72 @@ pub fn conform_fragments(
         }
         if !halved {
             return (fragments, mesh);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn packed_cells_order_as_the_cells_and_unpack() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_pcg::Pcg64::seed_from_u64(3);
+        let mut cell = || -> [i64; 3] {
+            let l = if rng.random_bool(0.5) { 1 << 26 } else { 3 };
+            [0; 3].map(|_| rng.random_range(-l..=l))
+        };
+        for _ in 0..20_000 {
+            let (a, b) = (cell(), cell());
+            assert_eq!(unpack(pack(a)), a);
+            assert_eq!(pack(a).cmp(&pack(b)), a.cmp(&b), "{a:?} {b:?}");
+        }
+    }
+
+    #[test]
+    fn floor_is_the_library_floor() {
+        for x in [
+            -2.5,
+            -2.0,
+            -1e-300,
+            -0.0,
+            0.0,
+            1e-300,
+            0.5,
+            1.0,
+            7.999,
+            -7.999,
+            1e12 + 0.5,
+        ] {
+            assert_eq!(floor(x), x.floor() as i64, "{x}");
+        }
+    }
+
+    #[test]
+    fn nearby_corners_come_from_their_cell_or_a_search() {
+        // Points in one cell, and points straddling cell faces: both paths
+        // give every index within the margin.
+        let coords: Vec<[f64; 3]> = (0..200)
+            .map(|i| {
+                let t = f64::from(i);
+                [t * 0.37 % 5.0, 10.0 - (t * 0.61) % 5.0, (t * 0.23) % 3.0]
+            })
+            .chain([
+                [1.0, 1.0, 1.0],
+                [1.0 + 1e-4, 1.0, 1.0],
+                [2.0 - 1e-4, 1.5, 0.5],
+            ])
+            .collect();
+        let buckets = Buckets::new(1.0, &coords);
+        let mut found = Vec::new();
+        for (i, &p) in coords.iter().enumerate() {
+            buckets.query_near(i, p, &mut found);
+            for (j, q) in coords.iter().enumerate() {
+                if (0..3).all(|a| (q[a] - p[a]).abs() <= MARGIN) {
+                    assert!(found.contains(&(j as u32)), "{j} near {i}");
+                }
+            }
         }
     }
 }
