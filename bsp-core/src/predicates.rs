@@ -284,6 +284,32 @@ pub fn exact_side_of_implicit(planes: [&Plane; 3], q: &Plane) -> Side {
     Side::of_sign(det * w.signum_i32())
 }
 
+/// Whether the implicit point `p1 ∩ p2 ∩ p3` lies on every plane of `qs`,
+/// exact. The determinants share the 2x2 minors of `p1` and `p2`: testing
+/// two points for equality (three planes each) costs about half of three
+/// [`exact_side_of_implicit`] calls. The planes must meet in one point.
+pub fn lies_on_all(planes: [&Plane; 3], qs: &[&Plane]) -> bool {
+    let row = |p: &Plane| {
+        let [a, b, c] = p.normal();
+        [i128::from(a), i128::from(b), i128::from(c), p.offset()]
+    };
+    let (r0, r1, r2) = (row(planes[0]), row(planes[1]), row(planes[2]));
+    let m = |j: usize, k: usize| minor(r0[j], r1[k], r0[k], r1[j]);
+    let (m01, m02, m12, m03, m13, m23) = (m(0, 1), m(0, 2), m(1, 2), m(0, 3), m(1, 3), m(2, 3));
+    qs.iter().all(|q| {
+        if planes.iter().any(|p| p.is_coincident(q)) {
+            return true;
+        }
+        EXACT_FALLBACKS.fetch_add(1, Ordering::Relaxed);
+        let r3 = row(q);
+        let n = |j: usize, k: usize| minor(r2[j], r3[k], r2[k], r3[j]);
+        // The 4x4 determinant of exact_side_of_implicit, tested for zero.
+        dot3([m03, m13.neg(), m23], [n(1, 2), n(0, 2), n(0, 1)])
+            .cmp_sum(dot3([m01, m02.neg(), m12], [n(2, 3), n(1, 3), n(0, 3)]))
+            == 0
+    })
+}
+
 /// A signed 256-bit sum, kept as `i128` while it fits.
 #[derive(Clone, Copy)]
 enum Wide {
@@ -516,7 +542,25 @@ impl ImplicitPoint {
 
     /// Whether this and `other` are the same point (exact).
     pub fn same_point(&self, other: &ImplicitPoint) -> bool {
-        other.planes.iter().all(|q| self.side(q) == Side::On)
+        // The filter rejects most; the planes it cannot decide (the point
+        // on them, most likely) go to one shared exact test.
+        let mut undecided: [&Plane; 3] = [&other.planes[0]; 3];
+        let mut count = 0;
+        for q in &other.planes {
+            if self.planes.iter().any(|p| p.is_coincident(q)) {
+                continue;
+            }
+            match self.filter.side(q) {
+                Some(Side::On) => {}
+                Some(_) => return false,
+                None => {
+                    undecided[count] = q;
+                    count += 1;
+                }
+            }
+        }
+        let [a, b, c] = &self.planes;
+        count == 0 || lies_on_all([a, b, c], &undecided[..count])
     }
 
     /// Coordinates in grid units, for output and illumination only.
@@ -604,6 +648,22 @@ mod tests {
                 assert_eq!(
                     exact_side_of_implicit([&p3.flipped(), &p2, &p1], &q),
                     expected
+                );
+                assert_eq!(lies_on_all([&p1, &p2, &p3], &[&q]), expected == Side::On);
+                // Equality of two implicit points against the cofactors.
+                if let (Ok(a), Ok(b)) = (
+                    ImplicitPoint::new(p1, p2, p3),
+                    ImplicitPoint::new(q, p2.flipped(), p1),
+                ) {
+                    let oracle = [&q, &p2, &p1]
+                        .iter()
+                        .all(|r| side_by_cofactors([&p1, &p2, &p3], r) == Side::On);
+                    assert_eq!(a.same_point(&b), oracle);
+                    assert_eq!(b.same_point(&a), oracle);
+                }
+                assert_eq!(
+                    lies_on_all([&p2, &p3, &p1], &[&q, &p1, &q.flipped()]),
+                    expected == Side::On
                 );
             }
         }
