@@ -300,16 +300,33 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     }
 
     /// The face's edge planes, counter-clockwise, each with the face behind
-    /// it; a plane repeated by collinear edges appears once.
+    /// it; collinear edges give one plane (the first one's: two planes
+    /// through one line may bound edges along it).
     fn face_planes(&self, f: FaceKey) -> Vec<Plane> {
         let mut planes: Vec<Plane> = Vec::new();
-        for e in self.face_edges(f) {
+        let edges = self.face_edges(f);
+        // Whether edge `e` of the walk lies along `plane` (its start, the
+        // end of the edge before it, does when that one lies in it).
+        let along = |e: EdgeKey, plane: &Plane| {
+            let edge = &self.edges[e];
+            let end = if edge.left == Some(f) {
+                edge.end
+            } else {
+                edge.start
+            };
+            self.vertices[end].position.side(plane) == Side::On
+        };
+        for &e in &edges {
             let plane = self.edge_plane_for(e, Some(f));
-            if planes.last() != Some(&plane) {
-                planes.push(plane);
+            match planes.last() {
+                Some(last) if *last == plane || along(e, last) => {}
+                _ => planes.push(plane),
             }
         }
-        if planes.len() > 1 && planes.first() == planes.last() {
+        if planes.len() > 1
+            && let Some(last) = planes.last()
+            && (planes.first() == Some(last) || along(edges[0], last))
+        {
             planes.pop();
         }
         planes

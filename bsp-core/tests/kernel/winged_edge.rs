@@ -193,6 +193,69 @@ fn walks_around_faces_and_vertices() {
     assert_eq!(mesh.counts(), (4, 4, 1));
 }
 
+#[test]
+fn straight_vertex_between_edges_of_two_planes_through_one_line() {
+    // Two planes of a scene can cut the face's plane in one line: here
+    // x = 4 and x + z = 4 both cut z = 0 along x = 4. A vertex where an
+    // edge of each meets is straight, and merging across that line must
+    // join them (dm-mesh's local deletion found it).
+    let square =
+        ConvexPolygon::from_grid_points(&[gp(0, 0, 0), gp(8, 0, 0), gp(8, 8, 0), gp(0, 8, 0)], 0)
+            .unwrap();
+    let mut mesh: WingedMesh = WingedMesh::from_polygon(&square, (), ());
+    let f = mesh.faces().next().unwrap().0;
+    let y4 = Plane::with_normal_through([0, 1, 0], gp(0, 4, 0)).unwrap();
+    let FaceSplit::Split {
+        back: low,
+        front: high,
+        ..
+    } = mesh.split_face(f, &y4)
+    else {
+        panic!("y = 4 cuts")
+    };
+    let x4 = Plane::with_normal_through([1, 0, 0], gp(4, 0, 0)).unwrap();
+    let tilted = Plane::with_normal_through([1, 0, 1], gp(4, 0, 0)).unwrap();
+    assert!(!x4.is_coincident(&tilted));
+    let FaceSplit::Split { .. } = mesh.split_face(low, &x4) else {
+        panic!("x = 4 cuts the lower half")
+    };
+    let FaceSplit::Split { .. } = mesh.split_face(high, &tilted) else {
+        panic!("x + z = 4 cuts the upper half")
+    };
+    mesh.check_invariants().unwrap();
+    // Undo the y = 4 cut on both sides of x = 4.
+    loop {
+        let Some(e) = mesh
+            .edges()
+            .find(|(_, e)| e.left.is_some() && e.right.is_some() && e.line.is_coincident(&y4))
+            .map(|(k, _)| k)
+        else {
+            break;
+        };
+        mesh.merge_faces(e).unwrap();
+        mesh.check_invariants().unwrap();
+    }
+    let centre = mesh
+        .faces()
+        .flat_map(|(f, _)| mesh.face_vertices(f))
+        .find(|&v| mesh.vertex(v).unwrap().position.to_f64() == [4.0, 4.0, 0.0])
+        .unwrap();
+    assert!(mesh.remove_vertex_if_collinear(centre));
+    mesh.check_invariants().unwrap();
+    let inner = mesh
+        .edges()
+        .find(|(_, e)| e.left.is_some() && e.right.is_some())
+        .unwrap()
+        .0;
+    let f = mesh.merge_faces(inner).unwrap();
+    for v in mesh.face_vertices(f) {
+        mesh.remove_vertex_if_collinear(v);
+    }
+    mesh.check_invariants().unwrap();
+    assert_eq!(mesh.counts(), (4, 4, 1));
+    assert_eq!(mesh.face_polygon(f, 0).unwrap().area(), 64.0);
+}
+
 fn cube_faces(s: i64) -> Vec<ConvexPolygon> {
     let c = |x: bool, y: bool, z: bool| {
         gp(
