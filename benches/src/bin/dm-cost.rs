@@ -22,6 +22,10 @@ use bsp_core::ConvexPolygon;
 use umbra::{Deletion, DmOptions, OverlapKind, Scene, dm_scene_with};
 use umbra_benches::dm_table::translated;
 
+/// The allocator of the `umbra` binary, so the figures are the command's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let [scene, object, moves, rebuilds, ..] = args.as_slice() else {
