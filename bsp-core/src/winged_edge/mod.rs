@@ -278,6 +278,28 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         }
     }
 
+    /// The vertices.
+    pub fn vertices(&self) -> impl Iterator<Item = (VertexKey, &Vertex)> {
+        self.vertices.iter()
+    }
+
+    /// The faces around a vertex (the outside as `None`), in the order of
+    /// [`vertex_faces`](Self::vertex_faces), without allocating.
+    pub fn faces_around(&self, v: VertexKey) -> impl Iterator<Item = Option<FaceKey>> + '_ {
+        let first = self.vertices[v].edge;
+        let mut at = Some(first);
+        let mut steps = 0;
+        std::iter::from_fn(move || {
+            let e = at?;
+            let edge = &self.edges[e];
+            let side = if edge.end == v { edge.left } else { edge.right };
+            let next = self.next_in(e, side);
+            steps += 1;
+            at = (next != first && steps <= self.edges.len()).then_some(next);
+            Some(side)
+        })
+    }
+
     /// The faces around a vertex (the outside as `None`).
     pub fn vertex_faces(&self, v: VertexKey) -> Vec<Option<FaceKey>> {
         self.vertex_edges(v)

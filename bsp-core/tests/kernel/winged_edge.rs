@@ -154,6 +154,8 @@ fn walks_around_faces_and_vertices() {
     assert_eq!(mesh.vertex_edges(centre).len(), 3);
     let faces = mesh.vertex_faces(centre);
     assert_eq!(faces.len(), 3);
+    assert_eq!(mesh.faces_around(centre).collect::<Vec<_>>(), faces);
+    assert_eq!(mesh.vertices().count(), mesh.counts().0);
     assert!(faces.iter().all(Option::is_some));
     // A plane through a vertex and along an edge touches without cutting.
     assert_eq!(
