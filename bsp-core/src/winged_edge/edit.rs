@@ -31,7 +31,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         Ok(self.split_edge_unchecked(e, position))
     }
 
-    fn split_edge_unchecked(
+    pub(super) fn split_edge_unchecked(
         &mut self,
         e: EdgeKey,
         position: VertexPosition,

@@ -27,6 +27,7 @@ use slotmap::{SlotMap, new_key_type};
 mod build;
 mod check;
 mod edit;
+mod graft;
 
 new_key_type! {
     /// Handle of a vertex.

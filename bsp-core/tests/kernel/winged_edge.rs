@@ -333,3 +333,62 @@ proptest! {
         prop_assert!((now - area).abs() <= 1e-9 * area);
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// A face replaced by a mesh of its polygon split on its own (its
+    /// neighbours split meanwhile, so the outlines have different
+    /// vertices): the result is one valid mesh with the grafted faces.
+    #[test]
+    fn grafted_faces_sew_into_their_neighbours(
+        polygon in convex_polygon(1500),
+        before in prop::collection::vec((0_usize..64, plane(1500)), 0..6),
+        inside in prop::collection::vec((0_usize..64, plane(1500)), 0..10),
+        after in prop::collection::vec((0_usize..64, plane(1500)), 0..8),
+        pick in 0_usize..64,
+    ) {
+        let mut mesh: WingedMesh<u32, ()> = WingedMesh::from_polygon(&polygon, 0, ());
+        for (i, p) in &before {
+            let f = nth_face_of(&mesh, *i);
+            mesh.split_face(f, p);
+        }
+        let f = nth_face_of(&mesh, pick);
+        let mut sub: WingedMesh<u32, ()> =
+            WingedMesh::from_polygon(&mesh.face_polygon(f, 0).unwrap(), 1, ());
+        for (i, p) in &inside {
+            let g = nth_face_of(&sub, *i);
+            sub.split_face(g, p);
+        }
+        for (i, p) in &after {
+            let g = nth_face_of(&mesh, *i);
+            if g != f {
+                mesh.split_face(g, p);
+            }
+        }
+        sub.check_invariants().unwrap();
+        let areas: Vec<(FaceKey, f64)> = sub
+            .faces()
+            .map(|(g, _)| (g, sub.face_polygon(g, 0).unwrap().area()))
+            .collect();
+        let faces = mesh.counts().2;
+        let map = mesh.graft(f, sub).unwrap();
+        mesh.check_invariants().unwrap();
+        prop_assert_eq!(mesh.counts().2, faces - 1 + areas.len());
+        for (g, area) in areas {
+            let got = mesh.face_polygon(map[g], 0).unwrap().area();
+            prop_assert!((got - area).abs() <= 1e-9 * polygon.area());
+            prop_assert_eq!(mesh.face(map[g]).unwrap().data, 1);
+        }
+        let total: f64 = mesh
+            .faces()
+            .map(|(g, _)| mesh.face_polygon(g, 0).unwrap().area())
+            .sum();
+        prop_assert!((total - polygon.area()).abs() <= 1e-9 * polygon.area());
+    }
+}
+
+fn nth_face_of<F: Clone>(mesh: &WingedMesh<F, ()>, i: usize) -> FaceKey {
+    let keys: Vec<FaceKey> = mesh.faces().map(|(k, _)| k).collect();
+    keys[i % keys.len()]
+}
