@@ -35,9 +35,11 @@ use slotmap::SlotMap;
 use smallvec::SmallVec;
 use std::collections::BTreeSet;
 
-/// Vertices of one receiver to evaluate from which on they are shared out
-/// among threads.
-const PARALLEL_VERTICES: usize = 4096;
+/// Vertices of one receiver to look at from which on they are shared out
+/// among threads (a quarter as many per task; one costs a few
+/// microseconds, so a move's few thousand on a big receiver are worth
+/// sharing).
+const PARALLEL_VERTICES: usize = 512;
 
 /// What covers a vertex from one light.
 #[derive(Debug, Clone, PartialEq, Eq)]

@@ -43,12 +43,27 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 };
                 region = inside;
             }
-            for (leaf, piece) in self.descend(node, region) {
-                let umbra = planes.volumes.umbra.as_deref();
-                self.grow_leaf(leaf, &piece, part, umbra, unit, light);
-                if !planes.internal.is_empty() {
-                    self.grow_internal(leaf, &planes.internal, unit);
-                }
+            self.merge_region(node, region, part, unit, light, planes);
+        }
+    }
+
+    /// Grows unit `unit`'s single tree in the cells of the subtree at
+    /// `node` that `region` (the receiver clipped by the penumbra planes
+    /// `part`, inside the node's cell) reaches.
+    pub(super) fn merge_region(
+        &mut self,
+        node: u32,
+        region: ConvexPolygon,
+        part: &[Plane],
+        unit: u32,
+        light: u8,
+        planes: &UnitPlanes,
+    ) {
+        for (leaf, piece) in self.descend(node, region) {
+            let umbra = planes.volumes.umbra.as_deref();
+            self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+            if !planes.internal.is_empty() {
+                self.grow_internal(leaf, &planes.internal, unit);
             }
         }
     }

@@ -35,7 +35,10 @@ mod arena;
 mod check;
 mod insert;
 mod removal;
+#[cfg(test)]
+mod testing;
 mod tile;
+mod tiled;
 
 pub use removal::Deletion;
 
