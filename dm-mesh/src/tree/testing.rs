@@ -104,7 +104,7 @@ pub(crate) fn fresh_tiled(units: &[(u32, &UnitPlanes)], tiles: u32) -> ReceiverD
     let order: Vec<(u32, u8)> = units.iter().map(|&(k, _)| (k, 0)).collect();
     let planes =
         |k: u32, _: u8| -> &UnitPlanes { units.iter().find(|u| u.0 == k).expect("a unit").1 };
-    dm.insert_tiled(tiles, &order, &planes);
+    dm.insert_tiles_apart(tiles, &order, &planes, 0);
     dm
 }
 

@@ -18,6 +18,10 @@ use crate::critical::UnitPlanes;
 use bsp_core::{ConvexPolygon, FaceKey, WingedMesh};
 use rayon::prelude::*;
 
+/// Units from which on a new receiver's tiles are grown apart (below, a
+/// mesh per tile and the grafting cost more than they save).
+const APART_UNITS: usize = 256;
+
 /// What reaches one tile: per unit, in order, the pieces of its penumbra
 /// regions (unit, penumbra part, piece).
 type TileJobs = Vec<(u32, u8, ConvexPolygon)>;
@@ -26,16 +30,29 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
     /// Cuts a receiver that has no unit yet into about `2^depth` tiles and
     /// merges `units` (occluder and light) in, in order, as
     /// [`insert`](Self::insert) one by one would, each tile grown apart
-    /// and in parallel; `planes` gives a unit's volume planes.
+    /// and in parallel when there are many; `planes` gives a unit's volume
+    /// planes.
     pub(crate) fn insert_tiled<'p>(
         &mut self,
         depth: u32,
         units: &[(K, u8)],
         planes: &(dyn Fn(K, u8) -> &'p UnitPlanes + Sync),
     ) {
-        let fresh = depth > 0 && self.units.is_empty() && !self.tracking;
-        let tiles = if fresh {
-            self.tile(depth);
+        self.insert_tiles_apart(depth, units, planes, APART_UNITS);
+    }
+
+    /// [`insert_tiled`](Self::insert_tiled), the tiles grown apart from
+    /// `apart` units on.
+    pub(super) fn insert_tiles_apart<'p>(
+        &mut self,
+        depth: u32,
+        units: &[(K, u8)],
+        planes: &(dyn Fn(K, u8) -> &'p UnitPlanes + Sync),
+        apart: usize,
+    ) {
+        let fresh = self.units.is_empty() && !self.tracking;
+        self.tile(depth);
+        let tiles = if fresh && depth > 0 && units.len() >= apart {
             self.leaves(self.root)
         } else {
             Vec::new()
