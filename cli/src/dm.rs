@@ -6,9 +6,10 @@
 use std::time::Instant;
 
 use area_shadow::AreaSource;
-use bsp_core::{ConvexPolygon, GridPoint};
+use bsp_core::{ConvexPolygon, GridPoint, VertexKey};
 use dm_mesh::{CellClass, DmLight, DmOptions, DmScene, IllumStats, ObjectId};
 use serde::Serialize;
+use slotmap::SecondaryMap;
 use svbsp::PieceFlags;
 
 use crate::decompose::{Pieces, SnappedLight};
@@ -197,18 +198,24 @@ impl DmRun {
                 let Some(receiver) = self.dm.receiver(piece) else {
                     continue;
                 };
-                let mut index = std::collections::HashMap::new();
+                // Output index of each vertex, numbered as first met.
+                let mut index: SecondaryMap<VertexKey, u32> = SecondaryMap::new();
                 for (face, cell) in receiver.cells() {
-                    let mut vertices = Vec::new();
-                    for v in receiver.mesh().face_vertices(face) {
-                        let next = mesh.vertices.len() as u32;
-                        let slot = *index.entry(v).or_insert_with(|| {
-                            let p = receiver.mesh().vertex(v).map(|x| x.position.to_f64());
-                            let e = self.dm.vertex_irradiance(piece, v).unwrap_or(0.0);
-                            let p = self.pieces.grid.grid_to_world(p.unwrap_or([0.0; 3]));
-                            mesh.vertices.push((p, e as f32));
-                            next
-                        });
+                    let corners = receiver.mesh().face_vertices(face);
+                    let mut vertices = Vec::with_capacity(corners.len());
+                    for v in corners {
+                        let slot = match index.get(v) {
+                            Some(&slot) => slot,
+                            None => {
+                                let slot = mesh.vertices.len() as u32;
+                                let p = receiver.mesh().vertex(v).map(|x| x.position.to_f64());
+                                let e = self.dm.vertex_irradiance(piece, v).unwrap_or(0.0);
+                                let p = self.pieces.grid.grid_to_world(p.unwrap_or([0.0; 3]));
+                                mesh.vertices.push((p, e as f32));
+                                index.insert(v, slot);
+                                slot
+                            }
+                        };
                         vertices.push(slot);
                     }
                     let (mut lit_mask, mut umbra_mask) = (0, 0);

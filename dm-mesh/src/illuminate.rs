@@ -27,7 +27,7 @@ use crate::cell::Cell;
 use crate::hash::{KeyMap, KeySet};
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
 use crate::tree::ReceiverDm;
-use bsp_core::{FaceKey, Side, VertexKey};
+use bsp_core::{Side, VertexKey};
 use illum::{Sidedness, VisiblePart, visible_irradiance};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
@@ -35,9 +35,11 @@ use slotmap::SlotMap;
 use smallvec::SmallVec;
 use std::collections::BTreeSet;
 
-/// Vertices of one receiver to evaluate from which on they are shared out
-/// among threads.
-const PARALLEL_VERTICES: usize = 4096;
+/// Vertices of one receiver to look at from which on they are shared out
+/// among threads (a quarter as many per task; one costs a few
+/// microseconds, so a move's few thousand on a big receiver are worth
+/// sharing).
+const PARALLEL_VERTICES: usize = 512;
 
 /// What covers a vertex from one light.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -221,98 +223,74 @@ fn illuminate_receiver(
         Sidedness::OneSided
     };
     let mesh = dm.mesh();
-    let faces: Vec<FaceKey> = if everything {
-        mesh.faces().map(|(f, _)| f).collect()
+    // Each vertex once: all of them the first time; after a change those
+    // of the faces touched (a hash set, not a secondary map: after a move
+    // only a few faces of a big receiver are looked at, and a secondary map
+    // would be as long as the receiver's vertex arena).
+    let vertices: Vec<VertexKey> = if everything {
+        mesh.vertices().map(|(v, _)| v).collect()
     } else {
+        let mut seen: KeySet<VertexKey> = KeySet::default();
+        seen.reserve(4 * touched.len());
         touched
+            .iter()
+            .flat_map(|&f| mesh.face_vertices(f))
+            .filter(|&v| seen.insert(v))
+            .collect()
+    };
+    stats.vertices = vertices.len();
+    let values = &state.values;
+    // The cases at a vertex, and its value if they changed: each depends on
+    // its vertex only, so a big receiver's vertices go in parallel chunks.
+    let work = |v: VertexKey, scratch: &mut VisiblePart| {
+        let cells: SmallVec<[&Cell; 6]> = mesh
+            .faces_around(v)
+            .flatten()
+            .filter_map(|f| mesh.face(f).map(|face| &face.data))
+            .collect();
+        let position = mesh.vertex(v).expect("face vertex").position;
+        let covers: SmallVec<[Cover; 2]> = lights
+            .iter()
+            .enumerate()
+            .map(|(i, light)| {
+                // In the light's plane the light is seen edge-on (exactly
+                // decided; f64 would be ill-conditioned where a receiver
+                // pierces the light).
+                if position.side(light.source.support()) == Side::On {
+                    Cover::Dark
+                } else {
+                    cover(&cells, i)
+                }
+            })
+            .collect();
+        if values.get(v).is_some_and(|value| value.covers == covers) {
+            return None;
+        }
+        let (irradiance, stats) = evaluate(
+            lights,
+            pieces,
+            dm,
+            position.to_f64(),
+            normal,
+            sided,
+            &covers,
+            scratch,
+        );
+        Some((v, VertexValue { covers, irradiance }, stats))
+    };
+    let results: Vec<_> = if vertices.len() >= PARALLEL_VERTICES {
+        vertices
+            .par_iter()
+            .with_min_len(PARALLEL_VERTICES / 4)
+            .map_init(VisiblePart::new, |scratch, &v| work(v, scratch))
+            .collect()
+    } else {
+        vertices.iter().map(|&v| work(v, scratch)).collect()
     };
     let values = &mut state.values;
-    // A hash set, not a secondary map: after a move only a few faces of a
-    // big receiver are looked at, and a secondary map would be as long as
-    // the receiver's vertex arena.
-    let mut seen: KeySet<VertexKey> = KeySet::default();
-    seen.reserve(4 * faces.len());
-    let mut todo: Vec<(VertexKey, [f64; 3], SmallVec<[Cover; 2]>)> = Vec::new();
-    for f in faces {
-        for v in mesh.face_vertices(f) {
-            if !seen.insert(v) {
-                continue;
-            }
-            stats.vertices += 1;
-            let cells: SmallVec<[&Cell; 6]> = mesh
-                .vertex_faces(v)
-                .into_iter()
-                .flatten()
-                .filter_map(|f| mesh.face(f).map(|face| &face.data))
-                .collect();
-            let position = mesh.vertex(v).expect("face vertex").position;
-            let covers: SmallVec<[Cover; 2]> = lights
-                .iter()
-                .enumerate()
-                .map(|(i, light)| {
-                    // In the light's plane the light is seen edge-on
-                    // (exactly decided; f64 would be ill-conditioned
-                    // where a receiver pierces the light).
-                    if position.side(light.source.support()) == Side::On {
-                        Cover::Dark
-                    } else {
-                        cover(&cells, i)
-                    }
-                })
-                .collect();
-            if values.get(v).is_some_and(|value| value.covers == covers) {
-                continue;
-            }
-            todo.push((v, position.to_f64(), covers));
-        }
-    }
-    // The visible part of the light at each vertex to evaluate: on a big
-    // receiver, in parallel chunks (each value depends on its vertex only).
-    let eval = |p: [f64; 3], covers: &[Cover], scratch: &mut VisiblePart| {
-        let mut stats = IllumStats {
-            evaluated: 1,
-            ..IllumStats::default()
-        };
-        let mut irradiance = 0.0;
-        for (light, cover) in lights.iter().zip(covers) {
-            irradiance += match cover {
-                Cover::Dark => {
-                    stats.dark += 1;
-                    0.0
-                }
-                Cover::Free => {
-                    stats.unoccluded += 1;
-                    light.illum.irradiance(p, normal, sided)
-                }
-                Cover::Occluders(units) => {
-                    stats.visibility += 1;
-                    stats.comparisons += units.len();
-                    let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
-                        .iter()
-                        .filter_map(|u| dm.unit(*u))
-                        .map(|(o, _)| pieces[o].outline.as_slice())
-                        .collect();
-                    visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
-                }
-            };
-        }
-        (irradiance, stats)
-    };
-    let results: Vec<(f64, IllumStats)> = if todo.len() >= PARALLEL_VERTICES {
-        todo.par_iter()
-            .with_min_len(PARALLEL_VERTICES / 4)
-            .map_init(VisiblePart::new, |scratch, (_, p, covers)| {
-                eval(*p, covers, scratch)
-            })
-            .collect()
-    } else {
-        todo.iter()
-            .map(|(_, p, covers)| eval(*p, covers, scratch))
-            .collect()
-    };
-    for ((v, _, covers), (irradiance, s)) in todo.into_iter().zip(results) {
+    for (v, value, s) in results.into_iter().flatten() {
         stats = stats.add(s);
-        values.insert(v, VertexValue { covers, irradiance });
+        values.insert(v, value);
     }
     // Values of vertices gone since are dropped now and then.
     let (live, _, _) = mesh.counts();
@@ -321,4 +299,47 @@ fn illuminate_receiver(
     }
     state.fresh = true;
     stats
+}
+
+/// The irradiance at a vertex at `p` (receiver normal `normal`) with the
+/// covers `covers` of the lights, and what it took.
+#[allow(clippy::too_many_arguments)] // (the receiver's fixed context, and the vertex)
+fn evaluate(
+    lights: &[DmLight],
+    pieces: &SlotMap<PieceId, Piece>,
+    dm: &ReceiverDm<PieceId>,
+    p: [f64; 3],
+    normal: [f64; 3],
+    sided: Sidedness,
+    covers: &[Cover],
+    scratch: &mut VisiblePart,
+) -> (f64, IllumStats) {
+    let mut stats = IllumStats {
+        evaluated: 1,
+        ..IllumStats::default()
+    };
+    let mut irradiance = 0.0;
+    for (light, cover) in lights.iter().zip(covers) {
+        irradiance += match cover {
+            Cover::Dark => {
+                stats.dark += 1;
+                0.0
+            }
+            Cover::Free => {
+                stats.unoccluded += 1;
+                light.illum.irradiance(p, normal, sided)
+            }
+            Cover::Occluders(units) => {
+                stats.visibility += 1;
+                stats.comparisons += units.len();
+                let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
+                    .iter()
+                    .filter_map(|u| dm.unit(*u))
+                    .map(|(o, _)| pieces[o].outline.as_slice())
+                    .collect();
+                visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
+            }
+        };
+    }
+    (irradiance, stats)
 }

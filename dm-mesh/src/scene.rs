@@ -409,14 +409,11 @@ impl DmScene {
             })
             .filter(|(_, (_, order))| !order.is_empty())
             .collect();
+        let planes = |occluder: PieceId, light: u8| &pieces[occluder].volumes[usize::from(light)];
         if jobs.len() <= 2 {
             // A small update: no tasks to hand out.
             for (r, (depth, order)) in jobs {
-                let dm = &mut self.receivers[r];
-                dm.tile(depth);
-                for (occluder, light) in order {
-                    dm.insert(occluder, light, &pieces[occluder].volumes[light as usize]);
-                }
+                self.receivers[r].insert_tiled(depth, &order, &planes);
             }
             return;
         }
@@ -429,10 +426,7 @@ impl DmScene {
         // The biggest first, so that no thread is left with one at the end.
         trees.sort_by_key(|(_, (_, order))| std::cmp::Reverse(order.len()));
         trees.par_iter_mut().for_each(|(dm, (depth, order))| {
-            dm.tile(*depth);
-            for &(occluder, light) in order.iter() {
-                dm.insert(occluder, light, &pieces[occluder].volumes[light as usize]);
-            }
+            dm.insert_tiled(*depth, order, &planes);
         });
     }
 
@@ -446,27 +440,38 @@ impl DmScene {
         for &o in &gone_pieces {
             touched.extend(self.overlap.receivers_near(o, &self.pieces));
         }
-        for r in touched {
-            if gone.contains(&r) {
-                continue;
+        // Per receiver the units that go; then the receivers in parallel
+        // (each tree only sees its own removal).
+        let mut jobs: KeyMap<PieceId, BTreeSet<u32>> = touched
+            .into_iter()
+            .filter(|r| !gone.contains(r))
+            .filter_map(|r| {
+                let units: BTreeSet<u32> = self
+                    .receivers
+                    .get(r)?
+                    .units()
+                    .filter(|(_, (o, _))| gone.contains(o))
+                    .map(|(u, _)| u)
+                    .collect();
+                (!units.is_empty()).then_some((r, units))
+            })
+            .collect();
+        let (pieces, how) = (&self.pieces, self.options.deletion);
+        let planes = |key: PieceId, light: u8| &pieces[key].volumes[usize::from(light)];
+        if jobs.len() <= 2 {
+            for (r, units) in jobs {
+                self.receivers[r].remove_units(&units, planes, how);
             }
-            let Some(dm) = self.receivers.get_mut(r) else {
-                continue;
-            };
-            let units: BTreeSet<u32> = dm
-                .units()
-                .filter(|(_, (o, _))| gone.contains(o))
-                .map(|(u, _)| u)
+        } else {
+            let mut work: Vec<(&mut ReceiverDm<PieceId>, BTreeSet<u32>)> = self
+                .receivers
+                .iter_mut()
+                .filter_map(|(r, dm)| jobs.remove(&r).map(|units| (dm, units)))
                 .collect();
-            if units.is_empty() {
-                continue;
-            }
-            let pieces = &self.pieces;
-            dm.remove_units(
-                &units,
-                |key, light| &pieces[key].volumes[light as usize],
-                self.options.deletion,
-            );
+            // The biggest first, so that no thread is left with one at the end.
+            work.sort_by_key(|(dm, _)| std::cmp::Reverse(dm.cell_count()));
+            work.par_iter_mut()
+                .for_each(|(dm, units)| dm.remove_units(units, planes, how));
         }
         for p in gone_pieces {
             self.overlap.remove(p);

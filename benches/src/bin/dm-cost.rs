@@ -22,6 +22,10 @@ use bsp_core::ConvexPolygon;
 use umbra::{Deletion, DmOptions, OverlapKind, Scene, dm_scene_with};
 use umbra_benches::dm_table::translated;
 
+/// The allocator of the `umbra` binary, so the figures are the command's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let [scene, object, moves, rebuilds, ..] = args.as_slice() else {
@@ -63,6 +67,32 @@ fn main() -> ExitCode {
     let cells =
         |dm: &umbra::DmRun| -> usize { dm.dm.receivers().map(|(_, r)| r.cell_count()).sum() };
     let cells_before = cells(&run);
+    // What bounds a move's share of a rebuild: the cells the object's
+    // pieces hold, and the cells of other receivers that list it (inside
+    // its penumbrae), all of which a move remakes.
+    let (mut own, mut listing) = (0, 0);
+    for (piece, dm) in run.dm.receivers() {
+        if run.dm.piece_object(piece) == Some(id) {
+            own += dm.cell_count();
+            continue;
+        }
+        listing += dm
+            .cells()
+            .filter(|(_, c)| {
+                c.entries().iter().any(|e| {
+                    dm.unit_source(e.unit)
+                        .is_some_and(|(o, _)| run.dm.piece_object(o) == Some(id))
+                })
+            })
+            .count();
+    }
+    eprintln!(
+        "footprint: {} pieces of {}; its pieces hold {own} of {cells_before} cells ({:.1} %), {listing} other cells list it ({:.1} %)",
+        ks.len(),
+        run.pieces.polygons.len(),
+        100.0 * own as f64 / cells_before as f64,
+        100.0 * listing as f64 / cells_before as f64
+    );
     let mut evaluated = 0;
     for m in 0..moves {
         let to = if m % 2 == 0 { &there } else { &here };
@@ -87,8 +117,9 @@ fn main() -> ExitCode {
         }
     }
     eprintln!(
-        "cells: {cells_before} after the build, {} after the moves",
-        cells(&run)
+        "cells: {cells_before} after the build, {} after the moves; {} vertices after the build",
+        cells(&run),
+        run.stats.dm.vertices
     );
     // DELETES (optional): removals of OBJECT from copies of the state.
     let deletes: u32 = args.get(4).and_then(|d| d.parse().ok()).unwrap_or(0);

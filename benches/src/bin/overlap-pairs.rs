@@ -14,6 +14,10 @@ use umbra::{DmOptions, OverlapKind, Scene, dm_scene_with};
 use umbra_benches::dm_table::{demo, translated};
 use umbra_benches::rooms::box_hall;
 
+/// The allocator of the `umbra` binary, so the figures are the command's.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]

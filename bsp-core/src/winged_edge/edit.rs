@@ -31,7 +31,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         Ok(self.split_edge_unchecked(e, position))
     }
 
-    fn split_edge_unchecked(
+    pub(super) fn split_edge_unchecked(
         &mut self,
         e: EdgeKey,
         position: VertexPosition,
@@ -248,7 +248,9 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     }
 
     /// Removes vertex `v` if exactly two edges meet there along one line
-    /// (checked exactly), joining them into one; returns whether it did.
+    /// (checked exactly; their line planes may be two planes through that
+    /// line), joining them into one, which keeps the first one's line
+    /// plane; returns whether it did.
     pub fn remove_vertex_if_collinear(&mut self, v: VertexKey) -> bool {
         self.join_at(v).is_some()
     }
@@ -261,8 +263,18 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         }
         let around = self.vertex_edges(v);
         let [e1, e2] = around[..] else { return None };
+        // Along one line on the faces' plane: either the same line plane,
+        // or two planes through that line (two planes of a scene can cut a
+        // face's plane in one line), when e2's far end lies in e1's plane.
         if !self.edges[e1].line.is_coincident(&self.edges[e2].line) {
-            return None;
+            let far = if self.edges[e2].start == v {
+                self.edges[e2].end
+            } else {
+                self.edges[e2].start
+            };
+            if self.vertices[far].position.side(&self.edges[e1].line) != Side::On {
+                return None;
+            }
         }
         // Make both run one way through v: `first` ends there, `second`
         // starts there.

@@ -27,6 +27,7 @@ use slotmap::{SlotMap, new_key_type};
 mod build;
 mod check;
 mod edit;
+mod graft;
 
 new_key_type! {
     /// Handle of a vertex.
@@ -278,6 +279,28 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         }
     }
 
+    /// The vertices.
+    pub fn vertices(&self) -> impl Iterator<Item = (VertexKey, &Vertex)> {
+        self.vertices.iter()
+    }
+
+    /// The faces around a vertex (the outside as `None`), in the order of
+    /// [`vertex_faces`](Self::vertex_faces), without allocating.
+    pub fn faces_around(&self, v: VertexKey) -> impl Iterator<Item = Option<FaceKey>> + '_ {
+        let first = self.vertices[v].edge;
+        let mut at = Some(first);
+        let mut steps = 0;
+        std::iter::from_fn(move || {
+            let e = at?;
+            let edge = &self.edges[e];
+            let side = if edge.end == v { edge.left } else { edge.right };
+            let next = self.next_in(e, side);
+            steps += 1;
+            at = (next != first && steps <= self.edges.len()).then_some(next);
+            Some(side)
+        })
+    }
+
     /// The faces around a vertex (the outside as `None`).
     pub fn vertex_faces(&self, v: VertexKey) -> Vec<Option<FaceKey>> {
         self.vertex_edges(v)
@@ -300,16 +323,33 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     }
 
     /// The face's edge planes, counter-clockwise, each with the face behind
-    /// it; a plane repeated by collinear edges appears once.
+    /// it; collinear edges give one plane (the first one's: two planes
+    /// through one line may bound edges along it).
     fn face_planes(&self, f: FaceKey) -> Vec<Plane> {
         let mut planes: Vec<Plane> = Vec::new();
-        for e in self.face_edges(f) {
+        let edges = self.face_edges(f);
+        // Whether edge `e` of the walk lies along `plane` (its start, the
+        // end of the edge before it, does when that one lies in it).
+        let along = |e: EdgeKey, plane: &Plane| {
+            let edge = &self.edges[e];
+            let end = if edge.left == Some(f) {
+                edge.end
+            } else {
+                edge.start
+            };
+            self.vertices[end].position.side(plane) == Side::On
+        };
+        for &e in &edges {
             let plane = self.edge_plane_for(e, Some(f));
-            if planes.last() != Some(&plane) {
-                planes.push(plane);
+            match planes.last() {
+                Some(last) if *last == plane || along(e, last) => {}
+                _ => planes.push(plane),
             }
         }
-        if planes.len() > 1 && planes.first() == planes.last() {
+        if planes.len() > 1
+            && let Some(last) = planes.last()
+            && (planes.first() == Some(last) || along(edges[0], last))
+        {
             planes.pop();
         }
         planes

@@ -154,6 +154,8 @@ fn walks_around_faces_and_vertices() {
     assert_eq!(mesh.vertex_edges(centre).len(), 3);
     let faces = mesh.vertex_faces(centre);
     assert_eq!(faces.len(), 3);
+    assert_eq!(mesh.faces_around(centre).collect::<Vec<_>>(), faces);
+    assert_eq!(mesh.vertices().count(), mesh.counts().0);
     assert!(faces.iter().all(Option::is_some));
     // A plane through a vertex and along an edge touches without cutting.
     assert_eq!(
@@ -191,6 +193,69 @@ fn walks_around_faces_and_vertices() {
     }
     mesh.check_invariants().unwrap();
     assert_eq!(mesh.counts(), (4, 4, 1));
+}
+
+#[test]
+fn straight_vertex_between_edges_of_two_planes_through_one_line() {
+    // Two planes of a scene can cut the face's plane in one line: here
+    // x = 4 and x + z = 4 both cut z = 0 along x = 4. A vertex where an
+    // edge of each meets is straight, and merging across that line must
+    // join them (dm-mesh's local deletion found it).
+    let square =
+        ConvexPolygon::from_grid_points(&[gp(0, 0, 0), gp(8, 0, 0), gp(8, 8, 0), gp(0, 8, 0)], 0)
+            .unwrap();
+    let mut mesh: WingedMesh = WingedMesh::from_polygon(&square, (), ());
+    let f = mesh.faces().next().unwrap().0;
+    let y4 = Plane::with_normal_through([0, 1, 0], gp(0, 4, 0)).unwrap();
+    let FaceSplit::Split {
+        back: low,
+        front: high,
+        ..
+    } = mesh.split_face(f, &y4)
+    else {
+        panic!("y = 4 cuts")
+    };
+    let x4 = Plane::with_normal_through([1, 0, 0], gp(4, 0, 0)).unwrap();
+    let tilted = Plane::with_normal_through([1, 0, 1], gp(4, 0, 0)).unwrap();
+    assert!(!x4.is_coincident(&tilted));
+    let FaceSplit::Split { .. } = mesh.split_face(low, &x4) else {
+        panic!("x = 4 cuts the lower half")
+    };
+    let FaceSplit::Split { .. } = mesh.split_face(high, &tilted) else {
+        panic!("x + z = 4 cuts the upper half")
+    };
+    mesh.check_invariants().unwrap();
+    // Undo the y = 4 cut on both sides of x = 4.
+    loop {
+        let Some(e) = mesh
+            .edges()
+            .find(|(_, e)| e.left.is_some() && e.right.is_some() && e.line.is_coincident(&y4))
+            .map(|(k, _)| k)
+        else {
+            break;
+        };
+        mesh.merge_faces(e).unwrap();
+        mesh.check_invariants().unwrap();
+    }
+    let centre = mesh
+        .faces()
+        .flat_map(|(f, _)| mesh.face_vertices(f))
+        .find(|&v| mesh.vertex(v).unwrap().position.to_f64() == [4.0, 4.0, 0.0])
+        .unwrap();
+    assert!(mesh.remove_vertex_if_collinear(centre));
+    mesh.check_invariants().unwrap();
+    let inner = mesh
+        .edges()
+        .find(|(_, e)| e.left.is_some() && e.right.is_some())
+        .unwrap()
+        .0;
+    let f = mesh.merge_faces(inner).unwrap();
+    for v in mesh.face_vertices(f) {
+        mesh.remove_vertex_if_collinear(v);
+    }
+    mesh.check_invariants().unwrap();
+    assert_eq!(mesh.counts(), (4, 4, 1));
+    assert_eq!(mesh.face_polygon(f, 0).unwrap().area(), 64.0);
 }
 
 fn cube_faces(s: i64) -> Vec<ConvexPolygon> {
@@ -267,4 +332,63 @@ proptest! {
         let now = total_area(&mesh);
         prop_assert!((now - area).abs() <= 1e-9 * area);
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(300))]
+
+    /// A face replaced by a mesh of its polygon split on its own (its
+    /// neighbours split meanwhile, so the outlines have different
+    /// vertices): the result is one valid mesh with the grafted faces.
+    #[test]
+    fn grafted_faces_sew_into_their_neighbours(
+        polygon in convex_polygon(1500),
+        before in prop::collection::vec((0_usize..64, plane(1500)), 0..6),
+        inside in prop::collection::vec((0_usize..64, plane(1500)), 0..10),
+        after in prop::collection::vec((0_usize..64, plane(1500)), 0..8),
+        pick in 0_usize..64,
+    ) {
+        let mut mesh: WingedMesh<u32, ()> = WingedMesh::from_polygon(&polygon, 0, ());
+        for (i, p) in &before {
+            let f = nth_face_of(&mesh, *i);
+            mesh.split_face(f, p);
+        }
+        let f = nth_face_of(&mesh, pick);
+        let mut sub: WingedMesh<u32, ()> =
+            WingedMesh::from_polygon(&mesh.face_polygon(f, 0).unwrap(), 1, ());
+        for (i, p) in &inside {
+            let g = nth_face_of(&sub, *i);
+            sub.split_face(g, p);
+        }
+        for (i, p) in &after {
+            let g = nth_face_of(&mesh, *i);
+            if g != f {
+                mesh.split_face(g, p);
+            }
+        }
+        sub.check_invariants().unwrap();
+        let areas: Vec<(FaceKey, f64)> = sub
+            .faces()
+            .map(|(g, _)| (g, sub.face_polygon(g, 0).unwrap().area()))
+            .collect();
+        let faces = mesh.counts().2;
+        let map = mesh.graft(f, sub).unwrap();
+        mesh.check_invariants().unwrap();
+        prop_assert_eq!(mesh.counts().2, faces - 1 + areas.len());
+        for (g, area) in areas {
+            let got = mesh.face_polygon(map[g], 0).unwrap().area();
+            prop_assert!((got - area).abs() <= 1e-9 * polygon.area());
+            prop_assert_eq!(mesh.face(map[g]).unwrap().data, 1);
+        }
+        let total: f64 = mesh
+            .faces()
+            .map(|(g, _)| mesh.face_polygon(g, 0).unwrap().area())
+            .sum();
+        prop_assert!((total - polygon.area()).abs() <= 1e-9 * polygon.area());
+    }
+}
+
+fn nth_face_of<F: Clone>(mesh: &WingedMesh<F, ()>, i: usize) -> FaceKey {
+    let keys: Vec<FaceKey> = mesh.faces().map(|(k, _)| k).collect();
+    keys[i % keys.len()]
 }

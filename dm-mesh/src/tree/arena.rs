@@ -8,7 +8,7 @@ use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, Side, Split};
 
 /// No position in a unit's node list (a leaf, a free slot, or a node of
 /// an untracked unit).
-const UNLISTED: u32 = u32::MAX;
+pub(super) const UNLISTED: u32 = u32::MAX;
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// The face of a leaf.

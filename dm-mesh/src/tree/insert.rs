@@ -43,12 +43,27 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 };
                 region = inside;
             }
-            for (leaf, piece) in self.descend(node, region) {
-                let umbra = planes.volumes.umbra.as_deref();
-                self.grow_leaf(leaf, &piece, part, umbra, unit, light);
-                if !planes.internal.is_empty() {
-                    self.grow_internal(leaf, &planes.internal, unit);
-                }
+            self.merge_region(node, region, part, unit, light, planes);
+        }
+    }
+
+    /// Grows unit `unit`'s single tree in the cells of the subtree at
+    /// `node` that `region` (the receiver clipped by the penumbra planes
+    /// `part`, inside the node's cell) reaches.
+    pub(super) fn merge_region(
+        &mut self,
+        node: u32,
+        region: ConvexPolygon,
+        part: &[Plane],
+        unit: u32,
+        light: u8,
+        planes: &UnitPlanes,
+    ) {
+        for (leaf, piece) in self.descend(node, region) {
+            let umbra = planes.volumes.umbra.as_deref();
+            self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+            if !planes.internal.is_empty() {
+                self.grow_internal(leaf, &planes.internal, unit);
             }
         }
     }
@@ -76,7 +91,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             self.seeds[unit as usize] = self.face_of(leaf);
             return;
         }
-        let Some(inner) = self.chain(leaf, penumbra, unit) else {
+        // Only the planes that bound the cell's part of the region cut the
+        // cell where it matters: the others are redundant there (the cell
+        // and the bounding ones already keep the part inside them), and
+        // splitting by them would only make cells that change nothing.
+        let Some(inner) = self.chain(leaf, bounding(penumbra, piece), unit) else {
             return;
         };
         self.cell_mut(inner).add(Entry {
@@ -86,10 +105,10 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         });
         self.seeds[unit as usize] = self.face_of(inner);
         let Some(umbra) = umbra else { return };
-        if clip(piece, umbra).is_none() {
+        let Some(core) = clip(piece, umbra) else {
             return;
-        }
-        if let Some(core) = self.chain(inner, umbra, unit) {
+        };
+        if let Some(core) = self.chain(inner, bounding(umbra, &core), unit) {
             self.cell_mut(core).add(Entry {
                 unit,
                 light,
@@ -153,7 +172,12 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// Splits the cell at `leaf` by `planes` in turn, following the back;
     /// the innermost leaf, or `None` if a plane leaves the cell in front.
-    fn chain(&mut self, leaf: u32, planes: &[Plane], unit: u32) -> Option<u32> {
+    fn chain<'a>(
+        &mut self,
+        leaf: u32,
+        planes: impl IntoIterator<Item = &'a Plane>,
+        unit: u32,
+    ) -> Option<u32> {
         let mut cur = leaf;
         for plane in planes {
             match self.split_leaf(cur, plane, unit) {
@@ -164,4 +188,10 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         }
         Some(cur)
     }
+}
+
+/// The planes of `planes` (in their order) that hold an edge of `part`, a
+/// convex polygon inside all of them: those that bound it.
+fn bounding<'a>(planes: &'a [Plane], part: &'a ConvexPolygon) -> impl Iterator<Item = &'a Plane> {
+    planes.iter().filter(|p| part.edges().contains(p))
 }

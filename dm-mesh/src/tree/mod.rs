@@ -11,12 +11,17 @@
 //! leaf it reaches the chain is grown in place: a plane that cuts the cell
 //! becomes a node, the cell part in front keeps its list, and the innermost
 //! part adds the occluder to its list (marked umbra past the umbra chain).
-//! Only the planes that cut a cell make nodes, so every node's line spans
-//! just its own cell (the sub-hyperplane is the mesh edge it made).
+//! Only the planes that bound the cell's part of the region (edges of the
+//! piece the filtering brought to the leaf) are tried: the others are
+//! redundant in that cell, and would only cut off cells with the same list.
+//! So every node's line spans just its own cell (the sub-hyperplane is the
+//! mesh edge it made).
 //!
 //! A receiver many units reach is first cut into tiles
 //! ([`ReceiverDm::tile`]): construction nodes like the light planes', never
-//! removed, that keep every later subtree local.
+//! removed, that keep every later subtree local. A new receiver's tiles are
+//! then grown apart, in parallel, each in a mesh of its own, and grafted
+//! into its tree and mesh (module `tiled`).
 //!
 //! Every unit keeps the exact list of its nodes, wherever they are, so that
 //! removing it ([`ReceiverDm::remove_units`], module `removal`) finds them:
@@ -35,7 +40,10 @@ mod arena;
 mod check;
 mod insert;
 mod removal;
+#[cfg(test)]
+mod testing;
 mod tile;
+mod tiled;
 
 pub use removal::Deletion;
 
