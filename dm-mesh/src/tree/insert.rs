@@ -61,15 +61,33 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     ) {
         for (leaf, piece) in self.descend(node, region) {
             let umbra = planes.volumes.umbra.as_deref();
-            self.grow_leaf(leaf, &piece, part, umbra, unit, light);
-            if !planes.internal.is_empty() {
-                self.grow_internal(leaf, &planes.internal, unit);
+            let grown = self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+            if planes.internal.is_empty() {
+                continue;
+            }
+            if grown {
+                // The cells that now list the unit lie in `piece`: an
+                // internal discontinuity that does not cross the piece
+                // crosses none of them, and is not tried on each.
+                let crossing: Vec<&Critical> = planes
+                    .internal
+                    .iter()
+                    .filter(|c| crosses(&piece, c))
+                    .collect();
+                if !crossing.is_empty() {
+                    self.grow_internal(leaf, &crossing, unit);
+                }
+            } else {
+                let all: Vec<&Critical> = planes.internal.iter().collect();
+                self.grow_internal(leaf, &all, unit);
             }
         }
     }
 
     /// Grows the unit's single tree at one leaf whose cell meets the
-    /// unit's penumbra region in `piece` (with area).
+    /// unit's penumbra region in `piece` (with area). Whether it did: the
+    /// leaf did not list the unit yet, and its cells inside `piece` now do
+    /// (the part outside the umbra, if any).
     fn grow_leaf(
         &mut self,
         leaf: u32,
@@ -78,25 +96,25 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         umbra: Option<&[Plane]>,
         unit: u32,
         light: u8,
-    ) {
+    ) -> bool {
         let cell = self.cell(leaf);
         if cell.has_unit(unit) || cell.culled.contains(&unit) || cell.unreached(usize::from(light))
         {
-            return;
+            return false;
         }
         if cell.in_umbra(usize::from(light)) {
             // Umbra already: the occluder changes nothing here, unless the
             // occluder making the umbra goes; remember it for then.
             self.cell_mut(leaf).culled.push(unit);
             self.seeds[unit as usize] = self.face_of(leaf);
-            return;
+            return false;
         }
         // Only the planes that bound the cell's part of the region cut the
         // cell where it matters: the others are redundant there (the cell
         // and the bounding ones already keep the part inside them), and
         // splitting by them would only make cells that change nothing.
         let Some(inner) = self.chain(leaf, bounding(penumbra, piece), unit) else {
-            return;
+            return false;
         };
         self.cell_mut(inner).add(Entry {
             unit,
@@ -104,9 +122,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             umbra: false,
         });
         self.seeds[unit as usize] = self.face_of(inner);
-        let Some(umbra) = umbra else { return };
+        let Some(umbra) = umbra else { return true };
         let Some(core) = clip(piece, umbra) else {
-            return;
+            return true;
         };
         if let Some(core) = self.chain(inner, bounding(umbra, &core), unit) {
             self.cell_mut(core).add(Entry {
@@ -115,12 +133,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 umbra: true,
             });
         }
+        true
     }
 
     /// Splits the cells of the subtree at `node` that list `unit` outside
     /// its umbra by its internal discontinuities, each where its wedge
     /// crosses the cell.
-    fn grow_internal(&mut self, node: u32, internal: &[Critical], unit: u32) {
+    fn grow_internal(&mut self, node: u32, internal: &[&Critical], unit: u32) {
         let mut cells: Vec<(u32, ConvexPolygon)> = self
             .leaves(node)
             .into_iter()
@@ -138,12 +157,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         for critical in internal {
             let mut next = Vec::with_capacity(cells.len());
             for (leaf, polygon) in cells {
-                // The plane must cut the cell (cheap, no polygon made),
-                // and then the cell's part inside the wedge.
-                let crosses = polygon.classify(&critical.plane) == PolygonSide::Both
-                    && clip(&polygon, &critical.wedge)
-                        .is_some_and(|part| part.classify(&critical.plane) == PolygonSide::Both);
-                if !crosses {
+                if !crosses(&polygon, critical) {
                     next.push((leaf, polygon));
                     continue;
                 }
@@ -188,6 +202,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         }
         Some(cur)
     }
+}
+
+/// Whether an internal discontinuity crosses `polygon`: its plane cuts
+/// the polygon (cheap, no polygon made), and then the polygon's part inside
+/// the wedge.
+fn crosses(polygon: &ConvexPolygon, critical: &Critical) -> bool {
+    polygon.classify(&critical.plane) == PolygonSide::Both
+        && clip(polygon, &critical.wedge)
+            .is_some_and(|part| part.classify(&critical.plane) == PolygonSide::Both)
 }
 
 /// The planes of `planes` (in their order) that hold an edge of `part`, a
