@@ -42,6 +42,7 @@
 //! ```
 
 mod autopartition;
+mod chord;
 mod error;
 mod grid;
 mod line2d;

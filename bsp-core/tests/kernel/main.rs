@@ -1,5 +1,6 @@
 //! Integration tests of the exact kernel, as one binary.
 
+mod chord;
 mod common;
 mod scene_bsp;
 mod solid;

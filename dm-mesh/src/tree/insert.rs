@@ -3,7 +3,7 @@
 use super::{Reach, ReceiverDm, clip};
 use crate::cell::Entry;
 use crate::critical::{Critical, UnitPlanes};
-use bsp_core::{ConvexPolygon, FaceKey, Plane, PolygonSide, Side, Split};
+use bsp_core::{ConvexPolygon, FaceKey, Plane, Side, Split};
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Appends a unit (occluder `key` under light `light`, with its volume
@@ -205,12 +205,10 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 }
 
 /// Whether an internal discontinuity crosses `polygon`: its plane cuts
-/// the polygon (cheap, no polygon made), and then the polygon's part inside
-/// the wedge.
+/// the polygon's part inside the wedge (decided on the plane's chord, no
+/// polygon made).
 fn crosses(polygon: &ConvexPolygon, critical: &Critical) -> bool {
-    polygon.classify(&critical.plane) == PolygonSide::Both
-        && clip(polygon, &critical.wedge)
-            .is_some_and(|part| part.classify(&critical.plane) == PolygonSide::Both)
+    polygon.crosses_inside(&critical.plane, &critical.wedge)
 }
 
 /// The planes of `planes` (in their order) that hold an edge of `part`, a
