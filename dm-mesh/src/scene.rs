@@ -1,19 +1,17 @@
 //! A scene of objects under area lights, with one DM-tree per receiving
 //! polygon, kept up to date as objects are added, removed and moved.
 
-use crate::critical::{UnitPlanes, internal_planes};
+use crate::critical::UnitPlanes;
 use crate::error::Error;
-use crate::hash::KeyMap;
 use crate::illuminate::ReceiverIllum;
-use crate::order::unit_order;
 use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
 use crate::tree::{Deletion, ReceiverDm};
-use area_shadow::{AreaSource, SourceSide, volume_planes};
+use area_shadow::AreaSource;
 use bsp_core::ConvexPolygon;
-use rayon::prelude::*;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
-use std::collections::BTreeSet;
 use svbsp::PieceFlags;
+
+mod update;
 
 new_key_type! {
     /// Handle of an object (a group of polygons added, moved and removed
@@ -211,10 +209,7 @@ impl DmScene {
             None if self.objects.contains_key(id) => PieceFlags::default(),
             None => return Err(Error::UnknownObject),
         };
-        self.detach(id)?;
-        let added = self.attach(id, polygons, flags)?;
-        self.cast(&added);
-        Ok(())
+        self.replace(id, polygons, flags)
     }
 
     /// The pieces of an object, in the order given.
@@ -299,185 +294,6 @@ impl DmScene {
             if (0..p.len()).any(|i| p.vertex_grid_point(i).is_none()) {
                 return Err(Error::ImplicitInput(k));
             }
-        }
-        Ok(())
-    }
-
-    /// Creates the pieces and their empty receivers.
-    fn attach(
-        &mut self,
-        id: ObjectId,
-        polygons: Vec<ConvexPolygon>,
-        flags: PieceFlags,
-    ) -> Result<Vec<PieceId>, Error> {
-        Self::validate(&polygons)?;
-        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
-        let mut added = Vec::with_capacity(polygons.len());
-        for polygon in polygons {
-            let volumes = sources
-                .iter()
-                .map(|light| {
-                    let turned_away = flags.closed_surface
-                        && matches!(
-                            light.side_of(polygon.support()),
-                            SourceSide::Back | SourceSide::In
-                        );
-                    if flags.casts_shadows && !turned_away {
-                        let volumes = volume_planes(&polygon, light);
-                        let internal = if self.options.internal_discontinuities {
-                            internal_planes(&polygon, light, &volumes)
-                        } else {
-                            Vec::new()
-                        };
-                        UnitPlanes { volumes, internal }
-                    } else {
-                        UnitPlanes::default()
-                    }
-                })
-                .collect();
-            let outline = polygon.vertices_f64();
-            let receiver = ReceiverDm::new(polygon.clone(), flags.two_sided, &sources);
-            let key = self.pieces.insert(Piece {
-                polygon,
-                object: id,
-                flags,
-                volumes,
-                outline,
-            });
-            self.receivers.insert(key, receiver);
-            self.illum.insert(key, ReceiverIllum::default());
-            self.overlap.insert(key, &self.pieces[key]);
-            added.push(key);
-        }
-        self.objects[id].pieces.extend(&added);
-        Ok(added)
-    }
-
-    /// Casts the shadows of `added` (new pieces) on every receiver, and of
-    /// every occluder on the new receivers.
-    ///
-    /// Which units go into which receiver, and in what order, is decided
-    /// first; then the receivers are worked on in parallel (each tree only
-    /// ever sees its own units, in the same order, so the result does not
-    /// depend on the number of threads).
-    fn cast(&mut self, added: &[PieceId]) {
-        self.overlap.refresh(&self.pieces);
-        let new: BTreeSet<PieceId> = added.iter().copied().collect();
-        // Old receivers the new occluders may reach.
-        let mut touched: BTreeSet<PieceId> = BTreeSet::new();
-        for &o in added {
-            touched.extend(
-                self.overlap
-                    .receivers_near(o, &self.pieces)
-                    .into_iter()
-                    .filter(|r| !new.contains(r)),
-            );
-        }
-        let targets: Vec<(PieceId, bool)> = added
-            .iter()
-            .map(|&r| (r, true))
-            .chain(touched.into_iter().map(|r| (r, false)))
-            .filter(|(r, _)| !self.receivers[*r].in_the_dark())
-            .collect();
-        let (lights, pieces, overlap) = (&self.lights, &self.pieces, &self.overlap);
-        let jobs: Vec<(PieceId, Order)> = targets
-            .par_iter()
-            .map(|&(r, fresh)| {
-                // New receivers: every occluder the overlap structure pairs
-                // them with. Old ones: the new occluders, appended.
-                let candidates: Vec<PieceId> = if fresh {
-                    overlap.occluders_near(r, pieces)
-                } else {
-                    added
-                        .iter()
-                        .copied()
-                        .filter(|o| overlap.may_shadow(*o, r, pieces))
-                        .collect()
-                };
-                let order = unit_order(lights, pieces, &candidates);
-                // A new receiver that many units reach starts as a
-                // balanced tree of tiles, about one per TILE_UNITS units.
-                let depth = if fresh {
-                    (order.len() / TILE_UNITS)
-                        .max(1)
-                        .ilog2()
-                        .min(MAX_TILE_DEPTH)
-                } else {
-                    0
-                };
-                (r, (depth, order))
-            })
-            .filter(|(_, (_, order))| !order.is_empty())
-            .collect();
-        let planes = |occluder: PieceId, light: u8| &pieces[occluder].volumes[usize::from(light)];
-        if jobs.len() <= 2 {
-            // A small update: no tasks to hand out.
-            for (r, (depth, order)) in jobs {
-                self.receivers[r].insert_tiled(depth, &order, &planes);
-            }
-            return;
-        }
-        let mut work: KeyMap<PieceId, Order> = jobs.into_iter().collect();
-        let mut trees: Vec<(&mut ReceiverDm<PieceId>, Order)> = self
-            .receivers
-            .iter_mut()
-            .filter_map(|(r, dm)| work.remove(&r).map(|order| (dm, order)))
-            .collect();
-        // The biggest first, so that no thread is left with one at the end.
-        trees.sort_by_key(|(_, (_, order))| std::cmp::Reverse(order.len()));
-        trees.par_iter_mut().for_each(|(dm, (depth, order))| {
-            dm.insert_tiled(*depth, order, &planes);
-        });
-    }
-
-    /// Removes an object's pieces and their discontinuities.
-    fn detach(&mut self, id: ObjectId) -> Result<(), Error> {
-        let object = self.objects.get_mut(id).ok_or(Error::UnknownObject)?;
-        let gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
-        let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
-        self.overlap.refresh(&self.pieces);
-        let mut touched: BTreeSet<PieceId> = BTreeSet::new();
-        for &o in &gone_pieces {
-            touched.extend(self.overlap.receivers_near(o, &self.pieces));
-        }
-        // Per receiver the units that go; then the receivers in parallel
-        // (each tree only sees its own removal).
-        let mut jobs: KeyMap<PieceId, BTreeSet<u32>> = touched
-            .into_iter()
-            .filter(|r| !gone.contains(r))
-            .filter_map(|r| {
-                let units: BTreeSet<u32> = self
-                    .receivers
-                    .get(r)?
-                    .units()
-                    .filter(|(_, (o, _))| gone.contains(o))
-                    .map(|(u, _)| u)
-                    .collect();
-                (!units.is_empty()).then_some((r, units))
-            })
-            .collect();
-        let (pieces, how) = (&self.pieces, self.options.deletion);
-        let planes = |key: PieceId, light: u8| &pieces[key].volumes[usize::from(light)];
-        if jobs.len() <= 2 {
-            for (r, units) in jobs {
-                self.receivers[r].remove_units(&units, planes, how);
-            }
-        } else {
-            let mut work: Vec<(&mut ReceiverDm<PieceId>, BTreeSet<u32>)> = self
-                .receivers
-                .iter_mut()
-                .filter_map(|(r, dm)| jobs.remove(&r).map(|units| (dm, units)))
-                .collect();
-            // The biggest first, so that no thread is left with one at the end.
-            work.sort_by_key(|(dm, _)| std::cmp::Reverse(dm.cell_count()));
-            work.par_iter_mut()
-                .for_each(|(dm, units)| dm.remove_units(units, planes, how));
-        }
-        for p in gone_pieces {
-            self.overlap.remove(p);
-            self.receivers.remove(p);
-            self.illum.remove(p);
-            self.pieces.remove(p);
         }
         Ok(())
     }

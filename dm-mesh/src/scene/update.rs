@@ -1,0 +1,268 @@
+//! Changing a scene: pieces attached and detached, and the units that
+//! come and go per receiver, applied to the receivers in one parallel pass.
+//!
+//! A change is decided first (which units leave and which enter each
+//! receiver, in what order), then applied: every receiver removes its
+//! leaving units and then merges its entering ones, the receivers side by
+//! side (each tree only ever sees its own units, in the same order, so the
+//! result does not depend on the number of threads). A move does both in
+//! that one pass: a big receiver's removal and insertion run on one thread
+//! while the small ones share the other, instead of two passes each
+//! waiting for the big receiver.
+
+use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, TILE_UNITS};
+use crate::critical::{UnitPlanes, internal_planes};
+use crate::error::Error;
+use crate::hash::KeyMap;
+use crate::illuminate::ReceiverIllum;
+use crate::order::unit_order;
+use crate::tree::ReceiverDm;
+use area_shadow::{AreaSource, SourceSide, volume_planes};
+use bsp_core::ConvexPolygon;
+use rayon::prelude::*;
+use slotmap::SlotMap;
+use std::collections::BTreeSet;
+use svbsp::PieceFlags;
+
+/// Per receiver, the units that leave it.
+type Removals = KeyMap<PieceId, BTreeSet<u32>>;
+/// Per receiver, the units that enter it (after tiling it to a depth).
+type Insertions = KeyMap<PieceId, Order>;
+/// One receiver's part of a change: units out, then units in.
+type Work<'a> = (
+    &'a mut ReceiverDm<PieceId>,
+    Option<BTreeSet<u32>>,
+    Option<Order>,
+);
+
+impl DmScene {
+    /// Creates the pieces and their empty receivers.
+    pub(super) fn attach(
+        &mut self,
+        id: ObjectId,
+        polygons: Vec<ConvexPolygon>,
+        flags: PieceFlags,
+    ) -> Result<Vec<PieceId>, Error> {
+        Self::validate(&polygons)?;
+        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
+        let mut added = Vec::with_capacity(polygons.len());
+        for polygon in polygons {
+            let volumes = sources
+                .iter()
+                .map(|light| {
+                    let turned_away = flags.closed_surface
+                        && matches!(
+                            light.side_of(polygon.support()),
+                            SourceSide::Back | SourceSide::In
+                        );
+                    if flags.casts_shadows && !turned_away {
+                        let volumes = volume_planes(&polygon, light);
+                        let internal = if self.options.internal_discontinuities {
+                            internal_planes(&polygon, light, &volumes)
+                        } else {
+                            Vec::new()
+                        };
+                        UnitPlanes { volumes, internal }
+                    } else {
+                        UnitPlanes::default()
+                    }
+                })
+                .collect();
+            let outline = polygon.vertices_f64();
+            let receiver = ReceiverDm::new(polygon.clone(), flags.two_sided, &sources);
+            let key = self.pieces.insert(Piece {
+                polygon,
+                object: id,
+                flags,
+                volumes,
+                outline,
+            });
+            self.receivers.insert(key, receiver);
+            self.illum.insert(key, ReceiverIllum::default());
+            self.overlap.insert(key, &self.pieces[key]);
+            added.push(key);
+        }
+        self.objects[id].pieces.extend(&added);
+        Ok(added)
+    }
+
+    /// Casts the shadows of `added` (new pieces) on every receiver, and of
+    /// every occluder on the new receivers.
+    pub(super) fn cast(&mut self, added: &[PieceId]) {
+        let insertions = self.insertions(added);
+        self.apply(Removals::default(), insertions, &KeyMap::default());
+    }
+
+    /// Removes an object's pieces and their discontinuities.
+    pub(super) fn detach(&mut self, id: ObjectId) -> Result<(), Error> {
+        let (gone, removals) = self.removals(id)?;
+        let left = self.forget(gone);
+        self.apply(removals, Insertions::default(), &left);
+        Ok(())
+    }
+
+    /// Replaces an object's pieces by pieces of `polygons` (validated), in
+    /// one pass over the receivers.
+    pub(super) fn replace(
+        &mut self,
+        id: ObjectId,
+        polygons: Vec<ConvexPolygon>,
+        flags: PieceFlags,
+    ) -> Result<(), Error> {
+        let (gone, removals) = self.removals(id)?;
+        let left = self.forget(gone);
+        let added = self.attach(id, polygons, flags)?;
+        let insertions = self.insertions(&added);
+        self.apply(removals, insertions, &left);
+        Ok(())
+    }
+
+    /// Takes an object's pieces from it, and finds the units they make on
+    /// every other receiver.
+    fn removals(&mut self, id: ObjectId) -> Result<(Vec<PieceId>, Removals), Error> {
+        let object = self.objects.get_mut(id).ok_or(Error::UnknownObject)?;
+        let gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
+        let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
+        self.overlap.refresh(&self.pieces);
+        let mut touched: BTreeSet<PieceId> = BTreeSet::new();
+        for &o in &gone_pieces {
+            touched.extend(self.overlap.receivers_near(o, &self.pieces));
+        }
+        let removals = touched
+            .into_iter()
+            .filter(|r| !gone.contains(r))
+            .filter_map(|r| {
+                let units: BTreeSet<u32> = self
+                    .receivers
+                    .get(r)?
+                    .units()
+                    .filter(|(_, (o, _))| gone.contains(o))
+                    .map(|(u, _)| u)
+                    .collect();
+                (!units.is_empty()).then_some((r, units))
+            })
+            .collect();
+        Ok((gone_pieces, removals))
+    }
+
+    /// Drops pieces from the scene (their receivers, illumination and
+    /// overlap entries), returning them: their planes are still needed to
+    /// take their units out of the other receivers.
+    fn forget(&mut self, gone: Vec<PieceId>) -> KeyMap<PieceId, Piece> {
+        let mut left = KeyMap::default();
+        for p in gone {
+            self.overlap.remove(p);
+            self.receivers.remove(p);
+            self.illum.remove(p);
+            if let Some(piece) = self.pieces.remove(p) {
+                left.insert(p, piece);
+            }
+        }
+        left
+    }
+
+    /// Which units of `added` (new pieces) enter which receivers, in what
+    /// order: on an old receiver the new occluders, appended; on a new one
+    /// every occluder the overlap structure pairs it with.
+    fn insertions(&mut self, added: &[PieceId]) -> Insertions {
+        self.overlap.refresh(&self.pieces);
+        let new: BTreeSet<PieceId> = added.iter().copied().collect();
+        // Old receivers the new occluders may reach.
+        let mut touched: BTreeSet<PieceId> = BTreeSet::new();
+        for &o in added {
+            touched.extend(
+                self.overlap
+                    .receivers_near(o, &self.pieces)
+                    .into_iter()
+                    .filter(|r| !new.contains(r)),
+            );
+        }
+        let targets: Vec<(PieceId, bool)> = added
+            .iter()
+            .map(|&r| (r, true))
+            .chain(touched.into_iter().map(|r| (r, false)))
+            .filter(|(r, _)| !self.receivers[*r].in_the_dark())
+            .collect();
+        let (lights, pieces, overlap) = (&self.lights, &self.pieces, &self.overlap);
+        targets
+            .par_iter()
+            .map(|&(r, fresh)| {
+                // New receivers: every occluder the overlap structure pairs
+                // them with. Old ones: the new occluders, appended.
+                let candidates: Vec<PieceId> = if fresh {
+                    overlap.occluders_near(r, pieces)
+                } else {
+                    added
+                        .iter()
+                        .copied()
+                        .filter(|o| overlap.may_shadow(*o, r, pieces))
+                        .collect()
+                };
+                let order = unit_order(lights, pieces, &candidates);
+                // A new receiver that many units reach starts as a
+                // balanced tree of tiles, about one per TILE_UNITS units.
+                let depth = if fresh {
+                    (order.len() / TILE_UNITS)
+                        .max(1)
+                        .ilog2()
+                        .min(MAX_TILE_DEPTH)
+                } else {
+                    0
+                };
+                (r, (depth, order))
+            })
+            .filter(|(_, (_, order))| !order.is_empty())
+            .collect()
+    }
+
+    /// Applies a change: each receiver named removes its leaving units,
+    /// then merges its entering ones; the receivers in parallel, the
+    /// biggest first (so that no thread is left with one at the end).
+    /// `left` holds the pieces already gone whose units leave.
+    fn apply(
+        &mut self,
+        mut removals: Removals,
+        mut insertions: Insertions,
+        left: &KeyMap<PieceId, Piece>,
+    ) {
+        let (pieces, how) = (&self.pieces, self.options.deletion);
+        let planes = |occluder: PieceId, light: u8| unit_planes(pieces, left, occluder, light);
+        let mut work: Vec<Work> = self
+            .receivers
+            .iter_mut()
+            .filter_map(|(r, dm)| {
+                let (out, into) = (removals.remove(&r), insertions.remove(&r));
+                (out.is_some() || into.is_some()).then_some((dm, out, into))
+            })
+            .collect();
+        let run = |(dm, out, into): &mut Work| {
+            if let Some(units) = out {
+                dm.remove_units(units, planes, how);
+            }
+            if let Some((depth, order)) = into {
+                dm.insert_tiled(*depth, order, &planes);
+            }
+        };
+        if work.len() <= 2 {
+            // A small change: no tasks to hand out.
+            work.iter_mut().for_each(run);
+            return;
+        }
+        work.sort_by_key(|(dm, out, into)| {
+            let units = into.as_ref().map_or(0, |(_, order)| order.len());
+            std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
+        });
+        work.par_iter_mut().for_each(run);
+    }
+}
+
+/// A unit's volume planes: of a piece of the scene, or of one that left.
+fn unit_planes<'p>(
+    pieces: &'p SlotMap<PieceId, Piece>,
+    left: &'p KeyMap<PieceId, Piece>,
+    occluder: PieceId,
+    light: u8,
+) -> &'p UnitPlanes {
+    let piece = left.get(&occluder).unwrap_or_else(|| &pieces[occluder]);
+    &piece.volumes[usize::from(light)]
+}
