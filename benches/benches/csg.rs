@@ -15,6 +15,10 @@ use std::hint::black_box;
 use std::time::Instant;
 use svbsp::{BalancedOptions, SetOp, balanced_solid, boundary, merge};
 
+/// The allocator of the `umbra` binary, so the figures are `umbra csg`'s.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// A closed star-shaped mesh of `8 m^2` triangles: the octahedron with each
 /// face cut into `m * m` triangles, each vertex pushed along its direction to
 /// a smooth, bumpy radius around `radius` (a function of the direction, so
