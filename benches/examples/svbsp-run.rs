@@ -9,7 +9,7 @@
 //!
 //! Then optionally `CONE_PIECES CANDIDATES SAMPLE` try other
 //! [`ShadowOptions`]. With `REPEAT=K` in the environment it runs K times
-//! and prints the fastest.
+//! and prints the fastest and the median.
 
 use bsp_core::GridPoint;
 use std::time::Instant;
@@ -58,21 +58,24 @@ fn main() {
         })
         .collect();
     let repeat: usize = std::env::var("REPEAT").map_or(1, |r| r.parse().expect("REPEAT: a count"));
-    let mut total = f64::INFINITY;
+    let mut times = Vec::with_capacity(repeat.max(1));
     let mut out = None;
     for _ in 0..repeat.max(1) {
         let start = Instant::now();
         let run = compute_shadows_with(&pieces, &flags, &[Light::point(light)], &options)
             .expect("valid scene");
-        total = total.min(start.elapsed().as_secs_f64());
+        times.push(start.elapsed().as_secs_f64());
         out = Some(run);
     }
+    times.sort_by(f64::total_cmp);
+    let (total, median) = (times[0], times[times.len() / 2]);
     let out = out.expect("ran once");
     let s = &out.lights[0];
     println!(
-        "{} pieces: total {:.6} s (scene BSP {:.6}, SVBSP {:.6}); {} cones, {} scene nodes, {} SVBSP nodes, {} fragments, {} planes spared, {} whole-piece volumes",
+        "{} pieces: total {:.6} s, median {:.6} s (scene BSP {:.6}, SVBSP {:.6}); {} cones, {} scene nodes, {} SVBSP nodes, {} fragments, {} planes spared, {} whole-piece volumes",
         pieces.len(),
         total,
+        median,
         out.bsp_seconds,
         out.shadow_seconds,
         s.cones,
