@@ -43,17 +43,23 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 };
                 region = inside;
             }
-            self.merge_region(node, region, part, unit, light, planes);
+            let exact = cell.is_none();
+            self.merge_region(node, region, exact, part, unit, light, planes);
         }
     }
 
     /// Grows unit `unit`'s single tree in the cells of the subtree at
     /// `node` that `region` (the receiver clipped by the penumbra planes
-    /// `part`, inside the node's cell) reaches.
+    /// `part`, inside the node's cell) reaches. `exact`: the region is all
+    /// of the unit's region there, so each leaf's piece is the leaf's part
+    /// of it; otherwise (a region restricted to a cell, when a removal
+    /// merges freed units again) a piece may be smaller than that part.
+    #[allow(clippy::too_many_arguments)] // (the unit's region and its whole context)
     pub(super) fn merge_region(
         &mut self,
         node: u32,
         region: ConvexPolygon,
+        exact: bool,
         part: &[Plane],
         unit: u32,
         light: u8,
@@ -61,11 +67,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     ) {
         for (leaf, piece) in self.descend(node, region) {
             let umbra = planes.volumes.umbra.as_deref();
-            let grown = self.grow_leaf(leaf, &piece, part, umbra, unit, light);
+            let grown = self.grow_leaf(leaf, &piece, exact, part, umbra, unit, light);
             if planes.internal.is_empty() {
                 continue;
             }
-            if grown {
+            if grown && exact {
                 // The cells that now list the unit lie in `piece`: an
                 // internal discontinuity that does not cross the piece
                 // crosses none of them, and is not tried on each.
@@ -85,13 +91,16 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     }
 
     /// Grows the unit's single tree at one leaf whose cell meets the
-    /// unit's penumbra region in `piece` (with area). Whether it did: the
-    /// leaf did not list the unit yet, and its cells inside `piece` now do
-    /// (the part outside the umbra, if any).
+    /// unit's penumbra region in `piece` (with area; `exact`: `piece` is
+    /// all of the leaf's part of the region). Whether it did: the leaf did
+    /// not list the unit yet, and its cells inside the region now do (the
+    /// part outside the umbra, if any).
+    #[allow(clippy::too_many_arguments)] // (the leaf, the unit's region and its context)
     fn grow_leaf(
         &mut self,
         leaf: u32,
         piece: &ConvexPolygon,
+        exact: bool,
         penumbra: &[Plane],
         umbra: Option<&[Plane]>,
         unit: u32,
@@ -112,8 +121,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         // Only the planes that bound the cell's part of the region cut the
         // cell where it matters: the others are redundant there (the cell
         // and the bounding ones already keep the part inside them), and
-        // splitting by them would only make cells that change nothing.
-        let Some(inner) = self.chain(leaf, bounding(penumbra, piece), unit) else {
+        // splitting by them would only make cells that change nothing. A
+        // piece smaller than that part (`!exact`) may lack some of them:
+        // then every plane is tried.
+        let inner = if exact {
+            self.chain(leaf, bounding(penumbra, piece), unit)
+        } else {
+            self.chain(leaf, penumbra, unit)
+        };
+        let Some(inner) = inner else {
             return false;
         };
         self.cell_mut(inner).add(Entry {
@@ -126,7 +142,12 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         let Some(core) = clip(piece, umbra) else {
             return true;
         };
-        if let Some(core) = self.chain(inner, bounding(umbra, &core), unit) {
+        let core = if exact {
+            self.chain(inner, bounding(umbra, &core), unit)
+        } else {
+            self.chain(inner, umbra, unit)
+        };
+        if let Some(core) = core {
             self.cell_mut(core).add(Entry {
                 unit,
                 light,

@@ -106,7 +106,7 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
                     let (key, light) = units[unit as usize];
                     let own = planes(key, light);
                     let penumbra = &own.volumes.penumbra[usize::from(part)];
-                    tile.merge_region(tile.root, piece, penumbra, unit, light, own);
+                    tile.merge_region(tile.root, piece, true, penumbra, unit, light, own);
                 }
                 tile
             })
