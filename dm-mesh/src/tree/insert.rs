@@ -139,12 +139,22 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         });
         self.seeds[unit as usize] = self.face_of(inner);
         let Some(umbra) = umbra else { return true };
-        let Some(core) = clip(piece, umbra) else {
-            return true;
-        };
         let core = if exact {
+            // The inner cell is `piece`: its umbra part is the piece's.
+            let Some(core) = clip(piece, umbra) else {
+                return true;
+            };
             self.chain(inner, bounding(umbra, &core), unit)
         } else {
+            // The inner cell may reach past `piece`, and meet the umbra
+            // where the piece does not.
+            let meets = self
+                .mesh
+                .face_polygon(self.face_of(inner), 0)
+                .is_ok_and(|cell| clip(&cell, umbra).is_some());
+            if !meets {
+                return true;
+            }
             self.chain(inner, umbra, unit)
         };
         if let Some(core) = core {
