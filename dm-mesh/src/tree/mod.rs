@@ -14,6 +14,9 @@
 //! Only the planes that bound the cell's part of the region (edges of the
 //! piece the filtering brought to the leaf) are tried: the others are
 //! redundant in that cell, and would only cut off cells with the same list.
+//! (A removal merging freed units again restricts their regions to a cell;
+//! those pieces can be smaller than the leaves' parts, so there every plane
+//! is tried, and the umbra is looked for in the listing cell itself.)
 //! So every node's line spans just its own cell (the sub-hyperplane is the
 //! mesh edge it made).
 //!
