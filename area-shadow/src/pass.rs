@@ -8,11 +8,14 @@
 //!
 //! 1. **Volumes.** Every shadow-casting piece adds the penumbra and umbra
 //!    volumes of its whole original polygon ([`crate::cast_volumes`]). A
-//!    piece already inside the umbra tree adds nothing: whatever it hides is
-//!    hidden already (each of its points is hidden from all of the light by
-//!    one earlier occluder, so every ray it stops was stopped before). Pieces
-//!    go nearest the light first so that this culling finds most of what
-//!    the paper's order would; the order changes only the trees' size.
+//!    piece already inside the umbra tree adds only its umbra volume: every
+//!    ray it stops was stopped before (each of its points is hidden from
+//!    all of the light by one earlier occluder), so its penumbra changes
+//!    nothing, but where it alone hides the whole light the earlier ones
+//!    may do so only together, and that is umbra (one occluder hides it
+//!    all). Pieces go nearest the light first so that this culling finds
+//!    most of what the paper's order would; the order changes only the
+//!    trees' size.
 //! 2. **Classification.** Every fragment is filtered down the final trees:
 //!    outside the penumbra tree it sees all of the light (lit); inside the
 //!    umbra tree, none (umbra); otherwise part (penumbra). A point strictly
@@ -145,11 +148,19 @@ impl AreaTrees {
         let skeleton = trees.penumbra.len();
         for (_, k) in order {
             let piece = &pieces[k];
-            if trees.umbra.len() > skeleton && trees.umbra.contains(piece) {
+            let in_umbra = trees.umbra.len() > skeleton && trees.umbra.contains(piece);
+            let volumes = cast_volumes_within(piece, light, &region);
+            if in_umbra {
+                // Every ray it stops was stopped before, so its penumbra
+                // adds nothing; but where it alone hides all of the light
+                // (its umbra), the earlier occluders may do so only
+                // together: that stays umbra, one occluder hiding it all.
                 trees.culled += 1;
+                if let Some(volume) = volumes.umbra {
+                    trees.umbra.insert(volume);
+                }
                 continue;
             }
-            let volumes = cast_volumes_within(piece, light, &region);
             if volumes.penumbra.is_empty() {
                 continue;
             }

@@ -1,5 +1,6 @@
 //! Integration tests of `area-shadow`, one binary.
 
+mod culled;
 mod figure4;
 mod oracle;
 mod pieces;
