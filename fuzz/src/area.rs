@@ -113,11 +113,14 @@ pub fn check_area(case: &AreaCase) -> Result<(), String> {
         .map(|(k, p)| (k, [0, 1, 2].map(|i| p.vertex_f64(i))))
         .collect();
     // Points strictly inside the light (a light vertex may lie in an
-    // occluder's plane and be seen along a set of measure zero): the
-    // centroid and each vertex moved a quarter of the way to it (exact in
-    // f64: the centroid of a quad of integers has quarter-integer
-    // coordinates).
-    let centre = light.centroid();
+    // occluder's plane and be seen along a set of measure zero): the mean
+    // of its vertices and each vertex moved a quarter of the way to it
+    // (exact in f64: the mean of four integers is a quarter-integer; the
+    // area centroid is rounded, and a hair off an occluder's vertex at the
+    // true centre it made a touching segment cross).
+    let corners: Vec<[f64; 3]> = light.vertices().map(|v| v.to_f64()).collect();
+    let count = corners.len() as f64;
+    let centre = [0, 1, 2].map(|i| corners.iter().map(|c| c[i]).sum::<f64>() / count);
     let mut targets: Vec<[f64; 3]> = light
         .vertices()
         .map(|v| {
