@@ -4,6 +4,7 @@ use super::{Reach, ReceiverDm, clip};
 use crate::cell::Entry;
 use crate::critical::{Critical, UnitPlanes};
 use bsp_core::{ConvexPolygon, FaceKey, Plane, Side, Split};
+use smallvec::SmallVec;
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Appends a unit (occluder `key` under light `light`, with its volume
@@ -75,7 +76,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 // The cells that now list the unit lie in `piece`: an
                 // internal discontinuity that does not cross the piece
                 // crosses none of them, and is not tried on each.
-                let crossing: Vec<&Critical> = planes
+                let crossing: SmallVec<[&Critical; 32]> = planes
                     .internal
                     .iter()
                     .filter(|c| crosses(&piece, c))
@@ -84,7 +85,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     self.grow_internal(leaf, &crossing, unit);
                 }
             } else {
-                let all: Vec<&Critical> = planes.internal.iter().collect();
+                let all: SmallVec<[&Critical; 32]> = planes.internal.iter().collect();
                 self.grow_internal(leaf, &all, unit);
             }
         }

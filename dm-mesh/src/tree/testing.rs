@@ -26,6 +26,15 @@ pub(crate) fn light() -> AreaSource {
     AreaSource::from_grid_points(&[g(-3, 40, -2), g(4, 40, -3), g(5, 41, 3), g(-2, 41, 4)]).unwrap()
 }
 
+/// Units numbered in order, as a receiver numbers them.
+pub(crate) fn numbered(planes: &[UnitPlanes]) -> Vec<(u32, &UnitPlanes)> {
+    planes
+        .iter()
+        .enumerate()
+        .map(|(k, p)| (k as u32, p))
+        .collect()
+}
+
 /// Random triangles and axis-aligned squares between the floor and the
 /// light (some in one common plane, squares on a lattice sharing edge
 /// lines, so that their discontinuities coincide).

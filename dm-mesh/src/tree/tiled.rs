@@ -197,8 +197,7 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
 
 #[cfg(test)]
 mod tests {
-    use crate::critical::UnitPlanes;
-    use crate::tree::testing::{fresh, fresh_tiled, occluders, same_regions};
+    use crate::tree::testing::{fresh, fresh_tiled, numbered, occluders, same_regions};
     use rand::SeedableRng;
     use rand_pcg::Pcg64;
 
@@ -207,11 +206,7 @@ mod tests {
         for seed in 0..6 {
             let mut rng = Pcg64::seed_from_u64(100 + seed);
             let planes = occluders(&mut rng, 24);
-            let units: Vec<(u32, &UnitPlanes)> = planes
-                .iter()
-                .enumerate()
-                .map(|(k, p)| (k as u32, p))
-                .collect();
+            let units = numbered(&planes);
             let depth = 1 + seed as u32 % 4;
             let (one, apart) = (fresh(&units, depth), fresh_tiled(&units, depth));
             apart.check_invariants().unwrap();

@@ -2,8 +2,7 @@
 //! removed units.
 
 use super::Deletion;
-use crate::critical::UnitPlanes;
-use crate::tree::testing::{fresh, fresh_tiled, occluders, same_regions};
+use crate::tree::testing::{fresh, fresh_tiled, numbered, occluders, same_regions};
 use crate::tree::{LIGHT_UNIT, Node};
 use rand::SeedableRng;
 use rand::seq::SliceRandom;
@@ -12,11 +11,7 @@ use rand_pcg::Pcg64;
 fn remove_one_by_one(how: Deletion, seed: u64) {
     let mut rng = Pcg64::seed_from_u64(seed);
     let planes = occluders(&mut rng, 9);
-    let units: Vec<(u32, &UnitPlanes)> = planes
-        .iter()
-        .enumerate()
-        .map(|(k, p)| (k as u32, p))
-        .collect();
+    let units = numbered(&planes);
     // Odd seeds start from a tree whose tiles were grown apart.
     let mut dm = if seed % 2 == 1 {
         fresh_tiled(&units, 2)
