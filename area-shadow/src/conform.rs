@@ -353,8 +353,8 @@ fn conforming_face(
         let lo = [0, 1, 2].map(|i| pa[i].min(pb[i]) - MARGIN);
         let hi = [0, 1, 2].map(|i| pa[i].max(pb[i]) + MARGIN);
         buckets.query(lo, hi, found);
-        let edge = &f.edges()[k];
-        let (prev, next) = (&f.edges()[(k + n - 1) % n], &f.edges()[(k + 1) % n]);
+        let edge = f.edge(k);
+        let (prev, next) = (f.edge((k + n - 1) % n), f.edge((k + 1) % n));
         let mut inside: Vec<u32> = found
             .iter()
             .copied()

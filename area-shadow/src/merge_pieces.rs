@@ -16,7 +16,7 @@ use bsp_core::predicates::Side;
 pub fn merge_pair(a: &ConvexPolygon, b: &ConvexPolygon) -> Option<ConvexPolygon> {
     let (n, m) = (a.len(), b.len());
     let (k, l) = (0..n).find_map(|k| {
-        let l = (0..m).find(|&l| b.edges()[l].is_opposite(&a.edges()[k]))?;
+        let l = (0..m).find(|&l| b.edge(l).is_opposite(a.edge(k)))?;
         Some((k, l))
     })?;
     // The same segment: a's edge k runs p -> q, b's edge l runs q -> p.
@@ -29,23 +29,23 @@ pub fn merge_pair(a: &ConvexPolygon, b: &ConvexPolygon) -> Option<ConvexPolygon>
     let behind = |p: &ConvexPolygon, q: &ConvexPolygon, skip: usize| {
         (0..p.len())
             .filter(|&e| e != skip)
-            .all(|e| (0..q.len()).all(|v| q.vertex_side(v, &p.edges()[e]) != Side::Front))
+            .all(|e| (0..q.len()).all(|v| q.vertex_side(v, p.edge(e)) != Side::Front))
     };
     if !behind(a, b, k) || !behind(b, a, l) {
         return None;
     }
     // a's edges after k round to before k, then b's after l round to before
     // l; an edge of b on the same line as its neighbour of a is dropped.
-    let mut edges: Vec<_> = (1..n).map(|i| a.edges()[(k + i) % n]).collect();
-    let a_first = a.edges()[(k + 1) % n];
-    let a_last = a.edges()[(k + n - 1) % n];
+    let mut edges: Vec<_> = (1..n).map(|i| *a.edge((k + i) % n)).collect();
+    let a_first = *a.edge((k + 1) % n);
+    let a_last = *a.edge((k + n - 1) % n);
     let (b_first, b_last) = ((l + 1) % m, (l + m - 1) % m);
     // The far vertex of a's last edge and of a's first edge.
     let before_p = MeshPoint::vertex(a, (k + n - 1) % n);
     let after_q = MeshPoint::vertex(a, (k + 2) % n);
     for i in 1..m {
         let e = (l + i) % m;
-        let plane = b.edges()[e];
+        let plane = *b.edge(e);
         if e == b_first && (plane == a_last || before_p.side(&plane) == Side::On) {
             continue;
         }
@@ -102,7 +102,7 @@ pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolyg
     // piece's entries stay behind and are skipped.
     let mut keys: Vec<(LineKey, f64, usize)> = Vec::new();
     for (i, (p, _)) in pieces.iter().flatten().enumerate() {
-        for (e, plane) in p.edges().iter().enumerate() {
+        for (e, plane) in p.edges().enumerate() {
             keys.push((plane_key(plane), edge_position(p, e), i));
         }
     }
@@ -122,7 +122,7 @@ pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolyg
         let Some((a, class)) = &pieces[i] else {
             continue;
         };
-        for (e, plane) in a.edges().iter().enumerate() {
+        for (e, plane) in a.edges().enumerate() {
             let line = line_of(&lines, &plane_key(plane)).expect("every edge's line is listed");
             let t = edge_position(a, e);
             let margin = 1e-7 * t.abs().max(1.0);
@@ -140,7 +140,7 @@ pub fn merge_same_class(pieces: Vec<(ConvexPolygon, Class)>) -> Vec<(ConvexPolyg
                 }
                 if let Some(union) = merge_pair(a, b) {
                     let (class, k) = (*class, pieces.len());
-                    for (e, plane) in union.edges().iter().enumerate() {
+                    for (e, plane) in union.edges().enumerate() {
                         let key = plane_key(plane);
                         let t = edge_position(&union, e);
                         // A union's edges are its pieces' edges: the

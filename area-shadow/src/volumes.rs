@@ -219,9 +219,8 @@ fn grid_edges(
 ) -> SmallVec<[(GridPoint, GridPoint); 8]> {
     let n = original.len();
     part.edges()
-        .iter()
         .filter_map(|edge| {
-            let j = original.edges().iter().position(|e| e == edge)?;
+            let j = original.edges().position(|e| e == edge)?;
             Some((
                 original.vertex_grid_point(j)?,
                 original.vertex_grid_point((j + 1) % n)?,

@@ -100,7 +100,7 @@ impl ConvexPolygon {
                 ends.push(End::Vertex(i));
             } else if sides[next] != Side::On && sides[next] != sides[i] {
                 // Edge `i` runs from vertex `i` to vertex `i + 1`.
-                let planes = [self.support(), &self.edges()[i], plane];
+                let planes = [self.support(), self.edge(i), plane];
                 let filter = PointFilter::new(planes[0], planes[1], planes[2])?;
                 ends.push(End::Crossing { filter, planes });
             }

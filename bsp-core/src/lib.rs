@@ -58,7 +58,7 @@ pub use error::Error;
 pub use grid::{GRID_BITS, GRID_LIMIT, Grid, GridPoint};
 pub use line2d::{LineMeeting, ReceiverLine};
 pub use plane::{NORMAL_LIMIT, OFFSET_LIMIT, Plane};
-pub use polygon::{ConvexPolygon, Facing, PolygonSide, Split};
+pub use polygon::{ConvexPolygon, Edges, Facing, PolygonSide, Split};
 pub use predicates::{ImplicitPoint, Side};
 pub use scene_bsp::{Location, SceneBsp, SceneChild, SceneNode, Traversal, Viewpoint};
 pub use solid::{BspSolid, Containment, PointClass, Region, SolidChild, SolidNode};

@@ -144,7 +144,7 @@ mod tests {
         for i in 0..4 {
             let line = ReceiverLine::through(floor(), sq[i], sq[(i + 1) % 4]).unwrap();
             assert_eq!(line.side_of_point(g(2, 0, 2)), Side::Back);
-            assert_eq!(line.plane(), &polygon.edges()[i]);
+            assert_eq!(line.plane(), polygon.edge(i));
         }
     }
 

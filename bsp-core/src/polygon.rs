@@ -51,6 +51,41 @@ enum Vertex {
     Implicit(PointFilter),
 }
 
+/// Vertex `i` and edge `i`, the edge that starts at it, stored together:
+/// a polygon is then one allocation, and a split walks one array.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Corner {
+    vertex: Vertex,
+    edge: Plane,
+}
+
+/// The edge planes of a polygon, in order: see [`ConvexPolygon::edges`].
+#[derive(Debug, Clone)]
+pub struct Edges<'a>(std::slice::Iter<'a, Corner>);
+
+impl<'a> Iterator for Edges<'a> {
+    type Item = &'a Plane;
+
+    #[inline]
+    fn next(&mut self) -> Option<&'a Plane> {
+        self.0.next().map(|c| &c.edge)
+    }
+
+    #[inline]
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        self.0.size_hint()
+    }
+}
+
+impl DoubleEndedIterator for Edges<'_> {
+    #[inline]
+    fn next_back(&mut self) -> Option<Self::Item> {
+        self.0.next_back().map(|c| &c.edge)
+    }
+}
+
+impl ExactSizeIterator for Edges<'_> {}
+
 /// A strictly convex planar polygon in the plane-based representation.
 ///
 /// It is a support plane and a cycle of edge planes; the polygon is the part
@@ -66,8 +101,7 @@ enum Vertex {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConvexPolygon {
     support: Plane,
-    edges: Vec<Plane>,
-    vertices: Vec<Vertex>,
+    corners: Box<[Corner]>,
     source: u32,
 }
 
@@ -109,15 +143,18 @@ impl ConvexPolygon {
         check_convex(&pts, &support)?;
 
         let count = pts.len();
-        let edges = (0..count)
+        let corners = (0..count)
             .map(|i| {
-                Plane::edge_plane(&support, pts[i], pts[(i + 1) % count]).ok_or(Error::ZeroArea)
+                Ok(Corner {
+                    vertex: Vertex::Grid(pts[i]),
+                    edge: Plane::edge_plane(&support, pts[i], pts[(i + 1) % count])
+                        .ok_or(Error::ZeroArea)?,
+                })
             })
-            .collect::<Result<Vec<Plane>, Error>>()?;
+            .collect::<Result<Box<[Corner]>, Error>>()?;
         Ok(Self {
             support,
-            edges,
-            vertices: pts.iter().map(|&p| Vertex::Grid(p)).collect(),
+            corners,
             source,
         })
     }
@@ -134,17 +171,20 @@ impl ConvexPolygon {
         if n < 3 {
             return Err(Error::TooFewVertices);
         }
-        let mut vertices = Vec::with_capacity(n);
-        for i in 0..n {
-            let prev = &edges[(i + n - 1) % n];
-            let filter =
-                PointFilter::new(&support, prev, &edges[i]).ok_or(Error::NoIntersection)?;
-            vertices.push(Vertex::Implicit(filter));
-        }
+        let corners = (0..n)
+            .map(|i| {
+                let prev = &edges[(i + n - 1) % n];
+                let filter =
+                    PointFilter::new(&support, prev, &edges[i]).ok_or(Error::NoIntersection)?;
+                Ok(Corner {
+                    vertex: Vertex::Implicit(filter),
+                    edge: edges[i],
+                })
+            })
+            .collect::<Result<Box<[Corner]>, Error>>()?;
         let polygon = Self {
             support,
-            edges: edges.to_vec(),
-            vertices,
+            corners,
             source,
         };
         polygon
@@ -159,17 +199,23 @@ impl ConvexPolygon {
         &self.support
     }
 
-    /// The edge planes; edge `i` runs from vertex `i` to vertex `i + 1`, and
-    /// the polygon lies behind each.
+    /// The edge planes in order; edge `i` runs from vertex `i` to vertex
+    /// `i + 1`, and the polygon lies behind each.
     #[inline]
-    pub fn edges(&self) -> &[Plane] {
-        &self.edges
+    pub fn edges(&self) -> Edges<'_> {
+        Edges(self.corners.iter())
+    }
+
+    /// Edge plane `i` (see [`edges`](Self::edges)).
+    #[inline]
+    pub fn edge(&self, i: usize) -> &Plane {
+        &self.corners[i].edge
     }
 
     /// Number of vertices (and edges).
     #[inline]
     pub fn len(&self) -> usize {
-        self.edges.len()
+        self.corners.len()
     }
 
     /// Always false: a polygon has at least three vertices.
@@ -194,12 +240,16 @@ impl ConvexPolygon {
     #[inline]
     pub fn vertex_planes(&self, i: usize) -> [&Plane; 3] {
         let n = self.len();
-        [&self.support, &self.edges[(i + n - 1) % n], &self.edges[i]]
+        [
+            &self.support,
+            &self.corners[(i + n - 1) % n].edge,
+            &self.corners[i].edge,
+        ]
     }
 
     /// Vertex `i` if it is an input grid point.
     pub fn vertex_grid_point(&self, i: usize) -> Option<GridPoint> {
-        match self.vertices[i] {
+        match self.corners[i].vertex {
             Vertex::Grid(p) => Some(p),
             Vertex::Implicit(_) => None,
         }
@@ -208,7 +258,7 @@ impl ConvexPolygon {
     /// Side of vertex `i` with respect to `plane`, exact.
     #[inline(always)]
     pub fn vertex_side(&self, i: usize, plane: &Plane) -> Side {
-        match &self.vertices[i] {
+        match &self.corners[i].vertex {
             Vertex::Grid(p) => side_of_point(plane, *p),
             Vertex::Implicit(filter) => match filter.side(plane) {
                 Some(side) => side,
@@ -231,15 +281,15 @@ impl ConvexPolygon {
         let n = self.len();
         let prev = (i + n - 1) % n;
         // Vertex i + 1 ends edge i: the vertex lies back along the edge.
-        if let Vertex::Grid(g) = self.vertices[(i + 1) % n] {
+        if let Vertex::Grid(g) = self.corners[(i + 1) % n].vertex {
             if side_of_point(plane, g) == Side::On {
-                return predicates::side_along_line(plane, &self.support, &self.edges[i], false);
+                return predicates::side_along_line(plane, &self.support, self.edge(i), false);
             }
         }
         // Vertex i - 1 starts edge i - 1: the vertex lies forward along it.
-        if let Vertex::Grid(g) = self.vertices[prev] {
+        if let Vertex::Grid(g) = self.corners[prev].vertex {
             if side_of_point(plane, g) == Side::On {
-                return predicates::side_along_line(plane, &self.support, &self.edges[prev], true);
+                return predicates::side_along_line(plane, &self.support, self.edge(prev), true);
             }
         }
         // The plane holds a line through the vertex: two of its planes'.
@@ -255,7 +305,7 @@ impl ConvexPolygon {
 
     /// Vertex `i` in grid units, as `f64` (for output and illumination).
     pub fn vertex_f64(&self, i: usize) -> [f64; 3] {
-        match &self.vertices[i] {
+        match &self.corners[i].vertex {
             Vertex::Grid(p) => p.to_f64(),
             Vertex::Implicit(filter) => predicates::implicit_to_f64(filter, self.vertex_planes(i)),
         }
@@ -300,11 +350,17 @@ impl ConvexPolygon {
     /// The same region facing the other way (support plane flipped, vertex
     /// order reversed).
     pub fn flipped(&self) -> Self {
+        // Reversed, vertex k is old vertex -k and edge k (from it to vertex
+        // k + 1) is old edge -k - 1.
         let n = self.len();
         Self {
             support: self.support.flipped(),
-            edges: self.edges.iter().rev().copied().collect(),
-            vertices: (0..n).map(|k| self.vertices[(n - k) % n]).collect(),
+            corners: (0..n)
+                .map(|k| Corner {
+                    vertex: self.corners[(n - k) % n].vertex,
+                    edge: self.corners[n - 1 - k].edge,
+                })
+                .collect(),
             source: self.source,
         }
     }
@@ -398,7 +454,7 @@ impl ConvexPolygon {
                         (sides[e], sides[(e + 1) % n]),
                         (Side::Back, Side::Front) | (Side::Front, Side::Back)
                     ) {
-                        let filter = PointFilter::new(&self.support, &self.edges[e], plane).expect(
+                        let filter = PointFilter::new(&self.support, self.edge(e), plane).expect(
                             "an edge whose ends lie strictly on both sides meets the plane in a point",
                         );
                         crossings[count] = (e, Vertex::Implicit(filter));
@@ -440,25 +496,25 @@ impl ConvexPolygon {
         }
         let last = (start + run_len - 1) % n;
 
-        let mut edges: Vec<Plane> = Vec::with_capacity(run_len + 1);
-        let mut vertices: Vec<Vertex> = Vec::with_capacity(run_len + 1);
-        // Vertex between the closing plane and the first kept edge.
-        vertices.push(self.vertex_on_cut(start, start, sides, crossings));
-        for k in 0..run_len {
-            let e = (start + k) % n;
-            edges.push(self.edges[e]);
-            if k > 0 {
-                vertices.push(self.vertices[e]);
-            }
+        let mut corners: Vec<Corner> = Vec::with_capacity(run_len + 1);
+        // The vertex between the closing plane and the first kept edge,
+        // then the kept edges with their start vertices.
+        corners.push(Corner {
+            vertex: self.vertex_on_cut(start, start, sides, crossings),
+            edge: self.corners[start].edge,
+        });
+        for k in 1..run_len {
+            corners.push(self.corners[(start + k) % n]);
         }
-        // Vertex between the last kept edge and the closing plane.
+        // The vertex between the last kept edge and the closing plane.
         let after = (last + 1) % n;
-        vertices.push(self.vertex_on_cut(after, last, sides, crossings));
-        edges.push(closing);
+        corners.push(Corner {
+            vertex: self.vertex_on_cut(after, last, sides, crossings),
+            edge: closing,
+        });
         ConvexPolygon {
             support: self.support,
-            edges,
-            vertices,
+            corners: corners.into_boxed_slice(),
             source: self.source,
         }
     }
@@ -474,7 +530,7 @@ impl ConvexPolygon {
         crossings: &[(usize, Vertex)],
     ) -> Vertex {
         if sides[old] == Side::On {
-            return self.vertices[old];
+            return self.corners[old].vertex;
         }
         crossings
             .iter()
@@ -488,8 +544,8 @@ impl ConvexPolygon {
     /// convexity, no zero-length edge). Exact. Used by tests and fuzzing.
     pub fn check_invariants(&self) -> Result<(), String> {
         let n = self.len();
-        if n < 3 || self.vertices.len() != n {
-            return Err(format!("{n} edges and {} vertices", self.vertices.len()));
+        if n < 3 {
+            return Err(format!("{n} vertices"));
         }
         for i in 0..n {
             for (k, plane) in self.vertex_planes(i).into_iter().enumerate() {
@@ -506,7 +562,7 @@ impl ConvexPolygon {
     fn check_strictly_inside(&self) -> Result<(), String> {
         let n = self.len();
         for i in 0..n {
-            for (j, edge) in self.edges.iter().enumerate() {
+            for (j, edge) in self.edges().enumerate() {
                 if j != i && j != (i + n - 1) % n && self.vertex_side(i, edge) != Side::Back {
                     return Err(format!("vertex {i} is not strictly behind edge {j}"));
                 }

@@ -402,10 +402,10 @@ pub fn in_pencil(a: &Plane, b: &Plane, q: &Plane) -> bool {
         na[2] * nb[0] - na[0] * nb[2],
         na[0] * nb[1] - na[1] * nb[0],
     ];
-    let wide = I256::from;
-    if (0..3).fold(I256::ZERO, |acc, k| acc + wide(nq[k]) * wide(d[k])) != I256::ZERO {
+    if dot_sign(nq, d) != Side::On {
         return false;
     }
+    let wide = I256::from;
     // q's normal is alpha na + beta nb: Cramer's rule on two coordinates
     // whose 2x2 determinant (a component of d) is not zero; then q holds
     // the line if its offset is the same combination.
@@ -416,6 +416,29 @@ pub fn in_pencil(a: &Plane, b: &Plane, q: &Plane) -> bool {
     let alpha = nq[i] * nb[j] - nq[j] * nb[i];
     let beta = na[i] * nq[j] - na[j] * nq[i];
     wide(q.offset()) * wide(d[k]) == wide(alpha) * wide(a.offset()) + wide(beta) * wide(b.offset())
+}
+
+/// The sign of `u · v`, exactly, for `|u_k| < 2^53` and `|v_k| < 2^103`
+/// (a normal and a cross product of two normals), without 256-bit
+/// products.
+///
+/// The `f64` estimate `s'` of the dot product is within `5 u P'` of the
+/// true `s` (depth 4: `v_k` rounded, product, two sums; `P'` the computed
+/// permanent, itself within `gamma_4`), so `|s'| > 8 u P'` gives the sign.
+/// Otherwise `|s| < 13 u P' < 2^110`, and the dot product taken modulo
+/// `2^128` (wrapping `i128` arithmetic) is `s` itself.
+#[inline]
+fn dot_sign(u: [i128; 3], v: [i128; 3]) -> Side {
+    let (mut estimate, mut permanent) = (0.0_f64, 0.0_f64);
+    for k in 0..3 {
+        let term = u[k] as f64 * v[k] as f64;
+        estimate += term;
+        permanent += term.abs();
+    }
+    if estimate.abs() > 8.0 * U * permanent {
+        return Side::of_sign(estimate);
+    }
+    Side::of_sign((0..3).fold(0_i128, |acc, k| acc.wrapping_add(u[k].wrapping_mul(v[k]))))
 }
 
 /// Side of a point of the line `support ∩ edge` that lies at a grid point
@@ -431,9 +454,9 @@ pub fn side_along_line(q: &Plane, support: &Plane, edge: &Plane, forward: bool) 
     let [a, b, c] = support.normal().map(i128::from);
     let [d, e, f] = edge.normal().map(i128::from);
     // Components below 2^103.
-    let dir = [b * f - c * e, c * d - a * f, a * e - b * d].map(Wide::Small);
-    let s = dot3(q.normal().map(|x| Wide::Small(i128::from(x))), dir).signum_i32();
-    Side::of_sign(if forward { s } else { -s })
+    let dir = [b * f - c * e, c * d - a * f, a * e - b * d];
+    let s = dot_sign(q.normal().map(i128::from), dir);
+    if forward { s } else { s.flipped() }
 }
 
 /// Exact homogeneous coordinates of `p1 ∩ p2 ∩ p3` (the 3x3 minors of the
@@ -718,6 +741,46 @@ mod tests {
             inside > 1000 && outside > 1000,
             "{inside} in, {outside} out"
         );
+    }
+
+    /// `dot_sign` against 256-bit products, at the bounds it is stated
+    /// for: random vectors, and exact zeros (a normal in the span of the two
+    /// whose cross product is the other vector) moved by one unit.
+    #[test]
+    fn dot_sign_is_exact() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand::rngs::StdRng::seed_from_u64(31);
+        let limit = (1_i64 << 51) - 1;
+        let mut zeros = 0;
+        for round in 0..20_000 {
+            let mut normal = || [0; 3].map(|_| rng.random_range(-limit..=limit));
+            let (a, b) = (normal(), normal());
+            let wide = |v: [i64; 3]| v.map(i128::from);
+            let (a, b) = (wide(a), wide(b));
+            let v = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            let u = match round % 3 {
+                // alpha a + beta b: u . v = 0.
+                0 => [0, 1, 2].map(|k| a[k] - b[k]),
+                1 => [0, 1, 2].map(|k| a[k] + 2 * b[k]),
+                _ => wide(normal()),
+            };
+            let u = if round % 6 == 3 {
+                [u[0] + 1, u[1], u[2]]
+            } else {
+                u
+            };
+            let oracle = (0..3).fold(I256::ZERO, |acc, k| {
+                acc + I256::from(u[k]) * I256::from(v[k])
+            });
+            let expected = Side::of_sign(oracle.signum128());
+            zeros += usize::from(expected == Side::On);
+            assert_eq!(dot_sign(u, v), expected, "{u:?} . {v:?}");
+        }
+        assert!(zeros > 1000, "{zeros} exact zeros");
     }
 
     #[test]

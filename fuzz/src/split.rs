@@ -405,7 +405,7 @@ pub fn check_split(case: &SplitCase) -> Result<Outcome, String> {
                 if part.source() != SOURCE {
                     return Err(format!("{name} part has source {}", part.source()));
                 }
-                if !part.edges().contains(&closing) {
+                if !part.edges().any(|e| e == &closing) {
                     return Err(format!("{name} part is not closed by the cutting plane"));
                 }
                 for i in 0..part.len() {

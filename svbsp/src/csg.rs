@@ -486,11 +486,10 @@ fn lies_inside_edge(
 ) -> bool {
     let n = polygon.len();
     let (q, j) = (&polygons[w.0 as usize], w.1 as usize);
-    let edges = polygon.edges();
     q.vertex_side(j, polygon.support()) == Side::On
-        && q.vertex_side(j, &edges[e]) == Side::On
-        && q.vertex_side(j, &edges[(e + n - 1) % n]) == Side::Back
-        && q.vertex_side(j, &edges[(e + 1) % n]) == Side::Back
+        && q.vertex_side(j, polygon.edge(e)) == Side::On
+        && q.vertex_side(j, polygon.edge((e + n - 1) % n)) == Side::Back
+        && q.vertex_side(j, polygon.edge((e + 1) % n)) == Side::Back
 }
 
 #[cfg(test)]

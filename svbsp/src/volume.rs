@@ -77,11 +77,11 @@ fn planes_of_edges(
 ) -> Option<SmallVec<[Plane; 6]>> {
     let n = piece.len();
     let mut planes = SmallVec::with_capacity(n);
-    for (i, edge) in piece.edges().iter().enumerate() {
+    for (i, edge) in piece.edges().enumerate() {
         let plane = if light.lies_in(edge) {
             *edge
         } else {
-            let j = original.edges().iter().position(|e| e == edge)?;
+            let j = original.edges().position(|e| e == edge)?;
             let m = original.len();
             let p = original.vertex_grid_point(j)?;
             let q = original.vertex_grid_point((j + 1) % m)?;

@@ -62,7 +62,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                     vertices[i],
                     vertices[(i + 1) % n],
                     face,
-                    polygon.edges()[i],
+                    *polygon.edge(i),
                     edge_data.clone(),
                 ))
             })
@@ -161,7 +161,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                         a,
                         b,
                         face,
-                        polygon.edges()[i],
+                        *polygon.edge(i),
                         edge_data.clone(),
                     )),
                 };

@@ -247,11 +247,16 @@ fn from_planes_round_trips_a_split_part() {
     let Split::Both(back, _) = square.split(&cut) else {
         panic!("expected a cut")
     };
-    let rebuilt = ConvexPolygon::from_planes(*back.support(), back.edges(), 2).unwrap();
+    let rebuilt = ConvexPolygon::from_planes(
+        *back.support(),
+        &back.edges().copied().collect::<Vec<_>>(),
+        2,
+    )
+    .unwrap();
     rebuilt.check_invariants().unwrap();
     assert!((rebuilt.area() - back.area()).abs() < 1e-9);
     // Edge planes that do not bound a convex polygon are rejected.
-    let mut edges = back.edges().to_vec();
+    let mut edges = back.edges().copied().collect::<Vec<_>>();
     edges.swap(0, 1);
     assert!(ConvexPolygon::from_planes(*back.support(), &edges, 2).is_err());
 }

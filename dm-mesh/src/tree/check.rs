@@ -35,7 +35,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     }
                     for v in self.mesh.face_vertices(*f) {
                         let p = self.mesh.vertex(v).ok_or("face vertex")?.position;
-                        if cell.edges().iter().any(|e| p.side(e) == Side::Front) {
+                        if cell.edges().any(|e| p.side(e) == Side::Front) {
                             return Err(format!("leaf {n}: a face vertex outside its cell"));
                         }
                     }

@@ -246,5 +246,5 @@ fn crosses(polygon: &ConvexPolygon, critical: &Critical) -> bool {
 /// The planes of `planes` (in their order) that hold an edge of `part`, a
 /// convex polygon inside all of them: those that bound it.
 fn bounding<'a>(planes: &'a [Plane], part: &'a ConvexPolygon) -> impl Iterator<Item = &'a Plane> {
-    planes.iter().filter(|p| part.edges().contains(p))
+    planes.iter().filter(|p| part.edges().any(|e| e == *p))
 }

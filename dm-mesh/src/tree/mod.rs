@@ -126,7 +126,10 @@ pub struct ReceiverDm<K> {
 }
 
 /// The region of a unit on a receiver: `polygon` clipped by `planes`.
-pub(crate) fn clip(polygon: &ConvexPolygon, planes: &[Plane]) -> Option<ConvexPolygon> {
+pub(crate) fn clip<'a>(
+    polygon: &ConvexPolygon,
+    planes: impl IntoIterator<Item = &'a Plane>,
+) -> Option<ConvexPolygon> {
     let mut piece = polygon.clone();
     for plane in planes {
         piece = match piece.split(plane) {
