@@ -433,27 +433,37 @@ impl ConvexPolygon {
             heap.resize(n, Side::On);
             &mut heap
         };
-        let (mut back, mut front) = (false, false);
+        let (mut backs, mut fronts) = (0, 0);
         for (i, slot) in sides.iter_mut().enumerate() {
             let s = self.vertex_side(i, plane);
-            back |= s == Side::Back;
-            front |= s == Side::Front;
+            backs += usize::from(s == Side::Back);
+            fronts += usize::from(s == Side::Front);
             *slot = s;
         }
         let sides = &*sides;
-        match (back, front) {
+        match (backs > 0, fronts > 0) {
             (true, true) => {
-                // Each crossing vertex is made once and shared by both parts
-                // (a plane and its flip give the same filter data). A convex
-                // polygon crosses a plane on at most two edges.
+                // The vertices strictly on one side of the plane are
+                // consecutive (the polygon is convex): each part's run
+                // begins after the edge that enters its side. Each crossing
+                // vertex is made once and shared by both parts (a plane and
+                // its flip give the same filter data); a convex polygon
+                // crosses a plane on at most two edges.
+                let (mut enter_back, mut enter_front) = (0, 0);
                 let mut crossings: [(usize, Vertex); 2] =
                     [(usize::MAX, Vertex::Grid(GridPoint::default())); 2];
                 let mut count = 0;
                 for e in 0..n {
-                    if matches!(
-                        (sides[e], sides[(e + 1) % n]),
-                        (Side::Back, Side::Front) | (Side::Front, Side::Back)
-                    ) {
+                    let (from, to) = (sides[e], sides[next(e, n)]);
+                    if from == to {
+                        continue;
+                    }
+                    match to {
+                        Side::Back => enter_back = e,
+                        Side::Front => enter_front = e,
+                        Side::On => {}
+                    }
+                    if from != Side::On && to != Side::On {
                         let filter = PointFilter::new(&self.support, self.edge(e), plane).expect(
                             "an edge whose ends lie strictly on both sides meets the plane in a point",
                         );
@@ -463,8 +473,8 @@ impl ConvexPolygon {
                 }
                 let crossings = &crossings[..count];
                 Split::Both(
-                    self.part(sides, crossings, Side::Back, *plane),
-                    self.part(sides, crossings, Side::Front, plane.flipped()),
+                    self.part(sides, crossings, enter_back, backs, *plane),
+                    self.part(sides, crossings, enter_front, fronts, plane.flipped()),
                 )
             }
             (true, false) => Split::Back,
@@ -473,43 +483,33 @@ impl ConvexPolygon {
         }
     }
 
-    /// The part on side `keep` of a plane that cuts the polygon; `closing`
-    /// is the plane oriented with that part behind it.
+    /// The part of a polygon cut by a plane whose `kept` vertices strictly
+    /// on its side follow edge `enter`; `closing` is the plane oriented
+    /// with that part behind it.
     fn part(
         &self,
         sides: &[Side],
         crossings: &[(usize, Vertex)],
-        keep: Side,
+        enter: usize,
+        kept: usize,
         closing: Plane,
     ) -> ConvexPolygon {
         let n = self.len();
-        // The kept boundary enters the `keep` side along one edge (its start
-        // vertex elsewhere, its end vertex strictly on `keep`), runs over the
-        // vertices strictly on `keep`, and leaves along the first edge whose
-        // end vertex is not.
-        let start = (0..n)
-            .find(|&e| sides[e] != keep && sides[(e + 1) % n] == keep)
-            .expect("a cut polygon has a vertex strictly on each side");
-        let mut run_len = 1;
-        while sides[(start + run_len) % n] == keep {
-            run_len += 1;
-        }
-        let last = (start + run_len - 1) % n;
-
-        let mut corners: Vec<Corner> = Vec::with_capacity(run_len + 1);
-        // The vertex between the closing plane and the first kept edge,
-        // then the kept edges with their start vertices.
+        let mut corners: Vec<Corner> = Vec::with_capacity(kept + 2);
+        // The vertex between the closing plane and the entering edge, then
+        // the kept vertices with the edges that start at them.
         corners.push(Corner {
-            vertex: self.vertex_on_cut(start, start, sides, crossings),
-            edge: self.corners[start].edge,
+            vertex: self.vertex_on_cut(enter, enter, sides, crossings),
+            edge: self.corners[enter].edge,
         });
-        for k in 1..run_len {
-            corners.push(self.corners[(start + k) % n]);
+        let mut last = enter;
+        for _ in 0..kept {
+            last = next(last, n);
+            corners.push(self.corners[last]);
         }
         // The vertex between the last kept edge and the closing plane.
-        let after = (last + 1) % n;
         corners.push(Corner {
-            vertex: self.vertex_on_cut(after, last, sides, crossings),
+            vertex: self.vertex_on_cut(next(last, n), last, sides, crossings),
             edge: closing,
         });
         ConvexPolygon {
@@ -570,6 +570,12 @@ impl ConvexPolygon {
         }
         Ok(())
     }
+}
+
+/// The index after `i` around a cycle of `n` (no division on the hot path).
+#[inline(always)]
+fn next(i: usize, n: usize) -> usize {
+    if i + 1 == n { 0 } else { i + 1 }
 }
 
 /// Drops vertices collinear with their neighbours until none is left.

@@ -6,7 +6,7 @@
 
 use crate::cones::{self, Common, Cones};
 use crate::pipeline::{Fragment, LightStats, PieceFlags};
-use crate::tree::{Filtering, ShadowVolumeTree};
+use crate::tree::{Filtered, Filtering, ShadowVolumeTree};
 use crate::volume::shadow_volume;
 use crate::{Light, LightSource};
 use bsp_core::predicates::Side;
@@ -212,22 +212,16 @@ fn shade_cone(cone: ConeBsp, context: &Context) -> (Vec<(u32, SlotResult)>, Cone
     let mut parts: Vec<SmallVec<[(ConvexPolygon, Class); 1]>> =
         (0..slots.len()).map(|_| SmallVec::new()).collect();
     let mut alike: Vec<bool> = vec![true; slots.len()];
+    let mut scratch = Filtered::default();
     for k in visit {
         let polygon = polygons[k as usize].take().expect("visited once");
         let j = polygon.source() as usize;
         let piece = slots[j].1;
         let polygon = polygon.with_source(piece);
-        let outcome = shade_polygon(&mut tree, polygon, context, &mut stats);
         let list = &mut parts[j];
-        match outcome {
-            Outcome::Whole(class, polygon) => {
-                alike[j] &= list.first().is_none_or(|(_, c)| *c == class);
-                list.push((polygon, class));
-            }
-            Outcome::Pieces(pieces) => {
-                alike[j] = false;
-                list.extend(pieces);
-            }
+        match shade_polygon(&mut tree, polygon, context, &mut stats, &mut scratch, list) {
+            Some(class) => alike[j] &= list[0].1 == class,
+            None => alike[j] = false,
         }
     }
     stats.tree_nodes = tree.nodes().len();
@@ -256,22 +250,19 @@ fn shade_cone(cone: ConeBsp, context: &Context) -> (Vec<(u32, SlotResult)>, Cone
     (results, stats)
 }
 
-/// What one scene-BSP polygon of a cone became.
-enum Outcome {
-    /// One class, the polygon whole.
-    Whole(Class, ConvexPolygon),
-    /// Lit and shadowed pieces.
-    Pieces(Vec<(ConvexPolygon, Class)>),
-}
-
 /// Filters one polygon (source: its piece) down the cone's tree and adds
-/// the volumes of its lit pieces if its piece casts shadows.
+/// the volumes of its lit pieces if its piece casts shadows. Appends to
+/// `list` what the polygon became: itself, with its class (returned), or
+/// its lit and shadowed pieces (`None`). `scratch` holds the pieces
+/// meanwhile.
 fn shade_polygon(
     tree: &mut ShadowVolumeTree,
     polygon: ConvexPolygon,
     context: &Context,
     stats: &mut ConeStats,
-) -> Outcome {
+    scratch: &mut Filtered,
+    list: &mut SmallVec<[(ConvexPolygon, Class); 1]>,
+) -> Option<Class> {
     let light: LightSource = context.light.source;
     let piece = polygon.source() as usize;
     let flags = &context.flags[piece];
@@ -285,38 +276,36 @@ fn shade_polygon(
             stats.planes_skipped += skipped;
         }
     };
-    match tree.filter_ref(&polygon) {
+    let class = match tree.filter_ref(&polygon, scratch) {
         Filtering::Lit(slot) => {
             if casts {
                 cast(tree, &polygon, slot);
             }
-            Outcome::Whole(lit, polygon)
+            lit
         }
-        Filtering::Shadowed => Outcome::Whole(Class::Umbra, polygon),
-        Filtering::Pieces(filtered) => {
+        Filtering::Shadowed => Class::Umbra,
+        Filtering::Pieces => {
             if casts {
-                for (piece, slot) in &filtered.lit {
+                for (piece, slot) in &scratch.lit {
                     cast(tree, piece, *slot);
                 }
             }
             // The tree may cut a polygon into pieces that all end up on one
             // side (planes of neighbouring volumes cross it): then it stays
             // whole, and only its lit pieces' volumes went in.
-            if !receives || filtered.lit.is_empty() {
-                Outcome::Whole(Class::Umbra, polygon)
-            } else if filtered.shadowed.is_empty() {
-                Outcome::Whole(Class::Lit, polygon)
+            if !receives || scratch.lit.is_empty() {
+                Class::Umbra
+            } else if scratch.shadowed.is_empty() {
+                Class::Lit
             } else {
-                let mut pieces: Vec<(ConvexPolygon, Class)> = filtered
-                    .lit
-                    .into_iter()
-                    .map(|(p, _)| (p, Class::Lit))
-                    .collect();
-                pieces.extend(filtered.shadowed.into_iter().map(|p| (p, Class::Umbra)));
-                Outcome::Pieces(pieces)
+                list.extend(scratch.lit.drain(..).map(|(p, _)| (p, Class::Lit)));
+                list.extend(scratch.shadowed.drain(..).map(|p| (p, Class::Umbra)));
+                return None;
             }
         }
-    }
+    };
+    list.push((polygon, class));
+    Some(class)
 }
 
 /// Puts the pass's fragments together in input order: settled ones as

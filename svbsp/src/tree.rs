@@ -52,17 +52,29 @@ pub struct Filtered {
     pub lit: Vec<(ConvexPolygon, Slot)>,
     /// Pieces in shadow.
     pub shadowed: Vec<ConvexPolygon>,
+    /// Pieces waiting to go down a subtree, kept with the lists so that
+    /// filtering polygon after polygon allocates nothing once warm.
+    stack: Vec<(VolumeChild, Slot, ConvexPolygon)>,
+}
+
+impl Filtered {
+    fn clear(&mut self) {
+        self.lit.clear();
+        self.shadowed.clear();
+        self.stack.clear();
+    }
 }
 
 /// The result of [`ShadowVolumeTree::filter_ref`].
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Filtering {
     /// No plane cut the polygon: it reached this lit leaf whole.
     Lit(Slot),
     /// No plane cut the polygon: it reached a shadowed leaf whole.
     Shadowed,
-    /// Some plane cut it: its pieces (which may still all lie on one side).
-    Pieces(Filtered),
+    /// Some plane cut it: its pieces (which may still all lie on one side)
+    /// are in the lists passed in.
+    Pieces,
 }
 
 /// A Shadow Volume BSP tree for one light.
@@ -112,14 +124,16 @@ impl ShadowVolumeTree {
     /// goes to the light's side.
     pub fn filter(&self, polygon: ConvexPolygon) -> Filtered {
         let mut out = Filtered::default();
-        self.filter_pieces(vec![(self.root, Slot::Root, polygon)], &mut out);
+        out.stack.push((self.root, Slot::Root, polygon));
+        self.filter_pieces(&mut out);
         out
     }
 
     /// [`filter`](Self::filter) without taking the polygon: a polygon that
     /// no plane cuts (the common case) is not copied, and its leaf is
-    /// returned instead of its pieces.
-    pub fn filter_ref(&self, polygon: &ConvexPolygon) -> Filtering {
+    /// returned instead of its pieces. Otherwise the pieces replace what
+    /// `pieces` held (its buffers are reused).
+    pub fn filter_ref(&self, polygon: &ConvexPolygon, pieces: &mut Filtered) -> Filtering {
         let (mut child, mut slot) = (self.root, Slot::Root);
         loop {
             let i = match child {
@@ -132,16 +146,12 @@ impl ShadowVolumeTree {
                 Split::Front => true,
                 Split::Back => false,
                 Split::Both(back, front) => {
-                    let mut out = Filtered {
-                        lit: Vec::with_capacity(4),
-                        shadowed: Vec::with_capacity(4),
-                    };
+                    pieces.clear();
                     // Popped front first, as `filter` does.
-                    let mut stack = Vec::with_capacity(8);
-                    stack.push((node.back, Slot::Back(i), back));
-                    stack.push((node.front, Slot::Front(i), front));
-                    self.filter_pieces(stack, &mut out);
-                    return Filtering::Pieces(out);
+                    pieces.stack.push((node.back, Slot::Back(i), back));
+                    pieces.stack.push((node.front, Slot::Front(i), front));
+                    self.filter_pieces(pieces);
+                    return Filtering::Pieces;
                 }
                 // In a cap's plane: not behind it, so on the light's side.
                 Split::Coplanar(_) => self.light.side(&node.plane) != Side::Back,
@@ -154,16 +164,12 @@ impl ShadowVolumeTree {
         }
     }
 
-    /// Filters the pieces on `stack` (each with the subtree it enters) to
-    /// their leaves.
-    fn filter_pieces(
-        &self,
-        mut stack: Vec<(VolumeChild, Slot, ConvexPolygon)>,
-        out: &mut Filtered,
-    ) {
+    /// Filters the pieces on `out.stack` (each with the subtree it enters)
+    /// to their leaves.
+    fn filter_pieces(&self, out: &mut Filtered) {
         // A piece walks down in place; only the back part of a cut waits on
         // the stack (moving polygons is the dominant cost otherwise).
-        while let Some((mut child, mut slot, mut piece)) = stack.pop() {
+        while let Some((mut child, mut slot, mut piece)) = out.stack.pop() {
             loop {
                 let i = match child {
                     VolumeChild::Lit => {
@@ -181,7 +187,7 @@ impl ShadowVolumeTree {
                     Split::Front => true,
                     Split::Back => false,
                     Split::Both(back, front) => {
-                        stack.push((node.back, Slot::Back(i), back));
+                        out.stack.push((node.back, Slot::Back(i), back));
                         piece = front;
                         true
                     }
