@@ -63,5 +63,6 @@ pub use predicates::{ImplicitPoint, Side};
 pub use scene_bsp::{Location, SceneBsp, SceneChild, SceneNode, Traversal, Viewpoint};
 pub use solid::{BspSolid, Containment, PointClass, Region, SolidChild, SolidNode};
 pub use winged_edge::{
-    Edge, EdgeKey, Face, FaceKey, FaceSplit, Vertex, VertexKey, VertexPosition, WingedMesh,
+    Edge, EdgeKey, Face, FaceKey, FaceSide, FaceSplit, Vertex, VertexKey, VertexPosition,
+    WingedMesh,
 };

@@ -234,7 +234,7 @@ fn illuminate_receiver(
         seen.reserve(4 * touched.len());
         touched
             .iter()
-            .flat_map(|&f| mesh.face_vertices(f))
+            .flat_map(|&f| mesh.face_sides(f).map(|side| side.start))
             .filter(|&v| seen.insert(v))
             .collect()
     };

@@ -111,6 +111,19 @@ pub struct Edge<E> {
     pub data: E,
 }
 
+/// One edge of a face's walk ([`WingedMesh::face_sides`]).
+#[derive(Debug, Clone, Copy)]
+pub struct FaceSide<'a, E> {
+    /// The edge's key.
+    pub key: EdgeKey,
+    /// The edge.
+    pub edge: &'a Edge<E>,
+    /// The face on the edge's other side (`None`: the outside).
+    pub across: Option<FaceKey>,
+    /// The vertex the walk leaves the edge from (counter-clockwise).
+    pub start: VertexKey,
+}
+
 /// A face, its support plane and one edge of its boundary.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Face<F> {
@@ -241,6 +254,34 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         self.walk(self.faces[f].edge, Some(f))
     }
 
+    /// The edges around a face, counter-clockwise, each with its key and
+    /// the face across it (`None`: the outside), without allocating: the
+    /// walk for code that looks at a face's neighbours (floods over a big
+    /// mesh, where a list per face costs more than the walk).
+    pub fn face_sides(&self, f: FaceKey) -> impl Iterator<Item = FaceSide<'_, E>> + '_ {
+        let first = self.faces[f].edge;
+        let side = Some(f);
+        let mut at = Some(first);
+        let mut steps = 0;
+        std::iter::from_fn(move || {
+            let key = at?;
+            let edge = &self.edges[key];
+            let (next, across, start) = if edge.left == side {
+                (edge.left_next, edge.right, edge.start)
+            } else {
+                (edge.right_next, edge.left, edge.end)
+            };
+            steps += 1;
+            at = (next != first && steps <= self.edges.len()).then_some(next);
+            Some(FaceSide {
+                key,
+                edge,
+                across,
+                start,
+            })
+        })
+    }
+
     fn walk(&self, first: EdgeKey, side: Option<FaceKey>) -> Vec<EdgeKey> {
         // Room for a typical face at once (growing one by one from a single
         // slot reallocates several times per walk).
@@ -256,10 +297,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
 
     /// The vertices around a face, counter-clockwise.
     pub fn face_vertices(&self, f: FaceKey) -> Vec<VertexKey> {
-        self.face_edges(f)
-            .into_iter()
-            .map(|e| self.walk_start(e, Some(f)))
-            .collect()
+        self.face_sides(f).map(|side| side.start).collect()
     }
 
     /// The edges around a vertex, in the order of the faces around it.
@@ -314,7 +352,11 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
 
     /// The plane of edge `e` oriented with `side` (one of its faces) behind.
     fn edge_plane_for(&self, e: EdgeKey, side: Option<FaceKey>) -> Plane {
-        let edge = &self.edges[e];
+        Self::oriented_line(&self.edges[e], side)
+    }
+
+    /// The plane of `edge` oriented with `side` (one of its faces) behind.
+    fn oriented_line(edge: &Edge<E>, side: Option<FaceKey>) -> Plane {
         if edge.left == side || !edge.right_in_front {
             edge.line
         } else {
@@ -326,29 +368,29 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     /// it; collinear edges give one plane (the first one's: two planes
     /// through one line may bound edges along it).
     fn face_planes(&self, f: FaceKey) -> Vec<Plane> {
-        let mut planes: Vec<Plane> = Vec::new();
-        let edges = self.face_edges(f);
-        // Whether edge `e` of the walk lies along `plane` (its start, the
-        // end of the edge before it, does when that one lies in it).
-        let along = |e: EdgeKey, plane: &Plane| {
-            let edge = &self.edges[e];
-            let end = if edge.left == Some(f) {
-                edge.end
+        let mut planes: Vec<Plane> = Vec::with_capacity(8);
+        // Whether an edge of the walk lies along `plane` (its start, the end
+        // of the edge before it, does when that one lies in it): tested at
+        // its end vertex.
+        let along =
+            |end: VertexKey, plane: &Plane| self.vertices[end].position.side(plane) == Side::On;
+        let mut first_end = None;
+        for side in self.face_sides(f) {
+            let end = if side.start == side.edge.start {
+                side.edge.end
             } else {
-                edge.start
+                side.edge.start
             };
-            self.vertices[end].position.side(plane) == Side::On
-        };
-        for &e in &edges {
-            let plane = self.edge_plane_for(e, Some(f));
+            first_end.get_or_insert(end);
+            let plane = Self::oriented_line(side.edge, Some(f));
             match planes.last() {
-                Some(last) if *last == plane || along(e, last) => {}
+                Some(last) if *last == plane || along(end, last) => {}
                 _ => planes.push(plane),
             }
         }
         if planes.len() > 1
-            && let Some(last) = planes.last()
-            && (planes.first() == Some(last) || along(edges[0], last))
+            && let (Some(last), Some(end)) = (planes.last(), first_end)
+            && (planes.first() == Some(last) || along(end, last))
         {
             planes.pop();
         }

@@ -24,6 +24,31 @@ fn op() -> impl Strategy<Value = Op> {
     ]
 }
 
+/// `face_sides` walks the edges `face_edges` lists, names the face across
+/// each, and leaves each edge at the vertex the next one starts from.
+fn check_face_sides(mesh: &WingedMesh) -> Result<(), TestCaseError> {
+    for (f, _) in mesh.faces() {
+        let sides: Vec<_> = mesh.face_sides(f).collect();
+        let keys: Vec<_> = sides.iter().map(|s| s.key).collect();
+        prop_assert_eq!(keys, mesh.face_edges(f));
+        for (i, side) in sides.iter().enumerate() {
+            let e = mesh.edge(side.key).unwrap();
+            prop_assert!(
+                (e.left == Some(f) && side.across == e.right)
+                    || (e.right == Some(f) && side.across == e.left)
+            );
+            prop_assert!(side.start == e.start || side.start == e.end);
+            let end = if side.start == e.start {
+                e.end
+            } else {
+                e.start
+            };
+            prop_assert_eq!(end, sides[(i + 1) % sides.len()].start);
+        }
+    }
+    Ok(())
+}
+
 fn total_area(mesh: &WingedMesh) -> f64 {
     mesh.faces()
         .map(|(f, _)| mesh.face_polygon(f, 0).unwrap().area())
@@ -96,6 +121,7 @@ proptest! {
                 }
             }
             mesh.check_invariants().map_err(TestCaseError::fail)?;
+            check_face_sides(&mesh)?;
             let now = total_area(&mesh);
             prop_assert!((now - area).abs() <= 1e-9 * area, "area {now} vs {area}");
         }

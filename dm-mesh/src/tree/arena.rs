@@ -197,22 +197,29 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// with area, each with its part.
     pub(super) fn descend(&self, node: u32, piece: ConvexPolygon) -> Vec<(u32, ConvexPolygon)> {
         let mut out = Vec::new();
+        // A piece walks down in place; only the front part of a cut waits
+        // on the stack (back parts first: the order of a plain recursion).
         let mut stack = vec![(node, piece)];
-        while let Some((n, piece)) = stack.pop() {
-            match &self.nodes[n as usize] {
-                Node::Leaf(_) => out.push((n, piece)),
-                Node::Split {
-                    line, back, front, ..
-                } => match piece.split(line) {
-                    Split::Back => stack.push((*back, piece)),
-                    Split::Front => stack.push((*front, piece)),
-                    Split::Both(b, f) => {
-                        stack.push((*front, f));
-                        stack.push((*back, b));
+        while let Some((mut n, mut piece)) = stack.pop() {
+            loop {
+                match &self.nodes[n as usize] {
+                    Node::Leaf(_) => {
+                        out.push((n, piece));
+                        break;
                     }
-                    Split::Coplanar(_) => {}
-                },
-                Node::Free => {}
+                    Node::Split {
+                        line, back, front, ..
+                    } => match piece.split(line) {
+                        Split::Back => n = *back,
+                        Split::Front => n = *front,
+                        Split::Both(b, f) => {
+                            stack.push((*front, f));
+                            (n, piece) = (*back, b);
+                        }
+                        Split::Coplanar(_) => break,
+                    },
+                    Node::Free => break,
+                }
             }
         }
         out

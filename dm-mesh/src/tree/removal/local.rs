@@ -182,16 +182,10 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         for &leaf in leaves {
             let face = self.face_of(leaf);
             let mut on_line = false;
-            for e in self.mesh.face_edges(face) {
-                let edge = self.mesh.edge(e).expect("face edge");
-                if edge.line.is_coincident(line) {
+            for side in self.mesh.face_sides(face) {
+                if side.edge.line.is_coincident(line) {
                     on_line = true;
-                    let other = if edge.left == Some(face) {
-                        edge.right
-                    } else {
-                        edge.left
-                    };
-                    across.extend(other);
+                    across.extend(side.across);
                 }
             }
             mine += u64::from(on_line);

@@ -188,14 +188,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         let mut seen: KeySet<FaceKey> = starts.iter().copied().collect();
         let mut stack = starts;
         while let Some(f) = stack.pop() {
-            for e in self.mesh.face_edges(f) {
-                let edge = self.mesh.edge(e).expect("face edge");
-                let other = if edge.left == Some(f) {
-                    edge.right
-                } else {
-                    edge.left
-                };
-                if let Some(g) = other
+            for side in self.mesh.face_sides(f) {
+                if let Some(g) = side.across
                     && !seen.contains(&g)
                     && self.holds(g, u)
                 {
@@ -241,10 +235,10 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         // become straight).
         let mut edge = None;
         let mut shared: Vec<VertexKey> = Vec::with_capacity(4);
-        for e in self.mesh.face_edges(a) {
-            let x = self.mesh.edge(e).expect("face edge");
-            if x.left == Some(b) || x.right == Some(b) {
-                edge.get_or_insert(e);
+        for side in self.mesh.face_sides(a) {
+            let x = side.edge;
+            if side.across == Some(b) {
+                edge.get_or_insert(side.key);
                 for v in [x.start, x.end] {
                     if !shared.contains(&v) {
                         shared.push(v);
