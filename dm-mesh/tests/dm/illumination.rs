@@ -1,7 +1,7 @@
 //! Vertex irradiance: the three cases against the visible part of the
 //! light past every occluder of the scene, and against Monte Carlo.
 
-use crate::common::{TestScene, cuboid, floor, gp, light, scene};
+use crate::common::{TestScene, cuboid, floor, gp, light, scene, translated};
 use crate::oracle::{hidden, interior_samples};
 use bsp_core::ConvexPolygon;
 use dm_mesh::{CellClass, DmScene};
@@ -84,6 +84,43 @@ proptest! {
     fn vertex_irradiance_matches_the_visible_part_past_every_occluder(t in scene()) {
         let (mut scene, _) = t.build();
         check_vertices(&t, &mut scene)?;
+    }
+
+    /// After a move, an illuminated scene evaluates again only the vertices
+    /// whose covers changed and keeps the others' values: they are the
+    /// values of the same scene illuminated only after the move (every
+    /// vertex evaluated then), bit for bit.
+    #[test]
+    fn reilluminating_after_a_move_gives_the_values_of_illuminating_once(
+        t in scene(),
+        pick in 0_usize..64,
+        d in prop::array::uniform3(-6_i64..=6),
+    ) {
+        let k = 1 + pick % (t.objects.len() - 1).max(1);
+        prop_assume!(k < t.objects.len());
+        let moved: Vec<ConvexPolygon> =
+            t.objects[k].0.iter().map(|p| translated(p, d)).collect();
+        let (mut eager, ids) = t.build();
+        eager.illuminate();
+        eager.move_object(ids[k], moved.clone()).unwrap();
+        let stats = eager.illuminate();
+        prop_assert!(stats.evaluated <= stats.vertices);
+        let (mut lazy, ids) = t.build();
+        lazy.move_object(ids[k], moved).unwrap();
+        let all = lazy.illuminate();
+        prop_assert_eq!(all.evaluated, all.vertices);
+        let (a, b): (Vec<_>, Vec<_>) = (eager.receivers().collect(), lazy.receivers().collect());
+        prop_assert_eq!(a.len(), b.len());
+        for ((ra, da), (rb, db)) in a.into_iter().zip(b) {
+            prop_assert_eq!(ra, rb);
+            prop_assert_eq!(da.mesh().counts(), db.mesh().counts());
+            for ((va, _), (vb, _)) in da.mesh().vertices().zip(db.mesh().vertices()) {
+                prop_assert_eq!(va, vb);
+                let (ea, eb) = (eager.vertex_irradiance(ra, va), lazy.vertex_irradiance(rb, vb));
+                prop_assert!(ea.is_some());
+                prop_assert_eq!(ea.map(f64::to_bits), eb.map(f64::to_bits));
+            }
+        }
     }
 }
 
