@@ -29,6 +29,9 @@
 //! alongside in floating point, with relative error at most `gamma_10`
 //! (all its terms are positive). Hence `|s'| > 12 u P'` implies
 //! `|s'| > gamma_10 P >= |s' - s|`, and the sign of `s'` is the sign of `s`.
+//! A point keeps each coordinate's permanent rounded up to a power of two
+//! ([`PointFilter`]): a larger `P'` only widens the band left to the exact
+//! path.
 //! Integers leave no room for underflow, and `2^240` is far from overflow.
 
 use crate::{Error, GridPoint, Plane};

@@ -78,8 +78,8 @@ impl ShadowPolygon {
 /// The side `orient(e)` gives for the symbolically perturbed point
 /// `e + ε x + ε² y + ε³ z`, where `orient` is affine in its point (every
 /// orientation is): its sign at `e` or, if zero, that of its change as one
-/// coordinate moves to the next `f64` up, `x` first. [`Side::On`] only if
-/// `orient` does not depend on the point at all.
+/// coordinate moves up, `x` first. [`Side::On`] only if `orient` does not
+/// depend on the point at all.
 fn perturbed(e: [f64; 3], orient: impl Fn([f64; 3]) -> Side) -> Side {
     let side = orient(e);
     if side != Side::On {
@@ -87,13 +87,23 @@ fn perturbed(e: [f64; 3], orient: impl Fn([f64; 3]) -> Side) -> Side {
     }
     for axis in 0..3 {
         let mut moved = e;
-        moved[axis] = next_up(e[axis]);
+        moved[axis] = step_up(e[axis]);
         let side = orient(moved);
         if side != Side::On {
             return side;
         }
     }
     Side::On
+}
+
+/// A coordinate above `x`, for reading the sign of an affine function's
+/// change along an axis: any point above gives it, as long as the exact
+/// orientation can be evaluated there. A step of one (rounded) keeps the
+/// point at the scale of the input: the next `f64` above 0 is subnormal,
+/// where the products of an orientation underflow and its sign is lost.
+fn step_up(x: f64) -> f64 {
+    let up = x + 1.0;
+    if up > x { up } else { next_up(x) }
 }
 
 /// The least `f64` above `x` (finite `x`; `f64::next_up` needs Rust 1.86).
@@ -200,6 +210,50 @@ mod tests {
         // Above the edge, or in the opposite cone above the light: no.
         assert_eq!(wedge.crossing([0.0, 7.0, 1.0], [0.0, 7.0, -1.0]), 0);
         assert_eq!(wedge.crossing([0.0, 20.0, 1.0], [0.0, 20.0, -1.0]), 0);
+    }
+
+    /// An eye on a polygon's plane at the origin (an integer point, as
+    /// eyes often are; the polygon's corners fractions, as those of shadow
+    /// polygons are): the perturbed side is the sign of the orientation's
+    /// change along x, then y, then z, read exactly from the plane's
+    /// integer normal. (Moving 0 to the next `f64`, a subnormal, lost it to
+    /// underflow: cargo-fuzz `bergeron` found an eye whose counts
+    /// disagreed with the crossings of its segments.)
+    #[test]
+    fn an_eye_at_the_origin_is_perturbed_exactly() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = |range: i64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % (2 * range as u64 + 1)) as i64 - range
+        };
+        let mut checked = 0;
+        for _ in 0..2000 {
+            let a = [next(9), next(9), next(9)];
+            let b = [next(9), next(9), next(9)];
+            // a, b and a + b span a plane through the origin.
+            let c = [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
+            let n = [
+                a[1] * b[2] - a[2] * b[1],
+                a[2] * b[0] - a[0] * b[2],
+                a[0] * b[1] - a[1] * b[0],
+            ];
+            let Some(&first) = n.iter().find(|&&k| k != 0) else {
+                continue;
+            };
+            // orient3d(a, b, c, x) = det[a - x, b - x, c - x] decreases
+            // along (b - a) x (c - a) = -(a x b).
+            let expected = Side::of_sign(first);
+            // In 64ths (exact): the orientation's change for a subnormal
+            // step is below the least subnormal.
+            let f = |v: [i64; 3]| v.map(|k| k as f64 / 64.0);
+            let (a, b, c) = (f(a), f(b), f(c));
+            let side = perturbed([0.0; 3], |x| orient3d_f64(a, b, c, x));
+            assert_eq!(side, expected, "{a:?} {b:?} {c:?}");
+            checked += 1;
+        }
+        assert!(checked > 1500, "{checked} planes");
     }
 
     #[test]
