@@ -8,8 +8,10 @@
 //!   for) is perturbed symbolically to `e + ε x + ε² y + ε³ z` (`ε` positive
 //!   and infinitely small): every orientation with it is affine in it, so
 //!   when one is zero its sign is that of the first non-zero change along
-//!   `x`, then `y`, then `z`, each read exactly by moving one coordinate to
-//!   the next `f64` up. An eye that lies on a shadow polygon (on the
+//!   `x`, then `y`, then `z`, each read exactly by moving one coordinate up
+//!   by one unit (an affine function's change has the same sign for any
+//!   step, and a unit keeps the point where the exact orientation does not
+//!   underflow). An eye that lies on a shadow polygon (on the
 //!   boundary of a volume) is thus inside or outside the volume the same
 //!   way for its own count and for every segment it starts;
 //! - the **visible point** is not perturbed: a segment that ends on a
