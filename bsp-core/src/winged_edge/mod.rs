@@ -122,6 +122,8 @@ pub struct FaceSide<'a, E> {
     pub across: Option<FaceKey>,
     /// The vertex the walk leaves the edge from (counter-clockwise).
     pub start: VertexKey,
+    /// The vertex the walk reaches at the edge's other end.
+    pub end: VertexKey,
 }
 
 /// A face, its support plane and one edge of its boundary.
@@ -254,23 +256,32 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         self.walk(self.faces[f].edge, Some(f))
     }
 
-    /// The edges around a face, counter-clockwise, each with its key and
-    /// the face across it (`None`: the outside), without allocating: the
-    /// walk for code that looks at a face's neighbours (floods over a big
-    /// mesh, where a list per face costs more than the walk).
+    /// The edges around a face, counter-clockwise, each with its key, its
+    /// ends in the walk's order and the face across it (`None`: the
+    /// outside), without allocating: the walk for code that looks at a
+    /// face's neighbours (floods over a big mesh, where a list per face
+    /// costs more than the walk).
     pub fn face_sides(&self, f: FaceKey) -> impl Iterator<Item = FaceSide<'_, E>> + '_ {
-        let first = self.faces[f].edge;
-        let side = Some(f);
+        self.sides_from(self.faces[f].edge, Some(f))
+    }
+
+    /// The walk around `side` (a face, or the outside) from edge `first`.
+    fn sides_from(
+        &self,
+        first: EdgeKey,
+        side: Option<FaceKey>,
+    ) -> impl Iterator<Item = FaceSide<'_, E>> + '_ {
         let mut at = Some(first);
         let mut steps = 0;
         std::iter::from_fn(move || {
             let key = at?;
             let edge = &self.edges[key];
-            let (next, across, start) = if edge.left == side {
-                (edge.left_next, edge.right, edge.start)
+            let (next, across, start, end) = if edge.left == side {
+                (edge.left_next, edge.right, edge.start, edge.end)
             } else {
-                (edge.right_next, edge.left, edge.end)
+                (edge.right_next, edge.left, edge.end, edge.start)
             };
+            // A broken cycle (never in a valid mesh) still ends.
             steps += 1;
             at = (next != first && steps <= self.edges.len()).then_some(next);
             Some(FaceSide {
@@ -278,21 +289,13 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 edge,
                 across,
                 start,
+                end,
             })
         })
     }
 
     fn walk(&self, first: EdgeKey, side: Option<FaceKey>) -> Vec<EdgeKey> {
-        // Room for a typical face at once (growing one by one from a single
-        // slot reallocates several times per walk).
-        let mut out = Vec::with_capacity(8);
-        out.push(first);
-        let mut e = self.next_in(first, side);
-        while e != first && out.len() <= self.edges.len() {
-            out.push(e);
-            e = self.next_in(e, side);
-        }
-        out
+        self.sides_from(first, side).map(|s| s.key).collect()
     }
 
     /// The vertices around a face, counter-clockwise.
@@ -376,11 +379,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             |end: VertexKey, plane: &Plane| self.vertices[end].position.side(plane) == Side::On;
         let mut first_end = None;
         for side in self.face_sides(f) {
-            let end = if side.start == side.edge.start {
-                side.edge.end
-            } else {
-                side.edge.start
-            };
+            let end = side.end;
             first_end.get_or_insert(end);
             let plane = Self::oriented_line(side.edge, Some(f));
             match planes.last() {
