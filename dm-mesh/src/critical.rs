@@ -18,8 +18,11 @@
 //! through its wedge's bounding lines (each through three grid points),
 //! oriented with the wedge behind, so a cell is cut only where the wedge
 //! crosses it. Only an occluder wholly in front of the light, with the
-//! light wholly on one side of it, gets internal discontinuities here.
+//! light wholly on one side of it, gets internal discontinuities here, and
+//! none through an edge or vertex its object's surface hides on both sides
+//! ([`crate::surface`]).
 
+use crate::surface::Surroundings;
 use area_shadow::{AreaSource, VolumePlanes};
 use bsp_core::predicates::{self, Side};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
@@ -72,11 +75,13 @@ fn bound(
 
 /// The internal EV and VE discontinuities of `occluder` under `light`,
 /// given its volume planes (none without an umbra volume or when the
-/// occluder reaches the light's plane).
+/// occluder reaches the light's plane) and the surface of its object
+/// around it.
 pub(crate) fn internal_planes(
     occluder: &ConvexPolygon,
     light: &AreaSource,
     volumes: &VolumePlanes,
+    around: &Surroundings,
 ) -> Vec<Critical> {
     let Some(umbra) = &volumes.umbra else {
         return Vec::new();
@@ -117,6 +122,9 @@ pub(crate) fn internal_planes(
     // holding ab.
     for &v in &l {
         for i in 0..o.len() {
+            if around.edge_hidden(occluder.support(), i, v) {
+                continue;
+            }
             let (a, b) = (o[i], o[(i + 1) % o.len()]);
             push(Plane::through(v, a, b), &|plane| {
                 Some([
@@ -128,9 +136,12 @@ pub(crate) fn internal_planes(
     }
     // VE: occluder vertex p, light edge cd; the wedge is the sector at p
     // opposite cd.
-    for &p in &o {
+    for (k, &p) in o.iter().enumerate() {
         for i in 0..l.len() {
             let (c, d) = (l[i], l[(i + 1) % l.len()]);
+            if around.vertex_hidden(k, c, d) {
+                continue;
+            }
             push(Plane::through(p, c, d), &|plane| {
                 Some([
                     bound(p, c, d, true, plane, &others)?,
@@ -159,7 +170,7 @@ mod tests {
         let occluder =
             ConvexPolygon::from_grid_points(&[g(-3, 5, -1), g(3, 5, -2), g(0, 5, 4)], 0).unwrap();
         let volumes = volume_planes(&occluder, &light);
-        let internal = internal_planes(&occluder, &light, &volumes);
+        let internal = internal_planes(&occluder, &light, &volumes, &Surroundings::default());
         assert!(!internal.is_empty());
         for c in &internal {
             assert!(!c.wedge[0].is_coincident(&c.plane) && !c.wedge[1].is_coincident(&c.plane));
@@ -180,6 +191,6 @@ mod tests {
         )
         .unwrap();
         let volumes = volume_planes(&occluder, &light);
-        assert!(internal_planes(&occluder, &light, &volumes).is_empty());
+        assert!(internal_planes(&occluder, &light, &volumes, &Surroundings::default()).is_empty());
     }
 }

@@ -88,6 +88,7 @@ mod illuminate;
 mod order;
 mod overlap;
 mod scene;
+mod surface;
 mod tree;
 
 pub use area_shadow;

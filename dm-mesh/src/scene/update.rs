@@ -16,6 +16,7 @@ use crate::error::Error;
 use crate::hash::KeyMap;
 use crate::illuminate::ReceiverIllum;
 use crate::order::unit_order;
+use crate::surface::surroundings;
 use crate::tree::ReceiverDm;
 use area_shadow::{AreaSource, SourceSide, volume_planes};
 use bsp_core::ConvexPolygon;
@@ -46,7 +47,12 @@ impl DmScene {
         Self::validate(&polygons)?;
         let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
         let mut added = Vec::with_capacity(polygons.len());
-        for polygon in polygons {
+        let surface = if flags.casts_shadows && self.options.internal_discontinuities {
+            surroundings(&polygons)
+        } else {
+            Vec::new()
+        };
+        for (i, polygon) in polygons.into_iter().enumerate() {
             let volumes = sources
                 .iter()
                 .map(|light| {
@@ -58,7 +64,7 @@ impl DmScene {
                     if flags.casts_shadows && !turned_away {
                         let volumes = volume_planes(&polygon, light);
                         let internal = if self.options.internal_discontinuities {
-                            internal_planes(&polygon, light, &volumes)
+                            internal_planes(&polygon, light, &volumes, &surface[i])
                         } else {
                             Vec::new()
                         };

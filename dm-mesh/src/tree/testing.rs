@@ -4,6 +4,7 @@
 
 use crate::cell::CellClass;
 use crate::critical::{UnitPlanes, internal_planes};
+use crate::surface::Surroundings;
 use crate::tree::ReceiverDm;
 use area_shadow::{AreaSource, volume_planes};
 use bsp_core::{ConvexPolygon, GridPoint, Split};
@@ -91,7 +92,7 @@ pub(crate) fn occluders(rng: &mut Pcg64, n: usize) -> Vec<UnitPlanes> {
         if volumes.penumbra.is_empty() {
             continue;
         }
-        let internal = internal_planes(&polygon, &light, &volumes);
+        let internal = internal_planes(&polygon, &light, &volumes, &Surroundings::default());
         out.push(UnitPlanes { volumes, internal });
     }
     out
