@@ -39,7 +39,9 @@
 //! Inside each penumbra the internal EV and VE discontinuities (a light
 //! vertex crossing an occluder edge, an occluder vertex crossing a light
 //! edge) split the cells too, where their wedges cross them, so that the
-//! irradiance is smooth inside every cell. Which occluders can shadow which
+//! irradiance is smooth inside every cell; an edge or vertex that the
+//! occluder's own object hides on both sides casts none (the light's part
+//! in view cannot change there). Which occluders can shadow which
 //! receivers is found through a uniform grid of receiver boxes and penumbra
 //! boxes ([`OverlapKind::Grid`], the default) or the paper's shadow overlap
 //! cube ([`OverlapKind::Cube`]: direction tiles around each light); the
