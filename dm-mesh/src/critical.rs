@@ -142,10 +142,20 @@ pub(crate) fn internal_planes(
             if around.vertex_hidden(k, c, d) {
                 continue;
             }
+            // Cast from a stretch of `cd` that sees `p` hidden, the
+            // surface changes nothing: the fan plane where the stretch
+            // ends bounds the wedge there.
             push(Plane::through(p, c, d), &|plane| {
+                let [at_c, at_d] = around.hidden_stretch_ends(k, c, d, [light.support(), plane]);
                 Some([
-                    bound(p, c, d, true, plane, &others)?,
-                    bound(p, d, c, true, plane, &others)?,
+                    match at_c {
+                        Some(end) => end.flipped(),
+                        None => bound(p, c, d, true, plane, &others)?,
+                    },
+                    match at_d {
+                        Some(end) => end.flipped(),
+                        None => bound(p, d, c, true, plane, &others)?,
+                    },
                 ])
             });
         }

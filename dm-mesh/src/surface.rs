@@ -17,7 +17,7 @@
 
 use crate::hash::KeyMap;
 use bsp_core::predicates::{Side, side_of_point};
-use bsp_core::{ConvexPolygon, GridPoint, Plane};
+use bsp_core::{ConvexPolygon, GridPoint, ImplicitPoint, Plane};
 use smallvec::SmallVec;
 
 /// The surface around one piece of an object.
@@ -56,6 +56,76 @@ impl Surroundings {
                 .iter()
                 .all(|plane| side_of_point(plane, c) == side && side_of_point(plane, d) == side)
     }
+
+    /// Where, along the light edge `cd`, the stretches that hide vertex `k`
+    /// from its ends stop: per end, the plane of the fan at which the
+    /// stretch from that end leaves the side of every piece the end is on,
+    /// oriented with the end in front. `None` for an end that sees the
+    /// vertex, and for a stretch that reaches the other end's; `[None,
+    /// None]` when the two stretches meet. `line` is two distinct planes
+    /// through `cd`.
+    ///
+    /// A point of the VE surface lies on the line from a point `x` of `cd`
+    /// through the vertex, beyond it, so only the part of the surface cast
+    /// from the rest of `cd` is a discontinuity; the returned plane holds
+    /// the vertex and the stretch's end, and bounds that part.
+    pub(crate) fn hidden_stretch_ends(
+        &self,
+        k: usize,
+        c: GridPoint,
+        d: GridPoint,
+        line: [&Plane; 2],
+    ) -> [Option<Plane>; 2] {
+        let Some(Some(fan)) = self.around_vertex.get(k) else {
+            return [None, None];
+        };
+        let from_c = stretch_end(fan, c, d, line);
+        let from_d = stretch_end(fan, d, c, line);
+        if let (Some((at_c, _)), Some((_, meets_d))) = (&from_c, &from_d) {
+            // Past the end of the stretch from `c`, strictly, or the
+            // stretches touch and the surface left would be one line.
+            if meets_d.side(at_c) != Side::Back {
+                return [None, None];
+            }
+        }
+        [from_c.map(|(plane, _)| plane), from_d.map(|(plane, _)| plane)]
+    }
+}
+
+/// The fan plane, oriented with `from` in front, at which the segment from
+/// `from` to `to` first leaves the side of the fan `from` is strictly on,
+/// with the point where it does; `None` if `from` is not hidden or the
+/// stretch reaches `to`.
+fn stretch_end(
+    fan: &[Plane],
+    from: GridPoint,
+    to: GridPoint,
+    line: [&Plane; 2],
+) -> Option<(Plane, ImplicitPoint)> {
+    let side = side_of_point(&fan[0], from);
+    if side == Side::On {
+        return None;
+    }
+    let mut first: Option<(Plane, ImplicitPoint)> = None;
+    for plane in fan {
+        if side_of_point(plane, from) != side {
+            return None;
+        }
+        let plane = if side == Side::Front { *plane } else { plane.flipped() };
+        if side_of_point(&plane, to) == Side::Front {
+            continue;
+        }
+        // The segment crosses `plane` (at `to` itself, perhaps): keep the
+        // crossing nearest `from`.
+        let meets = ImplicitPoint::new(*line[0], *line[1], plane).ok()?;
+        if first
+            .as_ref()
+            .is_none_or(|(_, nearest)| nearest.side(&plane) == Side::Back)
+        {
+            first = Some((plane, meets));
+        }
+    }
+    first.filter(|(plane, _)| side_of_point(plane, to) != Side::On)
 }
 
 /// The surroundings of each of an object's pieces, in their order.
@@ -286,6 +356,37 @@ mod tests {
                         let fan = around.around_vertex[k].as_ref().unwrap();
                         prop_assert!(hidden_either_side(r, f64s(p), [p, *c, *d], fan, &solid));
                     }
+                    for (c, d) in lights.iter().zip(lights.iter().skip(1)) {
+                        let p = corner(k);
+                        let (Some(critical), Some(light_plane)) = (
+                            Plane::through(p, *c, *d),
+                            lights.iter().find_map(|&t| {
+                                (side_of_point(&Plane::through(p, *c, *d)?, t) != Side::On)
+                                    .then(|| Plane::through(*c, *d, t))
+                                    .flatten()
+                            }),
+                        ) else {
+                            continue;
+                        };
+                        let ends = around.hidden_stretch_ends(k, *c, *d, [&light_plane, &critical]);
+                        let fan = around.around_vertex[k].as_ref();
+                        for (end, (from, to)) in ends.iter().zip([(c, d), (d, c)]) {
+                            let Some(end) = end else { continue };
+                            // The light points of the stretch up to its end
+                            // see the vertex hidden.
+                            let [a, b, cc, dd] = end.approx();
+                            let value = |x: [f64; 3]| a * x[0] + b * x[1] + cc * x[2] + dd;
+                            let (ff, ft) = (f64s(*from), f64s(*to));
+                            let (vf, vt) = (value(ff), value(ft));
+                            prop_assert!(vf > 0.0 && vt < 0.0);
+                            let stop = vf / (vf - vt);
+                            for share in [0.5, 0.999] {
+                                let t = stop * share;
+                                let x: [f64; 3] = std::array::from_fn(|i| ff[i] + t * (ft[i] - ff[i]));
+                                prop_assert!(hidden_either_side(x, f64s(p), [p, *c, *d], fan.unwrap(), &solid));
+                            }
+                        }
+                    }
                 }
             }
         }
@@ -309,6 +410,53 @@ mod tests {
         // Three edges between faces facing v, three between faces turned
         // away, each counted from both of its faces.
         assert_eq!(hidden, 12);
+    }
+
+    #[test]
+    fn a_ve_wedge_is_cast_only_from_where_the_light_edge_sees_its_vertex() {
+        use crate::critical::internal_planes;
+        use area_shadow::{AreaSource, volume_planes};
+        // The corner (2, 2, 2) of the box is hidden from the light edge's
+        // end (3, 10, 3), above the three faces at it, up to z = 2 (a fifth
+        // of the way; x = 2 comes later).
+        let pieces = cube();
+        let light =
+            AreaSource::from_grid_points(&[g(3, 10, 3), g(-1, 10, -2), g(2, 10, -4), g(5, 10, 0)])
+                .unwrap();
+        let (c, d) = (g(3, 10, 3), g(-1, 10, -2));
+        let top = 3;
+        let around = &surroundings(&pieces)[top];
+        let occluder = &pieces[top];
+        let k = (0..occluder.len())
+            .find(|&k| occluder.vertex_grid_point(k) == Some(g(2, 2, 2)))
+            .unwrap();
+        let p = g(2, 2, 2);
+        let volumes = volume_planes(occluder, &light);
+        let internal = internal_planes(occluder, &light, &volumes, around);
+        let critical = Plane::through(p, c, d).unwrap();
+        let ve = internal
+            .iter()
+            .find(|i| i.plane.is_coincident(&critical))
+            .expect("the VE surface of the corner and the edge");
+        let fan = around.around_vertex[k].as_ref().unwrap();
+        let [pc, cd, dd] = [f64s(p), f64s(c), f64s(d)];
+        let mut seen = [0, 0];
+        for step in 1..40 {
+            // Light points x along cd, off the crossings (1 / 5 and 1 / 4).
+            let t = (f64::from(step) - 0.5) / 40.0;
+            let x: [f64; 3] = std::array::from_fn(|i| cd[i] + t * (dd[i] - cd[i]));
+            let r: [f64; 3] = std::array::from_fn(|i| 2.0 * pc[i] - x[i]);
+            let value = |plane: &Plane, at: [f64; 3]| {
+                let [a, b, c, d] = plane.approx();
+                a * at[0] + b * at[1] + c * at[2] + d
+            };
+            let in_wedge = ve.wedge.iter().all(|w| value(w, r) < 0.0);
+            let first = value(&fan[0], x) > 0.0;
+            let shows = fan.iter().any(|plane| (value(plane, x) > 0.0) != first);
+            assert_eq!(in_wedge, shows, "t = {t}");
+            seen[usize::from(shows)] += 1;
+        }
+        assert!(seen[0] > 0 && seen[1] > 0, "{seen:?}");
     }
 
     #[test]
