@@ -196,15 +196,30 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// Filters `piece` (inside `node`'s cell) down to the leaves it covers
     /// with area, each with its part.
     pub(super) fn descend(&self, node: u32, piece: ConvexPolygon) -> Vec<(u32, ConvexPolygon)> {
+        self.descend_with(node, piece, (), |(), _, _| ((), ()))
+            .into_iter()
+            .map(|(leaf, part, ())| (leaf, part))
+            .collect()
+    }
+
+    /// [`Self::descend`], with what the piece carries divided between the
+    /// back and front parts (by `divide`) at every cut.
+    pub(super) fn descend_with<C>(
+        &self,
+        node: u32,
+        piece: ConvexPolygon,
+        carried: C,
+        mut divide: impl FnMut(C, &ConvexPolygon, &ConvexPolygon) -> (C, C),
+    ) -> Vec<(u32, ConvexPolygon, C)> {
         let mut out = Vec::new();
         // A piece walks down in place; only the front part of a cut waits
         // on the stack (back parts first: the order of a plain recursion).
-        let mut stack = vec![(node, piece)];
-        while let Some((mut n, mut piece)) = stack.pop() {
+        let mut stack = vec![(node, piece, carried)];
+        while let Some((mut n, mut piece, mut carried)) = stack.pop() {
             loop {
                 match &self.nodes[n as usize] {
                     Node::Leaf(_) => {
-                        out.push((n, piece));
+                        out.push((n, piece, carried));
                         break;
                     }
                     Node::Split {
@@ -213,8 +228,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                         Split::Back => n = *back,
                         Split::Front => n = *front,
                         Split::Both(b, f) => {
-                            stack.push((*front, f));
-                            (n, piece) = (*back, b);
+                            let (to_back, to_front) = divide(carried, &b, &f);
+                            stack.push((*front, f, to_front));
+                            (n, piece, carried) = (*back, b, to_back);
                         }
                         Split::Coplanar(_) => break,
                     },

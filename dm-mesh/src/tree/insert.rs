@@ -66,23 +66,45 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         light: u8,
         planes: &UnitPlanes,
     ) {
-        for (leaf, piece) in self.descend(node, region) {
+        // With the whole region, the cells that come to list the unit lie
+        // in its leaves' pieces: an internal discontinuity that does not
+        // cross a piece crosses none of them, and is not tried on each.
+        // A piece that misses one has parts that miss it too, so they are
+        // sorted out on the way down, at the cuts; each piece carries the
+        // range of `crossing` that holds its own.
+        let mut crossing: Vec<&Critical> = if exact {
+            planes
+                .internal
+                .iter()
+                .filter(|c| crosses(&region, c))
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let whole = 0..crossing.len() as u32;
+        let leaves = self.descend_with(node, region, whole, |range, back, front| {
+            let mut share = |part: &ConvexPolygon| {
+                let start = crossing.len() as u32;
+                for k in range.clone() {
+                    let critical = crossing[k as usize];
+                    if crosses(part, critical) {
+                        crossing.push(critical);
+                    }
+                }
+                start..crossing.len() as u32
+            };
+            (share(back), share(front))
+        });
+        for (leaf, piece, range) in leaves {
             let umbra = planes.volumes.umbra.as_deref();
             let grown = self.grow_leaf(leaf, &piece, exact, part, umbra, unit, light);
             if planes.internal.is_empty() {
                 continue;
             }
             if grown && exact {
-                // The cells that now list the unit lie in `piece`: an
-                // internal discontinuity that does not cross the piece
-                // crosses none of them, and is not tried on each.
-                let crossing: SmallVec<[&Critical; 32]> = planes
-                    .internal
-                    .iter()
-                    .filter(|c| crosses(&piece, c))
-                    .collect();
+                let crossing = &crossing[range.start as usize..range.end as usize];
                 if !crossing.is_empty() {
-                    self.grow_internal(leaf, &crossing, unit);
+                    self.grow_internal(leaf, crossing, unit);
                 }
             } else {
                 let all: SmallVec<[&Critical; 32]> = planes.internal.iter().collect();
