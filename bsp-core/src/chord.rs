@@ -44,6 +44,21 @@ impl ConvexPolygon {
         if self.classify(plane) != PolygonSide::Both {
             return false;
         }
+        // The open chord lies inside the polygon: a bound with every vertex
+        // on or behind it (one strictly) keeps all of it, one with none
+        // strictly behind keeps nothing. Only the bounds that cut the
+        // polygon need the chord's ends, the costly part.
+        let mut cutting: smallvec::SmallVec<[&Plane; 4]> = smallvec::SmallVec::new();
+        for bound in bounds {
+            match self.classify(bound) {
+                PolygonSide::Back => {}
+                PolygonSide::Both => cutting.push(bound),
+                PolygonSide::Front | PolygonSide::Coplanar(_) => return false,
+            }
+        }
+        if cutting.is_empty() {
+            return true;
+        }
         let Some([first, second]) = self.chord_ends(plane) else {
             return false;
         };
@@ -52,7 +67,7 @@ impl ConvexPolygon {
             End::Crossing { filter, planes } => side_of_implicit(filter, *planes, q),
         };
         let mut keeps: smallvec::SmallVec<[Keeps; 4]> = smallvec::SmallVec::new();
-        for bound in bounds {
+        for bound in cutting {
             let k = match (side(&first, bound), side(&second, bound)) {
                 (Side::Back, Side::Back) => Keeps::All,
                 (Side::Back, _) => Keeps::Prefix(bound),
