@@ -5,6 +5,7 @@ use crate::cell::Entry;
 use crate::critical::{Critical, UnitPlanes};
 use bsp_core::{ConvexPolygon, FaceKey, Plane, Side, Split};
 use smallvec::SmallVec;
+use std::borrow::Cow;
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Appends a unit (occluder `key` under light `light`, with its volume
@@ -81,6 +82,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         } else {
             Vec::new()
         };
+        // Likewise the umbra: where the whole region misses it, so do its
+        // pieces, and only the umbra planes that bound the region's umbra
+        // part can cut a piece's.
+        let umbra: Option<Cow<'_, [Plane]>> = match planes.volumes.umbra.as_deref() {
+            Some(all) if exact => {
+                clip(&region, all).map(|core| Cow::Owned(bounding(all, &core).copied().collect()))
+            }
+            other => other.map(Cow::Borrowed),
+        };
         let whole = 0..crossing.len() as u32;
         let leaves = self.descend_with(node, region, whole, |range, back, front| {
             let mut share = |part: &ConvexPolygon| {
@@ -96,8 +106,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             (share(back), share(front))
         });
         for (leaf, piece, range) in leaves {
-            let umbra = planes.volumes.umbra.as_deref();
-            let grown = self.grow_leaf(leaf, &piece, exact, part, umbra, unit, light);
+            let grown = self.grow_leaf(leaf, &piece, exact, part, umbra.as_deref(), unit, light);
             if planes.internal.is_empty() {
                 continue;
             }
