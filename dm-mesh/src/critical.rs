@@ -20,7 +20,11 @@
 //! crosses it. Only an occluder wholly in front of the light, with the
 //! light wholly on one side of it, gets internal discontinuities here, and
 //! none through an edge or vertex its object's surface hides on both sides
-//! ([`crate::surface`]).
+//! ([`crate::surface`]). A VE wedge is cast only from the part of the light
+//! edge that can see its vertex on the silhouette: where the stretch of
+//! the edge that sees it hidden ends, the plane of the face it leaves holds
+//! the vertex and bounds the wedge in place of the plane through the
+//! edge's end.
 
 use crate::surface::Surroundings;
 use area_shadow::{AreaSource, VolumePlanes};

@@ -11,7 +11,9 @@
 //! point sees `ab` on the silhouette, and the light vertex crossing it
 //! changes nothing. Likewise a VE surface of vertex `p` and light edge
 //! `cd` is silent when the faces around `p` close up into a fan and both
-//! `c` and `d` lie strictly on one and the same side of every one of them.
+//! `c` and `d` lie strictly on one and the same side of every one of them;
+//! when only a stretch of `cd` from one end does, the surface is cast from
+//! the rest of `cd` only.
 //! Only exact matches of grid-point edges count; anything else (an open
 //! border, a T-junction, a non-manifold edge) keeps its discontinuities.
 
