@@ -90,7 +90,10 @@ impl Surroundings {
                 return [None, None];
             }
         }
-        [from_c.map(|(plane, _)| plane), from_d.map(|(plane, _)| plane)]
+        [
+            from_c.map(|(plane, _)| plane),
+            from_d.map(|(plane, _)| plane),
+        ]
     }
 }
 
@@ -113,7 +116,11 @@ fn stretch_end(
         if side_of_point(plane, from) != side {
             return None;
         }
-        let plane = if side == Side::Front { *plane } else { plane.flipped() };
+        let plane = if side == Side::Front {
+            *plane
+        } else {
+            plane.flipped()
+        };
         if side_of_point(&plane, to) == Side::Front {
             continue;
         }
