@@ -195,11 +195,14 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// Filters `piece` (inside `node`'s cell) down to the leaves it covers
     /// with area, each with its part.
-    pub(super) fn descend(&self, node: u32, piece: ConvexPolygon) -> Vec<(u32, ConvexPolygon)> {
+    pub(super) fn descend(
+        &self,
+        node: u32,
+        piece: ConvexPolygon,
+    ) -> impl Iterator<Item = (u32, ConvexPolygon)> + use<K> {
         self.descend_with(node, piece, (), |(), _, _| ((), ()))
             .into_iter()
             .map(|(leaf, part, ())| (leaf, part))
-            .collect()
     }
 
     /// [`Self::descend`], with what the piece carries divided between the

@@ -216,7 +216,6 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             };
             out.extend(
                 self.descend(self.root, region)
-                    .into_iter()
                     .map(|(leaf, _)| self.face_of(leaf))
                     .filter(|&f| self.holds(f, u)),
             );
