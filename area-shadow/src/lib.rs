@@ -44,6 +44,7 @@
 mod conform;
 mod error;
 mod gridding;
+mod groups;
 mod merge_pieces;
 mod pass;
 mod pipeline;
@@ -55,9 +56,14 @@ pub use bsp_core;
 pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
+pub use groups::{ConvexGroup, MAX_SOLID_WORK, convex_groups};
 pub use merge_pieces::{merge_pair, merge_same_class};
-pub use pass::{AreaLightStats, AreaTrees, Class, classify_fragments, shadow_area_light};
-pub use pipeline::{LightFigures, SceneLight, Shadows, compute_shadows};
+pub use pass::{
+    AreaLightStats, AreaTrees, Class, ShadowGroups, classify_fragments, shadow_area_light,
+};
+pub use pipeline::{
+    LightFigures, SceneLight, Shadows, compute_shadows, compute_shadows_with_groups,
+};
 pub use source::{AreaSource, SourceSide};
 pub use tree::{Partition, VolumeTree};
 pub use volumes::{CastVolumes, VolumePlanes, cast_volumes, cast_volumes_within, volume_planes};

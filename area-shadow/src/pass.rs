@@ -23,10 +23,15 @@
 //!    it whichever order the pieces came in, so the classification does not
 //!    depend on the order, and the light need not be split.
 //!
-//! As in the paper, umbra is the union of single occluders' umbrae: where
-//! several occluders together hide the whole light, fragments are penumbra
-//! and their vertices' visible part of the light comes out empty.
+//! The paper's umbra is the union of single occluders' umbrae. Pieces
+//! that make up one convex body (module `groups`: a triangulated sphere, a
+//! quad given as two triangles) also add the body's umbra volume, where
+//! they hide the whole light together; the trees get it after every piece,
+//! so culling is as before. Where separate bodies together hide the whole
+//! light (a boundary of quadric EEE surfaces in general), fragments stay
+//! penumbra and their vertices' visible part of the light comes out empty.
 
+use crate::groups::{ConvexGroup, convex_groups};
 use crate::merge_pieces::merge_same_class;
 use crate::tree::VolumeTree;
 use crate::volumes::cast_volumes_within;
@@ -57,6 +62,8 @@ pub struct AreaLightStats {
     pub occluders: usize,
     /// Shadow-casting pieces left out because they lay in umbra already.
     pub occluders_culled: usize,
+    /// Convex bodies of several pieces whose umbra volume went in.
+    pub occluder_groups: usize,
     /// Final fragments that see all of the light.
     pub lit: usize,
     /// Final fragments that see part of it.
@@ -101,6 +108,37 @@ impl Class {
     }
 }
 
+/// The convex bodies that several shadow-casting pieces form (module
+/// `groups`), found once for every light.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ShadowGroups(pub Vec<ConvexGroup>);
+
+impl ShadowGroups {
+    /// The bodies of edge-connected shadow-casting pieces, whatever object
+    /// each came from.
+    ///
+    /// # Panics
+    ///
+    /// If `flags` is shorter than `pieces`.
+    pub fn connected(pieces: &[ConvexPolygon], flags: &[PieceFlags]) -> Self {
+        let objects: Vec<u32> = vec![0; pieces.len()];
+        Self::of_objects(pieces, flags, &objects)
+    }
+
+    /// The bodies of edge-connected shadow-casting pieces of one object
+    /// (`objects[k]` is piece `k`'s).
+    ///
+    /// # Panics
+    ///
+    /// If `flags` or `objects` is shorter than `pieces`.
+    pub fn of_objects(pieces: &[ConvexPolygon], flags: &[PieceFlags], objects: &[u32]) -> Self {
+        let casting: Vec<Option<u32>> = (0..pieces.len())
+            .map(|k| flags[k].casts_shadows.then_some(objects[k]))
+            .collect();
+        Self(convex_groups(pieces, &casting))
+    }
+}
+
 /// The trees of one area light, built from the pieces' volumes.
 #[derive(Debug, Clone, Default)]
 pub struct AreaTrees {
@@ -112,16 +150,36 @@ pub struct AreaTrees {
     pub occluders: usize,
     /// Pieces left out because they lay in umbra already.
     pub culled: usize,
+    /// Convex bodies of several pieces whose umbra volume went in.
+    pub groups: usize,
 }
 
 impl AreaTrees {
     /// Builds the trees from `pieces` (grid-point vertices; `flags[k]` for
-    /// piece `k`).
+    /// piece `k`), with the convex bodies that edge-connected shadow-casting
+    /// pieces form, whichever objects they came from
+    /// ([`ShadowGroups::connected`]).
     ///
     /// # Panics
     ///
     /// If `flags` is shorter than `pieces`.
     pub fn build(pieces: &[ConvexPolygon], flags: &[PieceFlags], light: &AreaSource) -> Self {
+        let groups = ShadowGroups::connected(pieces, flags);
+        Self::build_with_groups(pieces, flags, &groups, light)
+    }
+
+    /// [`Self::build`] with the convex bodies given: each adds its umbra
+    /// volume to the umbra tree (after every piece).
+    ///
+    /// # Panics
+    ///
+    /// If `flags` is shorter than `pieces`.
+    pub fn build_with_groups(
+        pieces: &[ConvexPolygon],
+        flags: &[PieceFlags],
+        groups: &ShadowGroups,
+        light: &AreaSource,
+    ) -> Self {
         let mut trees = AreaTrees::default();
         let centre = light.centroid();
         let mut order: Vec<(f64, usize)> = pieces
@@ -169,6 +227,15 @@ impl AreaTrees {
                 trees.penumbra.insert(volume);
             }
             if let Some(volume) = volumes.umbra {
+                trees.umbra.insert(volume);
+            }
+        }
+        for group in &groups.0 {
+            let volume = group
+                .umbra_planes(light)
+                .and_then(|planes| region.clone().cut_by(&planes));
+            if let Some(volume) = volume {
+                trees.groups += 1;
                 trees.umbra.insert(volume);
             }
         }
@@ -308,6 +375,7 @@ pub fn classify_fragments(
         umbra_nodes: trees.umbra.len(),
         occluders: trees.occluders,
         occluders_culled: trees.culled,
+        occluder_groups: trees.groups,
         ..AreaLightStats::default()
     };
     for piece in pieces {

@@ -2,7 +2,7 @@
 //! `svbsp`'s SVBSP trees, area lights through their penumbra and umbra
 //! trees, each fragment carrying its bits in `lit_mask` / `umbra_mask`.
 
-use crate::pass::{AreaLightStats, AreaTrees, classify_fragments};
+use crate::pass::{AreaLightStats, AreaTrees, ShadowGroups, classify_fragments};
 use crate::{AreaSource, Error};
 use bsp_core::{BuildOptions, ConvexPolygon};
 use rayon::prelude::*;
@@ -47,10 +47,36 @@ pub struct Shadows {
 ///
 /// Point and directional lights run first, together
 /// ([`svbsp::compute_shadows`]: each in its cones of the scene); each area
-/// light then refines their fragments.
+/// light then refines their fragments. Shadow-casting pieces that form one
+/// convex body (edge-connected, whatever their objects) also cast its
+/// umbra ([`ShadowGroups::connected`]).
 pub fn compute_shadows(
     pieces: &[ConvexPolygon],
     flags: &[PieceFlags],
+    lights: &[SceneLight],
+    options: &BuildOptions,
+) -> Result<Shadows, Error> {
+    let groups = if lights.iter().any(|l| matches!(l, SceneLight::Area(_))) {
+        if flags.len() != pieces.len() {
+            return Err(Error::FlagsLength {
+                pieces: pieces.len(),
+                flags: flags.len(),
+            });
+        }
+        ShadowGroups::connected(pieces, flags)
+    } else {
+        ShadowGroups::default()
+    };
+    compute_shadows_with_groups(pieces, flags, &groups, lights, options)
+}
+
+/// [`compute_shadows`] with the convex bodies given (say, found within
+/// objects by [`ShadowGroups::of_objects`]); their piece indices refer to
+/// `pieces`.
+pub fn compute_shadows_with_groups(
+    pieces: &[ConvexPolygon],
+    flags: &[PieceFlags],
+    groups: &ShadowGroups,
     lights: &[SceneLight],
     options: &BuildOptions,
 ) -> Result<Shadows, Error> {
@@ -129,7 +155,7 @@ pub fn compute_shadows(
         .collect();
     let trees: Vec<AreaTrees> = area_lights
         .par_iter()
-        .map(|(_, source)| AreaTrees::build(&originals, flags, source))
+        .map(|(_, source)| AreaTrees::build_with_groups(&originals, flags, groups, source))
         .collect();
     for ((i, source), trees) in area_lights.into_iter().zip(&trees) {
         let (next, stats) =

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::time::Instant;
 
 use area_shadow::{
-    AreaSource, Class, LightFigures, SceneLight, conform_fragments, grid_fragments,
+    AreaSource, Class, LightFigures, SceneLight, ShadowGroups, conform_fragments, grid_fragments,
     subdivide_adaptive,
 };
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
@@ -77,13 +77,19 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     let pieces = Pieces::from_scene(scene)?;
     let lights = scene_lights(scene, &pieces)?;
     let flags = piece_flags(scene, &pieces);
-    let out =
-        area_shadow::compute_shadows(&pieces.polygons, &flags, &lights, &BuildOptions::default())
-            .map_err(|e| Error::Field {
-            path: scene.path.clone(),
-            field: "light".into(),
-            message: e.to_string(),
-        })?;
+    let groups = ShadowGroups::of_objects(&pieces.polygons, &flags, &piece_objects(scene, &pieces));
+    let out = area_shadow::compute_shadows_with_groups(
+        &pieces.polygons,
+        &flags,
+        &groups,
+        &lights,
+        &BuildOptions::default(),
+    )
+    .map_err(|e| Error::Field {
+        path: scene.path.clone(),
+        field: "light".into(),
+        message: e.to_string(),
+    })?;
     let illum_lights = illum_lights(scene, &pieces)?;
     let illuminator = Illuminator::new(
         &illum_lights,
@@ -237,12 +243,25 @@ fn scene_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<SceneLight>> {
     Ok(lights)
 }
 
+/// Per piece, the index of its object in the scene file.
+pub(crate) fn piece_objects(scene: &Scene, pieces: &Pieces) -> Vec<u32> {
+    let object_of_input: Vec<u32> = scene
+        .input_polygons()
+        .map(|(object, _)| object as u32)
+        .collect();
+    pieces
+        .input_of
+        .iter()
+        .map(|&input| object_of_input[input as usize])
+        .collect()
+}
+
 /// Per piece: casts, two-sided, and whether its object is a closed surface
 /// (every directed edge between grid points matched by its reverse exactly
 /// once), which lets faces turned away from a light skip the shadow pass.
 pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
-    let object_of_input: Vec<usize> = scene.input_polygons().map(|(object, _)| object).collect();
-    let object_of = |k: usize| object_of_input[pieces.input_of[k] as usize];
+    let objects = piece_objects(scene, pieces);
+    let object_of = |k: usize| objects[k] as usize;
     let mut edges: HashMap<(usize, GridPoint, GridPoint), u32> = HashMap::new();
     for (k, piece) in pieces.polygons.iter().enumerate() {
         for (a, b) in grid_edges(piece) {

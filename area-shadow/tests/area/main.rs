@@ -2,6 +2,7 @@
 
 mod culled;
 mod figure4;
+mod groups;
 mod oracle;
 mod pieces;
 mod random;

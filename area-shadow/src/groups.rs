@@ -1,0 +1,369 @@
+//! Occluders that hide a light together, as one convex body.
+//!
+//! Chin & Feiner's umbra volume belongs to one polygon: where it alone
+//! hides all of the light. A body made of several polygons (a triangulated
+//! sphere, a box whose faces were split, a quad given as two triangles)
+//! hides all of the light from a region that no single polygon of it does,
+//! and every point there sees none of the light: FORMATS.md's umbra.
+//!
+//! For a convex body `O` and a convex light `L` that region is exact and
+//! planar. Write `Far_v(O) = { v + t (q - v) : q in O, t >= 1 }` for what
+//! `O` hides from a point `v` outside it. A point `p` outside `O` sees none
+//! of `L` exactly when it lies in `Far_v(O)` for every *vertex* `v` of `L`:
+//! if the segments from `p` to the vertices `v_i` meet `O` at
+//! `q_i = p + s_i (v_i - p)`, the segment to `x = sum l_i v_i` meets `O` at
+//! the convex combination of the `q_i` with weights `l_i / s_i` (scaled to
+//! sum to one). Each `Far_v(O)` is convex: the cone from `v` over `O`
+//! (bounded by planes through `v` and an edge of `O`, with `O` behind),
+//! cut by the planes of the faces of `O` that `v` sees (the ray from `v`
+//! enters `O` through one of them). So the umbra is an intersection of
+//! half-spaces, and of those planes only the ones with all of `L` on or
+//! behind them bound it: a plane through `v` with another light vertex `w`
+//! strictly in front holds all of `Far_w(O)` strictly behind, except `O`'s
+//! edge in it, so it carries no facet. Every plane is a plane through three
+//! grid points.
+//!
+//! Groups are found exactly, per object, among edge-connected pieces
+//! (a directed edge between two grid points matched by its reverse):
+//!
+//! - **flat**: pieces in one plane, facing one way, each interior edge
+//!   matched once, whose unmatched edges close into one convex cycle. As
+//!   2-chains the pieces and that polygon have the same boundary, and a
+//!   chain in a plane is fixed by its boundary, so the pieces cover the
+//!   polygon once and nothing else;
+//! - **solid**: every directed edge matched by its reverse exactly once (a
+//!   closed surface) and every vertex on or behind every piece's plane (or
+//!   on or in front of every one: a surface facing in blocks light all the
+//!   same). The pieces then lie on the boundary of the vertices' convex
+//!   hull, all facing out (or all in), and as a closed 2-cycle there they
+//!   cover all of it.
+//!
+//! Anything else (T-junctions, concave or open bodies, a face shared by
+//! two bodies) forms no group, and its umbra stays the union of its
+//! pieces' umbrae.
+
+use crate::AreaSource;
+use crate::volumes::volume_planes;
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{ConvexPolygon, GridPoint, Plane};
+use std::collections::{HashMap, HashSet};
+
+/// The most side tests (pieces times vertices) spent checking that one
+/// closed surface is convex; bigger surfaces form no group. About a
+/// 16k-triangle sphere.
+pub const MAX_SOLID_WORK: usize = 1 << 26;
+
+/// Pieces that block light together as one convex body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ConvexGroup {
+    /// The pieces' indices, ascending.
+    pub pieces: Vec<u32>,
+    shape: Shape,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Shape {
+    /// Coplanar pieces covering this convex polygon once.
+    Flat(ConvexPolygon),
+    /// Pieces covering the boundary of a convex polyhedron.
+    Solid(Solid),
+}
+
+#[derive(Debug, Clone, PartialEq)]
+struct Solid {
+    vertices: Vec<GridPoint>,
+    /// Each piece's support plane, the body behind it.
+    faces: Vec<Plane>,
+    /// Each edge once, with the two faces (indices into `faces`) it joins.
+    edges: Vec<(GridPoint, GridPoint, u32, u32)>,
+}
+
+impl ConvexGroup {
+    /// Whether the group is flat (a convex polygon cut into pieces).
+    pub fn is_flat(&self) -> bool {
+        matches!(self.shape, Shape::Flat(_))
+    }
+
+    /// The planes of the group's umbra volume under `light`, each with the
+    /// volume behind it: where the body hides all of the light. `None` when
+    /// it has none: the body touches or crosses the light's plane, or (flat)
+    /// the light touches or crosses the body's plane.
+    pub fn umbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
+        match &self.shape {
+            Shape::Flat(polygon) => volume_planes(polygon, light).umbra,
+            Shape::Solid(solid) => solid.umbra_planes(light),
+        }
+    }
+}
+
+impl Solid {
+    fn umbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
+        let support = light.support();
+        if self
+            .vertices
+            .iter()
+            .any(|&p| side_of_point(support, p) != Side::Front)
+        {
+            return None;
+        }
+        let lights: Vec<GridPoint> = light.vertices().collect();
+        // sides[f * n + k]: light vertex k against face f.
+        let n = lights.len();
+        let sides: Vec<Side> = self
+            .faces
+            .iter()
+            .flat_map(|f| lights.iter().map(move |&v| side_of_point(f, v)))
+            .collect();
+        let mut planes: Vec<Plane> = Vec::new();
+        let mut seen: HashSet<Plane> = HashSet::new();
+        // The faces some light vertex sees: the ray from it enters there.
+        for (f, face) in self.faces.iter().enumerate() {
+            if sides[f * n..(f + 1) * n].contains(&Side::Front) && seen.insert(*face) {
+                planes.push(*face);
+            }
+        }
+        // The cones' sides: planes through a light vertex and an edge where
+        // the vertex's view of the body turns (one face seen, the other
+        // not, or either edge-on), tangent to the body, all of the light on
+        // or behind.
+        for (k, &v) in lights.iter().enumerate() {
+            for &(a, b, f, g) in &self.edges {
+                let (sf, sg) = (sides[f as usize * n + k], sides[g as usize * n + k]);
+                let turns =
+                    (sf == Side::Front) != (sg == Side::Front) || sf == Side::On || sg == Side::On;
+                if !turns {
+                    continue;
+                }
+                let Some(plane) = Plane::through(a, b, v) else {
+                    continue;
+                };
+                let Some(plane) = self.tangent(plane) else {
+                    continue;
+                };
+                let light_behind = lights
+                    .iter()
+                    .all(|&w| side_of_point(&plane, w) != Side::Front);
+                if light_behind && seen.insert(plane) {
+                    planes.push(plane);
+                }
+            }
+        }
+        Some(planes)
+    }
+
+    /// `plane` oriented with the body behind it, if it has the body on one
+    /// side.
+    fn tangent(&self, plane: Plane) -> Option<Plane> {
+        let (mut back, mut front) = (false, false);
+        for &p in &self.vertices {
+            match side_of_point(&plane, p) {
+                Side::Back => back = true,
+                Side::Front => front = true,
+                Side::On => {}
+            }
+            if back && front {
+                return None;
+            }
+        }
+        match (back, front) {
+            (true, false) => Some(plane),
+            (false, true) => Some(plane.flipped()),
+            _ => None,
+        }
+    }
+}
+
+/// The convex groups among `pieces`: `objects[k]` is the object of piece
+/// `k`, or `None` when it casts no shadow (it joins no group). Pieces group
+/// only within their object. Groups of one piece are left out (its own
+/// umbra volume is the group's); the list is in order of first piece.
+///
+/// # Panics
+///
+/// If `objects` is shorter than `pieces`.
+pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<ConvexGroup> {
+    let grid_vertices = |k: usize| -> Option<Vec<GridPoint>> {
+        (0..pieces[k].len())
+            .map(|i| pieces[k].vertex_grid_point(i))
+            .collect()
+    };
+    let outlines: Vec<Option<Vec<GridPoint>>> = (0..pieces.len())
+        .map(|k| objects[k].and_then(|_| grid_vertices(k)))
+        .collect();
+    let mut by_edge: HashMap<(u32, GridPoint, GridPoint), Vec<u32>> = HashMap::new();
+    for (k, outline) in outlines.iter().enumerate() {
+        let (Some(outline), Some(object)) = (outline, objects[k]) else {
+            continue;
+        };
+        for (a, b) in directed_edges(outline) {
+            by_edge.entry((object, a, b)).or_default().push(k as u32);
+        }
+    }
+    let mut sets = DisjointSets::new(pieces.len());
+    for (&(object, a, b), ks) in &by_edge {
+        if let Some(others) = by_edge.get(&(object, b, a)) {
+            for &k in ks.iter().chain(others) {
+                sets.union(ks[0], k);
+            }
+        }
+    }
+    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
+    for k in 0..pieces.len() {
+        if outlines[k].is_some() {
+            members
+                .entry(sets.find(k as u32))
+                .or_default()
+                .push(k as u32);
+        }
+    }
+    let mut groups: Vec<Vec<u32>> = members.into_values().filter(|m| m.len() > 1).collect();
+    groups.sort_unstable_by_key(|m| m[0]);
+    groups
+        .into_iter()
+        .filter_map(|members| {
+            let outlines: Vec<&[GridPoint]> = members
+                .iter()
+                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
+                .collect();
+            let supports: Vec<Plane> = members
+                .iter()
+                .map(|&k| *pieces[k as usize].support())
+                .collect();
+            let shape = if supports.iter().all(|s| *s == supports[0]) {
+                flat_shape(&outlines, &supports[0]).map(Shape::Flat)
+            } else {
+                solid_shape(&outlines, &supports).map(Shape::Solid)
+            }?;
+            Some(ConvexGroup {
+                pieces: members,
+                shape,
+            })
+        })
+        .collect()
+}
+
+fn directed_edges(outline: &[GridPoint]) -> impl Iterator<Item = (GridPoint, GridPoint)> + '_ {
+    let n = outline.len();
+    (0..n).map(move |i| (outline[i], outline[(i + 1) % n]))
+}
+
+/// Directed edges of the pieces with their counts; `None` if one repeats.
+fn edge_set(outlines: &[&[GridPoint]]) -> Option<HashMap<(GridPoint, GridPoint), u32>> {
+    let mut edges = HashMap::new();
+    for (f, outline) in outlines.iter().enumerate() {
+        for edge in directed_edges(outline) {
+            if edges.insert(edge, f as u32).is_some() {
+                return None;
+            }
+        }
+    }
+    Some(edges)
+}
+
+/// The convex polygon coplanar pieces (one orientation) cover once, if
+/// their unmatched edges close into one convex cycle.
+fn flat_shape(outlines: &[&[GridPoint]], support: &Plane) -> Option<ConvexPolygon> {
+    let edges = edge_set(outlines)?;
+    let mut next: HashMap<GridPoint, GridPoint> = HashMap::new();
+    for &(a, b) in edges.keys() {
+        if !edges.contains_key(&(b, a)) && next.insert(a, b).is_some() {
+            return None;
+        }
+    }
+    let start = *next.keys().min()?;
+    let mut cycle = vec![start];
+    let mut at = next[&start];
+    while at != start {
+        if cycle.len() > next.len() {
+            return None;
+        }
+        cycle.push(at);
+        at = *next.get(&at)?;
+    }
+    if cycle.len() != next.len() {
+        return None;
+    }
+    let polygon = ConvexPolygon::from_grid_points(&cycle, 0).ok()?;
+    (polygon.support() == support).then_some(polygon)
+}
+
+/// The closed convex surface the pieces form, if they do.
+fn solid_shape(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Solid> {
+    let edges = edge_set(outlines)?;
+    let mut vertices: Vec<GridPoint> = outlines.iter().flat_map(|o| o.iter().copied()).collect();
+    vertices.sort_unstable();
+    vertices.dedup();
+    if supports.len().saturating_mul(vertices.len()) > MAX_SOLID_WORK {
+        return None;
+    }
+    let mut solid_edges = Vec::with_capacity(edges.len() / 2);
+    for (&(a, b), &f) in &edges {
+        let &g = edges.get(&(b, a))?;
+        if a < b {
+            solid_edges.push((a, b, f, g));
+        }
+    }
+    solid_edges.sort_unstable();
+    // Every vertex on or behind every piece's plane (faces out), or on or
+    // in front of every one (faces in: it blocks light all the same).
+    let (mut outward, mut inward, mut flat) = (true, true, true);
+    for plane in supports {
+        for &p in &vertices {
+            match side_of_point(plane, p) {
+                Side::Front => outward = false,
+                Side::Back => inward = false,
+                Side::On => continue,
+            }
+            flat = false;
+            if !outward && !inward {
+                return None;
+            }
+        }
+    }
+    // A closed surface in one plane is a two-sided sheet, not a body.
+    if flat {
+        return None;
+    }
+    let faces = if outward {
+        supports.to_vec()
+    } else {
+        supports.iter().map(Plane::flipped).collect()
+    };
+    Some(Solid {
+        vertices,
+        faces,
+        edges: solid_edges,
+    })
+}
+
+/// Union-find over piece indices.
+struct DisjointSets {
+    parent: Vec<u32>,
+}
+
+impl DisjointSets {
+    fn new(n: usize) -> Self {
+        Self {
+            parent: (0..n as u32).collect(),
+        }
+    }
+
+    fn find(&mut self, mut k: u32) -> u32 {
+        while self.parent[k as usize] != k {
+            let up = self.parent[self.parent[k as usize] as usize];
+            self.parent[k as usize] = up;
+            k = up;
+        }
+        k
+    }
+
+    fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        // The smaller root stays, so that the sets do not depend on the
+        // order of the unions.
+        if ra != rb {
+            let (lo, hi) = (ra.min(rb), ra.max(rb));
+            self.parent[hi as usize] = lo;
+        }
+    }
+}

@@ -1,0 +1,312 @@
+//! Convex bodies of several pieces: their umbra volume against the exact
+//! occlusion oracle, and the umbra they add to a scene.
+
+use crate::oracle::{Caster, blocked, gp, light_samples, samples};
+use area_shadow::{
+    AreaSource, Class, SceneLight, ShadowGroups, compute_shadows, compute_shadows_with_groups,
+    convex_groups,
+};
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
+use proptest::prelude::*;
+use svbsp::PieceFlags;
+
+/// The faces of the box `lo..hi`, facing out (or in), each a quad or two
+/// triangles cut along either diagonal (bits of `cuts`, two per face).
+fn box_faces(lo: [i64; 3], hi: [i64; 3], cuts: u32, inward: bool) -> Vec<ConvexPolygon> {
+    let c = |i: usize| {
+        gp(
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        )
+    };
+    // Counter-clockwise seen from outside.
+    let quads = [
+        [0, 4, 6, 2], // x = lo
+        [1, 3, 7, 5], // x = hi
+        [0, 1, 5, 4], // y = lo
+        [2, 6, 7, 3], // y = hi
+        [0, 2, 3, 1], // z = lo
+        [4, 5, 7, 6], // z = hi
+    ];
+    let mut out = Vec::new();
+    for (f, q) in quads.iter().enumerate() {
+        let mut q: Vec<GridPoint> = q.iter().map(|&i| c(i)).collect();
+        if inward {
+            q.reverse();
+        }
+        let parts: Vec<Vec<GridPoint>> = match (cuts >> (2 * f)) & 3 {
+            0 | 3 => vec![q],
+            1 => vec![vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]],
+            _ => vec![vec![q[1], q[2], q[3]], vec![q[1], q[3], q[0]]],
+        };
+        out.extend(
+            parts
+                .into_iter()
+                .map(|p| ConvexPolygon::from_grid_points(&p, 0).unwrap()),
+        );
+    }
+    out
+}
+
+/// A tetrahedron's faces, facing out, if the points span one.
+fn tetrahedron(p: [[i64; 3]; 4]) -> Option<Vec<ConvexPolygon>> {
+    let g: Vec<GridPoint> = p.iter().map(|c| gp(c[0], c[1], c[2])).collect();
+    let faces = [[0, 1, 2], [0, 3, 1], [0, 2, 3], [1, 3, 2]];
+    let plane = bsp_core::Plane::through(g[0], g[1], g[2])?;
+    let flip = match side_of_point(&plane, g[3]) {
+        Side::On => return None,
+        Side::Front => true,
+        Side::Back => false,
+    };
+    faces
+        .iter()
+        .map(|f| {
+            let mut pts = vec![g[f[0]], g[f[1]], g[f[2]]];
+            if flip {
+                pts.reverse();
+            }
+            ConvexPolygon::from_grid_points(&pts, 0).ok()
+        })
+        .collect()
+}
+
+/// A parallelogram light at height `h` over `[x0, x0 + w] x [z0, z0 + d]`,
+/// rising by `tilt` along x, emitting downwards.
+fn light(x0: i64, z0: i64, w: i64, d: i64, h: i64, tilt: i64) -> AreaSource {
+    let pts = [
+        gp(x0, h, z0),
+        gp(x0 + w, h + tilt, z0),
+        gp(x0 + w, h + tilt, z0 + d),
+        gp(x0, h, z0 + d),
+    ];
+    let polygon = ConvexPolygon::from_grid_points(&pts, 0).unwrap();
+    if polygon.support().normal()[1] < 0 {
+        AreaSource::new(polygon).unwrap()
+    } else {
+        AreaSource::new(polygon.flipped()).unwrap()
+    }
+}
+
+fn body() -> impl Strategy<Value = Vec<ConvexPolygon>> {
+    prop_oneof![
+        (
+            prop::array::uniform3(-60_i64..40),
+            prop::array::uniform3(4_i64..50),
+            any::<u32>(),
+            any::<bool>(),
+        )
+            .prop_map(|(lo, size, cuts, inward)| {
+                let lo = [lo[0], lo[1] + 100, lo[2]];
+                let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
+                box_faces(lo, hi, cuts, inward)
+            }),
+        prop::array::uniform4(prop::array::uniform3(-50_i64..50))
+            .prop_filter_map("flat", |p| tetrahedron(p.map(|c| [c[0], c[1] + 120, c[2]]))),
+    ]
+}
+
+fn light_strategy() -> impl Strategy<Value = AreaSource> {
+    (
+        -80_i64..40,
+        -80_i64..40,
+        4_i64..60,
+        4_i64..60,
+        200_i64..260,
+        -30_i64..30,
+    )
+        .prop_map(|(x0, z0, w, d, h, tilt)| light(x0, z0, w, d, h, tilt))
+}
+
+fn all_hidden(p: [f64; 3], targets: &[[f64; 3]], casters: &[Caster]) -> bool {
+    // No receiver: `own` is a plane none of the body's faces lie in.
+    let own =
+        ConvexPolygon::from_grid_points(&[gp(0, -9, 0), gp(1, -9, 0), gp(0, -9, -1)], 0).unwrap();
+    targets.iter().all(|x| blocked(p, *x, casters, &own))
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(96))]
+
+    /// Strictly inside a body's umbra volume no point of the light is
+    /// seen; strictly outside it some light vertex is (the umbra of a
+    /// convex body is where it hides every light vertex).
+    #[test]
+    fn a_bodys_umbra_is_where_it_hides_every_light_vertex(
+        faces in body(),
+        light in light_strategy(),
+        points in prop::collection::vec(prop::array::uniform3(-150_i64..150), 200),
+    ) {
+        let groups = convex_groups(&faces, &vec![Some(0); faces.len()]);
+        prop_assert_eq!(groups.len(), 1);
+        prop_assert_eq!(groups[0].pieces.len(), faces.len());
+        let Some(planes) = groups[0].umbra_planes(&light) else {
+            // Only when the body reaches the light's plane.
+            let reaches = faces.iter().any(|f| (0..f.len()).any(|k| {
+                side_of_point(light.support(), f.vertex_grid_point(k).unwrap()) != Side::Front
+            }));
+            prop_assert!(reaches);
+            return Ok(());
+        };
+        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
+        let inside_light = light_samples(light.polygon());
+        for c in points {
+            let p = gp(c[0], c[1] + 40, c[2]);
+            let on_a_face = faces.iter().any(|f| side_of_point(f.support(), p) == Side::On);
+            let sides: Vec<Side> = planes.iter().map(|q| side_of_point(q, p)).collect();
+            if on_a_face || sides.contains(&Side::On) {
+                continue;
+            }
+            let q = p.to_f64();
+            if sides.iter().all(|s| *s == Side::Back) {
+                prop_assert!(all_hidden(q, &corners, &casters), "{q:?} in the umbra sees a light vertex");
+                prop_assert!(all_hidden(q, &inside_light, &casters), "{q:?} in the umbra sees the light");
+            } else {
+                prop_assert!(!all_hidden(q, &corners, &casters), "{q:?} outside the umbra sees no light vertex");
+            }
+        }
+    }
+
+    /// One convex body over a floor, below the light's plane: umbra
+    /// fragments see none of the light, and penumbra fragments see some
+    /// light vertex (where one body hides the light, the classes are exact
+    /// both ways; a body reaching the light's plane keeps its pieces'
+    /// umbrae).
+    #[test]
+    fn a_body_over_a_floor_has_exact_classes(faces in body(), light in light_strategy()) {
+        prop_assume!(faces.iter().all(|f| (0..f.len()).all(|k| {
+            side_of_point(light.support(), f.vertex_grid_point(k).unwrap()) == Side::Front
+        })));
+        let mut pieces = vec![ConvexPolygon::from_grid_points(
+            &[gp(-400, 0, 400), gp(400, 0, 400), gp(400, 0, -400), gp(-400, 0, -400)],
+            0,
+        ).unwrap()];
+        pieces.extend(faces);
+        let pieces: Vec<ConvexPolygon> = pieces.into_iter().enumerate().map(|(k, p)| p.with_source(k as u32)).collect();
+        let flags = vec![PieceFlags::default(); pieces.len()];
+        let out = compute_shadows(&pieces, &flags, &[SceneLight::Area(light.clone())], &BuildOptions::default()).unwrap();
+        let casters: Vec<Caster> = pieces[1..].iter().map(Caster::new).collect();
+        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
+        let inside_light = light_samples(light.polygon());
+        let [a, b, c, d] = light.support().approx();
+        for f in out.fragments.iter().filter(|f| f.polygon.source() == 0) {
+            let class = Class::of(f, 0);
+            for q in samples(&f.polygon) {
+                // Behind the light's plane nothing arrives (the floor faces
+                // every light point: they are all above it).
+                let reached = a * q[0] + b * q[1] + c * q[2] + d > 0.0;
+                let seen = |x: &[f64; 3]| reached && !blocked(q, *x, &casters, &pieces[0]);
+                let sees = |targets: &[[f64; 3]]| targets.iter().any(seen);
+                match class {
+                    Class::Umbra => prop_assert!(!sees(&inside_light) && !sees(&corners), "umbra at {q:?} sees the light"),
+                    Class::Penumbra => prop_assert!(sees(&corners) || sees(&inside_light), "penumbra at {q:?} sees none of the light"),
+                    Class::Lit => prop_assert!(corners.iter().chain(&inside_light).all(seen), "lit at {q:?} misses some of the light"),
+                }
+            }
+        }
+    }
+}
+
+/// The floor's area in `class` for a box over it under a light.
+fn floor_area(faces: Vec<ConvexPolygon>, light: &AreaSource, groups: bool, class: Class) -> f64 {
+    let mut pieces = vec![
+        ConvexPolygon::from_grid_points(
+            &[
+                gp(-400, 0, 400),
+                gp(400, 0, 400),
+                gp(400, 0, -400),
+                gp(-400, 0, -400),
+            ],
+            0,
+        )
+        .unwrap(),
+    ];
+    pieces.extend(faces);
+    let flags = vec![PieceFlags::default(); pieces.len()];
+    let groups = if groups {
+        ShadowGroups::connected(&pieces, &flags)
+    } else {
+        ShadowGroups::default()
+    };
+    let lights = [SceneLight::Area(light.clone())];
+    let out =
+        compute_shadows_with_groups(&pieces, &flags, &groups, &lights, &BuildOptions::default())
+            .unwrap();
+    out.fragments
+        .iter()
+        .filter(|f| f.polygon.source() == 0 && Class::of(f, 0) == class)
+        .map(|f| f.polygon.area())
+        .sum()
+}
+
+#[test]
+fn a_triangulated_box_casts_the_umbra_of_the_box() {
+    let light = light(-20, -20, 40, 40, 300, 0);
+    let (lo, hi) = ([-60, 80, -60], [60, 120, 60]);
+    let quads = floor_area(box_faces(lo, hi, 0, false), &light, true, Class::Umbra);
+    let quads_alone = floor_area(box_faces(lo, hi, 0, false), &light, false, Class::Umbra);
+    let triangles = floor_area(box_faces(lo, hi, 0x555, false), &light, true, Class::Umbra);
+    let alone = floor_area(box_faces(lo, hi, 0x555, false), &light, false, Class::Umbra);
+    // From every light vertex the box's shadow on the floor is its top's
+    // (the light is above the box), so the box's umbra is the top face's,
+    // whether the top is one piece or its two triangles hide it together.
+    assert!(quads > 0.0);
+    assert!(
+        (quads - quads_alone).abs() <= 1e-9 * quads,
+        "{quads} vs {quads_alone}"
+    );
+    assert!(
+        (quads - triangles).abs() <= 1e-9 * quads,
+        "{quads} vs {triangles}"
+    );
+    // No one triangle hides the light from most of it.
+    assert!(
+        alone < 0.9 * triangles,
+        "the triangles alone: {alone}, together {triangles}"
+    );
+}
+
+#[test]
+fn two_triangles_of_a_quad_form_one_flat_group() {
+    let (a, b, c, d) = (gp(0, 10, 0), gp(10, 10, 0), gp(10, 10, -10), gp(0, 10, -10));
+    let t = |p: &[GridPoint]| ConvexPolygon::from_grid_points(p, 0).unwrap();
+    let pieces = [t(&[a, b, c]), t(&[a, c, d])];
+    let groups = convex_groups(&pieces, &[Some(0), Some(0)]);
+    assert_eq!(groups.len(), 1);
+    assert!(groups[0].is_flat());
+    // In different objects they form none.
+    assert!(convex_groups(&pieces, &[Some(0), Some(1)]).is_empty());
+    // Nor when one casts no shadow.
+    assert!(convex_groups(&pieces, &[Some(0), None]).is_empty());
+    // An L of three squares is no convex polygon.
+    let e = gp(20, 10, 0);
+    let f = gp(20, 10, -10);
+    let g = gp(0, 10, -20);
+    let h = gp(10, 10, -20);
+    let l_shape = [t(&[a, b, c, d]), t(&[b, e, f, c]), t(&[d, c, h, g])];
+    assert!(convex_groups(&l_shape, &[Some(0); 3]).is_empty());
+    // A row of two squares is.
+    let row = [t(&[a, b, c, d]), t(&[b, e, f, c])];
+    assert_eq!(convex_groups(&row, &[Some(0); 2]).len(), 1);
+}
+
+#[test]
+fn open_or_concave_bodies_form_no_group() {
+    let (lo, hi) = ([0, 100, 0], [10, 110, 10]);
+    let mut open = box_faces(lo, hi, 0x555, false);
+    open.pop();
+    assert!(convex_groups(&open, &vec![Some(0); open.len()]).is_empty());
+    // Two boxes stacked face to face: the shared square's edges are
+    // matched twice, so neither closed surface is found (no claim is made).
+    let mut two = box_faces([0, 100, 0], [10, 110, 10], 0, false);
+    two.extend(box_faces([0, 110, 0], [10, 120, 10], 0, false));
+    assert!(convex_groups(&two, &vec![Some(0); two.len()]).is_empty());
+    // In objects of their own, each is its body.
+    let objects: Vec<Option<u32>> = (0..12).map(|k| Some(k / 6)).collect();
+    assert_eq!(convex_groups(&two, &objects).len(), 2);
+    // A box facing in is a group all the same.
+    let inward = box_faces(lo, hi, 0, true);
+    assert_eq!(convex_groups(&inward, &vec![Some(0); 6]).len(), 1);
+}
