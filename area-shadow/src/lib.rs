@@ -10,8 +10,10 @@
 //! tree by the general Thibault-Naylor union ([`VolumeTree`]); every
 //! fragment is then filtered down both: outside the penumbra tree it is
 //! lit, inside the umbra tree it is in umbra, otherwise in penumbra
-//! ([`AreaTrees`], [`shadow_area_light`]). [`compute_shadows`] runs point,
-//! directional and area lights together, one mask bit each.
+//! ([`AreaTrees`], [`shadow_area_light`]). Pieces that form one convex
+//! body ([`convex_groups`]) add the body's umbra too, where they hide the
+//! whole light only together. [`compute_shadows`] runs point, directional
+//! and area lights together, one mask bit each.
 //!
 //! Every plane is a plane through three grid points and every side
 //! decision is an exact predicate, so fragments partition their polygons

@@ -25,11 +25,15 @@
 //!
 //! The paper's umbra is the union of single occluders' umbrae. Pieces
 //! that make up one convex body (module `groups`: a triangulated sphere, a
-//! quad given as two triangles) also add the body's umbra volume, where
-//! they hide the whole light together; the trees get it after every piece,
-//! so culling is as before. Where separate bodies together hide the whole
-//! light (a boundary of quadric EEE surfaces in general), fragments stay
-//! penumbra and their vertices' visible part of the light comes out empty.
+//! quad given as two triangles) hide the whole light together from the
+//! body's umbra volume: these go into a tree of their own, and what is not
+//! in umbra already is filtered down it too. A fragment lying in a plane of
+//! a body's volume (a face in contact with the body) is taken for the
+//! points just off it on the side it receives on, which is what it sees
+//! light from: in contact, the body covers it. Where separate bodies
+//! together hide the whole light (a boundary of quadric EEE surfaces in
+//! general), fragments stay penumbra and their vertices' visible part of
+//! the light comes out empty.
 
 use crate::groups::{ConvexGroup, convex_groups};
 use crate::merge_pieces::merge_same_class;
@@ -146,11 +150,14 @@ pub struct AreaTrees {
     pub penumbra: VolumeTree,
     /// Where all of it is hidden (by one occluder).
     pub umbra: VolumeTree,
+    /// Where all of it is hidden by one convex body of several pieces.
+    pub bodies: VolumeTree,
     /// Pieces whose volumes went in.
     pub occluders: usize,
     /// Pieces left out because they lay in umbra already.
     pub culled: usize,
-    /// Convex bodies of several pieces whose umbra volume went in.
+    /// Convex bodies of several pieces whose umbra volume went in
+    /// ([`Self::bodies`]).
     pub groups: usize,
 }
 
@@ -169,7 +176,7 @@ impl AreaTrees {
     }
 
     /// [`Self::build`] with the convex bodies given: each adds its umbra
-    /// volume to the umbra tree (after every piece).
+    /// volume to [`Self::bodies`].
     ///
     /// # Panics
     ///
@@ -236,7 +243,7 @@ impl AreaTrees {
                 .and_then(|planes| region.clone().cut_by(&planes));
             if let Some(volume) = volume {
                 trees.groups += 1;
-                trees.umbra.insert(volume);
+                trees.bodies.insert(volume);
             }
         }
         trees
@@ -276,12 +283,32 @@ impl AreaTrees {
         } else {
             Class::Penumbra
         };
+        // The side the polygon receives on, for the bodies' volumes (none
+        // when light arrives on both).
+        let facing = match light.side_of(polygon.support()) {
+            SourceSide::Back => Some(polygon.support().flipped()),
+            SourceSide::Both if flags.two_sided => None,
+            _ => Some(*polygon.support()),
+        };
         let hidden = self.penumbra.partition(lit_part);
         out.extend(hidden.outside.into_iter().map(|p| (p, unblocked)));
         for piece in hidden.inside {
             let dark = self.umbra.partition(piece);
             out.extend(dark.outside.into_iter().map(|p| (p, Class::Penumbra)));
             out.extend(dark.inside.into_iter().map(|p| (p, Class::Umbra)));
+        }
+        if let Some(facing) = facing.filter(|_| !self.bodies.is_empty()) {
+            let mut bodies_cut = Vec::with_capacity(out.len());
+            for (piece, class) in out {
+                if class == Class::Umbra {
+                    bodies_cut.push((piece, class));
+                    continue;
+                }
+                let dark = self.bodies.partition_facing(piece, &facing);
+                bodies_cut.extend(dark.outside.into_iter().map(|p| (p, class)));
+                bodies_cut.extend(dark.inside.into_iter().map(|p| (p, Class::Umbra)));
+            }
+            out = bodies_cut;
         }
         if out.iter().all(|(_, c)| *c == out[0].1) {
             let class = out[0].1;
@@ -372,7 +399,7 @@ pub fn classify_fragments(
 ) -> (Vec<Fragment>, AreaLightStats) {
     let mut stats = AreaLightStats {
         penumbra_nodes: trees.penumbra.len(),
-        umbra_nodes: trees.umbra.len(),
+        umbra_nodes: trees.umbra.len() + trees.bodies.len(),
         occluders: trees.occluders,
         occluders_culled: trees.culled,
         occluder_groups: trees.groups,

@@ -129,7 +129,20 @@ impl VolumeTree {
         let mut splits = SplitTree {
             slots: vec![Slot::Open],
         };
-        self.filter(polygon, &mut splits);
+        self.filter(polygon, None, &mut splits);
+        splits.collapse()
+    }
+
+    /// [`Self::partition`] for a polygon that receives on the side `facing`
+    /// points to (its support, or its support flipped): a piece in a node's
+    /// plane is taken for the points just off it on that side, which is
+    /// what it sees light past. (Plain `partition` takes such a piece to be
+    /// inside only when it is inside on both sides: in the union's interior.)
+    pub fn partition_facing(&self, polygon: ConvexPolygon, facing: &Plane) -> Partition {
+        let mut splits = SplitTree {
+            slots: vec![Slot::Open],
+        };
+        self.filter(polygon, Some(facing), &mut splits);
         splits.collapse()
     }
 
@@ -147,7 +160,7 @@ impl VolumeTree {
             }
         }
         let mut all = AllInside(true);
-        self.filter(polygon.clone(), &mut all);
+        self.filter(polygon.clone(), None, &mut all);
         all.0
     }
 
@@ -162,7 +175,10 @@ impl VolumeTree {
     /// a node, a node with the same plane (a volume hung there repeats it)
     /// has an empty cell on one side: the piece goes only to the side it is
     /// being tested on.
-    fn filter(&self, polygon: ConvexPolygon, sink: &mut impl FilterSink) {
+    ///
+    /// With `facing`, a piece in a node's plane goes to the side `facing`
+    /// points to instead.
+    fn filter(&self, polygon: ConvexPolygon, facing: Option<&Plane>, sink: &mut impl FilterSink) {
         // (piece, its slot, subtree, coplanar nodes above it with the side
         // being tested: true while on the front).
         type Pending = Vec<(u32, bool)>;
@@ -210,6 +226,13 @@ impl VolumeTree {
                         piece = front;
                         slot = front_slot;
                         child = node.front;
+                    }
+                    Split::Coplanar(_) if facing.is_some() => {
+                        child = if facing == Some(&node.plane) {
+                            node.front
+                        } else {
+                            node.back
+                        };
                     }
                     Split::Coplanar(_) => {
                         let known = pending.iter().find_map(|&(above, front)| {

@@ -36,6 +36,13 @@
 //! count, so results are identical with any number of threads; call the
 //! library inside `rayon::ThreadPool::install` to choose it.
 //!
+//! Polygons of one object that form a convex body (a triangulated sphere,
+//! a box whose faces were cut, [`area_shadow::convex_groups`]) may hide
+//! the whole light only together: each such body is an occluder of its
+//! own whose one volume is its umbra, so that cells where nothing of the
+//! light is seen are umbra; it is added, removed and moved with its
+//! object.
+//!
 //! Inside each penumbra the internal EV and VE discontinuities (a light
 //! vertex crossing an occluder edge, an occluder vertex crossing a light
 //! edge) split the cells too, where their wedges cross them, so that the

@@ -8,12 +8,14 @@
 //! `AreaTrees::build`, units go nearest the light's centroid first, a
 //! stand-in for front-to-back that finds most of the culling.
 
-use crate::scene::{DmLight, Piece, PieceId};
+use crate::scene::{DmLight, Piece, PieceId, PieceKind};
 use slotmap::SlotMap;
 
 /// The units (occluder, light) of `candidates` that cast any shadow, light
 /// by light, each light's nearest first (ties by position in
-/// `candidates`).
+/// `candidates`), bodies after polygons (a body hides the whole light only
+/// where its polygons hide it together; merged last, it culls none of
+/// them).
 pub(crate) fn unit_order(
     lights: &[DmLight],
     pieces: &SlotMap<PieceId, Piece>,
@@ -22,14 +24,18 @@ pub(crate) fn unit_order(
     let mut out = Vec::new();
     for (i, light) in lights.iter().enumerate() {
         let centre = light.source.centroid();
-        let mut list: Vec<(f64, usize)> = candidates
+        let mut list: Vec<(bool, f64, usize)> = candidates
             .iter()
             .enumerate()
             .filter(|(_, k)| !pieces[**k].volumes[i].volumes.penumbra.is_empty())
-            .map(|(n, k)| (distance2(pieces[*k].polygon.centroid(), centre), n))
+            .map(|(n, k)| {
+                let piece = &pieces[*k];
+                let body = piece.kind == PieceKind::Body;
+                (body, distance2(piece.polygon.centroid(), centre), n)
+            })
             .collect();
-        list.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        out.extend(list.into_iter().map(|(_, n)| (candidates[n], i as u8)));
+        list.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+        out.extend(list.into_iter().map(|(_, _, n)| (candidates[n], i as u8)));
     }
     out
 }

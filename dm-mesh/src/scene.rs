@@ -8,9 +8,11 @@ use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
 use crate::tree::{Deletion, ReceiverDm};
 use area_shadow::AreaSource;
 use bsp_core::ConvexPolygon;
+use contact::ContactPlanes;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use svbsp::PieceFlags;
 
+mod contact;
 mod update;
 
 new_key_type! {
@@ -57,22 +59,42 @@ impl DmLight {
     }
 }
 
+/// What a piece of the scene is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PieceKind {
+    /// A convex polygon of an object: a receiver, and an occluder if its
+    /// object casts shadows.
+    Polygon,
+    /// A convex body that several polygons of an object form
+    /// ([`area_shadow::convex_groups`]): an occluder whose one volume is
+    /// the body's umbra (its polygons may hide the whole light only
+    /// together), and no receiver.
+    Body,
+}
+
 #[derive(Debug, Clone)]
 pub(crate) struct Piece {
+    /// The polygon; of a body, its first polygon's (it only places the
+    /// body in the order units are merged in).
     pub(crate) polygon: ConvexPolygon,
+    pub(crate) kind: PieceKind,
     pub(crate) object: ObjectId,
     pub(crate) flags: PieceFlags,
     /// Per light: the penumbra and umbra volume planes and the internal
     /// discontinuities (empty when the piece casts no shadow of that
     /// light).
     pub(crate) volumes: Vec<UnitPlanes>,
-    /// Grid-unit vertices, for illumination.
+    /// Grid-unit vertices (of a body, all its polygons'), for illumination
+    /// and the overlap structure.
     pub(crate) outline: Vec<[f64; 3]>,
 }
 
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Object {
     pub(crate) pieces: Vec<PieceId>,
+    /// The convex bodies its polygons form (pieces of kind
+    /// [`PieceKind::Body`]).
+    pub(crate) bodies: Vec<PieceId>,
 }
 
 /// How the discontinuity meshes are built.
@@ -244,9 +266,15 @@ impl DmScene {
     /// unless another's umbra culled it there). For tests and fuzz targets:
     /// it looks at every cell and unit.
     pub fn check_invariants(&self) -> Result<(), String> {
+        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
         for (piece, dm) in self.receivers() {
+            let units = dm.units().map(|(_, unit)| unit);
+            let contact =
+                ContactPlanes::new(&self.pieces[piece], &sources, units, |o| &self.pieces[o]);
+            let planes =
+                |k: PieceId, l: u8| contact.get(k, l, &self.pieces[k].volumes[usize::from(l)]);
             dm.check_invariants()
-                .and_then(|()| dm.check_lists(|k, l| &self.pieces[k].volumes[usize::from(l)]))
+                .and_then(|()| dm.check_lists(planes))
                 .map_err(|e| format!("receiver {piece:?}: {e}"))?;
         }
         Ok(())
@@ -258,7 +286,7 @@ impl DmScene {
     pub fn overlap_figures(&mut self) -> OverlapFigures {
         self.overlap.refresh(&self.pieces);
         let mut figures = OverlapFigures::default();
-        for r in self.pieces.keys() {
+        for r in self.receivers.keys() {
             let receiver = &self.pieces[r].polygon;
             for o in self.overlap.occluders_near(r, &self.pieces) {
                 figures.candidates += 1;

@@ -13,7 +13,7 @@
 //! final scene and of area-shadow's independent classification.
 
 use arbitrary::{Arbitrary, Unstructured};
-use area_shadow::{AreaSource, Class, SceneLight, compute_shadows};
+use area_shadow::{AreaSource, Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
 use dm_mesh::{CellClass, Deletion, DmLight, DmOptions, DmScene, ObjectId, PieceId};
 use svbsp::PieceFlags;
@@ -277,9 +277,18 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
         .iter()
         .flat_map(|(ps, f)| std::iter::repeat_n(*f, ps.len()))
         .collect();
-    let shadows = compute_shadows(
+    // Bodies (pieces hiding the light together) form within objects, as
+    // in dm-mesh.
+    let objects_of: Vec<u32> = live
+        .iter()
+        .enumerate()
+        .flat_map(|(o, (ps, _))| std::iter::repeat_n(o as u32, ps.len()))
+        .collect();
+    let groups = ShadowGroups::of_objects(&polygons, &flags, &objects_of);
+    let shadows = compute_shadows_with_groups(
         &polygons,
         &flags,
+        &groups,
         &[SceneLight::Area(source)],
         &BuildOptions::default(),
     )

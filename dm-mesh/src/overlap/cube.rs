@@ -98,7 +98,11 @@ impl Cube {
 
     /// Scan-converts a new receiver; its shadow waits for
     /// [`refresh`](Self::refresh).
-    pub(crate) fn insert(&mut self, key: PieceId, piece: &Piece) {
+    pub(crate) fn insert(&mut self, key: PieceId, piece: &Piece, receives: bool) {
+        if !receives {
+            self.pending.push(key);
+            return;
+        }
         self.boxes.insert(key, bounding_box(&piece.outline));
         let mut all = Vec::with_capacity(self.cubes.len());
         for cube in &mut self.cubes {

@@ -63,18 +63,20 @@ impl Grid {
         }
     }
 
-    /// Registers a new piece's receiver box; its penumbra box is made at
-    /// the next [`refresh`](Self::refresh).
-    pub(crate) fn insert(&mut self, key: PieceId, piece: &Piece) {
+    /// Registers a new piece's receiver box (if it `receives`); its
+    /// penumbra box is made at the next [`refresh`](Self::refresh).
+    pub(crate) fn insert(&mut self, key: PieceId, piece: &Piece, receives: bool) {
         let mut b = None;
         for v in &piece.outline {
             grow(&mut b, *v);
             self.stale |= grow(&mut self.bounds, *v);
         }
-        let b = b.unwrap_or_default();
-        self.boxes.insert(key, b);
-        if self.cell > 0.0 {
-            self.place(key, b, false);
+        if receives {
+            let b = b.unwrap_or_default();
+            self.boxes.insert(key, b);
+            if self.cell > 0.0 {
+                self.place(key, b, false);
+            }
         }
         self.pending.push(key);
     }

@@ -162,11 +162,11 @@ impl Overlap {
     }
 
     /// Registers a new piece (its shadow is placed at the next
-    /// [`refresh`](Self::refresh)).
-    pub(crate) fn insert(&mut self, key: PieceId, piece: &Piece) {
+    /// [`refresh`](Self::refresh)); a receiver too when `receives`.
+    pub(crate) fn insert(&mut self, key: PieceId, piece: &Piece, receives: bool) {
         match self {
-            Self::Grid(g) => g.insert(key, piece),
-            Self::Cube(c) => c.insert(key, piece),
+            Self::Grid(g) => g.insert(key, piece, receives),
+            Self::Cube(c) => c.insert(key, piece, receives),
         }
     }
 

@@ -10,7 +10,8 @@
 //! while the small ones share the other, instead of two passes each
 //! waiting for the big receiver.
 
-use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, TILE_UNITS};
+use super::contact::ContactPlanes;
+use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS};
 use crate::critical::{UnitPlanes, internal_planes};
 use crate::error::Error;
 use crate::hash::KeyMap;
@@ -18,7 +19,9 @@ use crate::illuminate::ReceiverIllum;
 use crate::order::unit_order;
 use crate::surface::surroundings;
 use crate::tree::ReceiverDm;
-use area_shadow::{AreaSource, SourceSide, volume_planes};
+use area_shadow::{
+    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, volume_planes,
+};
 use bsp_core::ConvexPolygon;
 use rayon::prelude::*;
 use slotmap::SlotMap;
@@ -31,13 +34,15 @@ type Removals = KeyMap<PieceId, BTreeSet<u32>>;
 type Insertions = KeyMap<PieceId, Order>;
 /// One receiver's part of a change: units out, then units in.
 type Work<'a> = (
+    PieceId,
     &'a mut ReceiverDm<PieceId>,
     Option<BTreeSet<u32>>,
     Option<Order>,
 );
 
 impl DmScene {
-    /// Creates the pieces and their empty receivers.
+    /// Creates the pieces and their empty receivers, and the bodies their
+    /// polygons form; returns all of them (receivers first).
     pub(super) fn attach(
         &mut self,
         id: ObjectId,
@@ -49,6 +54,11 @@ impl DmScene {
         let mut added = Vec::with_capacity(polygons.len());
         let surface = if flags.casts_shadows && self.options.internal_discontinuities {
             surroundings(&polygons)
+        } else {
+            Vec::new()
+        };
+        let bodies = if flags.casts_shadows {
+            convex_groups(&polygons, &vec![Some(0); polygons.len()])
         } else {
             Vec::new()
         };
@@ -78,6 +88,7 @@ impl DmScene {
             let receiver = ReceiverDm::new(polygon.clone(), flags.two_sided, &sources);
             let key = self.pieces.insert(Piece {
                 polygon,
+                kind: PieceKind::Polygon,
                 object: id,
                 flags,
                 volumes,
@@ -85,11 +96,62 @@ impl DmScene {
             });
             self.receivers.insert(key, receiver);
             self.illum.insert(key, ReceiverIllum::default());
-            self.overlap.insert(key, &self.pieces[key]);
+            self.overlap.insert(key, &self.pieces[key], true);
             added.push(key);
         }
         self.objects[id].pieces.extend(&added);
+        let made: Vec<PieceId> = bodies
+            .iter()
+            .map(|body| self.attach_body(id, flags, body, &added, &sources))
+            .collect();
+        self.objects[id].bodies.extend(&made);
+        added.extend(made);
         Ok(added)
+    }
+
+    /// Creates the occluder of a body that the object's pieces `of`
+    /// (indexed by the group) form.
+    fn attach_body(
+        &mut self,
+        id: ObjectId,
+        flags: PieceFlags,
+        body: &ConvexGroup,
+        of: &[PieceId],
+        sources: &[AreaSource],
+    ) -> PieceId {
+        let members: Vec<&Piece> = body
+            .pieces
+            .iter()
+            .map(|&k| &self.pieces[of[k as usize]])
+            .collect();
+        let volumes = sources
+            .iter()
+            .map(|light| match body.umbra_planes(light) {
+                // All of the region is umbra: penumbra and umbra planes alike.
+                Some(planes) => UnitPlanes {
+                    volumes: VolumePlanes {
+                        penumbra: [planes.clone()].into_iter().collect(),
+                        umbra: Some(planes),
+                    },
+                    internal: Vec::new(),
+                },
+                None => UnitPlanes::default(),
+            })
+            .collect();
+        let piece = Piece {
+            polygon: members[0].polygon.clone(),
+            kind: PieceKind::Body,
+            object: id,
+            flags,
+            volumes,
+            outline: members
+                .iter()
+                .flat_map(|m| m.outline.iter().copied())
+                .collect(),
+        };
+        let key = self.pieces.insert(piece);
+        self.overlap.insert(key, &self.pieces[key], false);
+        key
     }
 
     /// Casts the shadows of `added` (new pieces) on every receiver, and of
@@ -127,7 +189,8 @@ impl DmScene {
     /// every other receiver.
     fn removals(&mut self, id: ObjectId) -> Result<(Vec<PieceId>, Removals), Error> {
         let object = self.objects.get_mut(id).ok_or(Error::UnknownObject)?;
-        let gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
+        let mut gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
+        gone_pieces.append(&mut object.bodies);
         let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
         self.overlap.refresh(&self.pieces);
         let mut touched: BTreeSet<PieceId> = BTreeSet::new();
@@ -187,7 +250,7 @@ impl DmScene {
             .iter()
             .map(|&r| (r, true))
             .chain(touched.into_iter().map(|r| (r, false)))
-            .filter(|(r, _)| !self.receivers[*r].in_the_dark())
+            .filter(|(r, _)| self.receivers.get(*r).is_some_and(|dm| !dm.in_the_dark()))
             .collect();
         let (lights, pieces, overlap) = (&self.lights, &self.pieces, &self.overlap);
         targets
@@ -232,16 +295,23 @@ impl DmScene {
         left: &KeyMap<PieceId, Piece>,
     ) {
         let (pieces, how) = (&self.pieces, self.options.deletion);
-        let planes = |occluder: PieceId, light: u8| unit_planes(pieces, left, occluder, light);
+        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
         let mut work: Vec<Work> = self
             .receivers
             .iter_mut()
             .filter_map(|(r, dm)| {
                 let (out, into) = (removals.remove(&r), insertions.remove(&r));
-                (out.is_some() || into.is_some()).then_some((dm, out, into))
+                (out.is_some() || into.is_some()).then_some((r, dm, out, into))
             })
             .collect();
-        let run = |(dm, out, into): &mut Work| {
+        let run = |(r, dm, out, into): &mut Work| {
+            let piece = |o: PieceId| left.get(&o).unwrap_or_else(|| &pieces[o]);
+            let entering = into.iter().flat_map(|(_, order)| order.iter().copied());
+            let units = dm.units().map(|(_, unit)| unit).chain(entering);
+            let contact = ContactPlanes::new(&pieces[*r], &sources, units, piece);
+            let planes = |occluder: PieceId, light: u8| {
+                contact.get(occluder, light, unit_planes(pieces, left, occluder, light))
+            };
             if let Some(units) = out {
                 dm.remove_units(units, planes, how);
             }
@@ -254,7 +324,7 @@ impl DmScene {
             work.iter_mut().for_each(run);
             return;
         }
-        work.sort_by_key(|(dm, out, into)| {
+        work.sort_by_key(|(_, dm, out, into)| {
             let units = into.as_ref().map_or(0, |(_, order)| order.len());
             std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
         });

@@ -2,7 +2,7 @@
 //! and area-shadow's independent classification (penumbra and umbra trees
 //! of the whole scene) area for area.
 
-use crate::common::{TestScene, class_areas, scene, scene_with};
+use crate::common::{TestScene, class_areas, floor, scene, scene_with, triangulated_cuboid};
 use crate::oracle::{hidden, interior_samples};
 use area_shadow::{Class, SceneLight, compute_shadows};
 use bsp_core::BuildOptions;
@@ -60,7 +60,10 @@ fn check_against_area_shadow_with(t: &TestScene, options: DmOptions) -> Result<(
     Ok(())
 }
 
-fn check_against_oracle(t: &TestScene) -> Result<(), TestCaseError> {
+/// Cells against the exact occlusion oracle. With `one_body` (the only
+/// occluder is one convex body) where the light is all hidden is exactly
+/// the body's umbra, so a penumbra cell must also see some of the light.
+fn check_against_oracle(t: &TestScene, one_body: bool) -> Result<(), TestCaseError> {
     let (scene, _) = t.build();
     let casters: Vec<_> = t
         .objects
@@ -90,6 +93,8 @@ fn check_against_oracle(t: &TestScene) -> Result<(), TestCaseError> {
             // f64's resolution: the oracle cannot tell there.
             let mut witness =
                 class != CellClass::Penumbra || !full_reach(t, &own) || polygon.area() < 1e-6;
+            let mut lit_witness =
+                !one_body || class != CellClass::Penumbra || polygon.area() < 1e-6;
             let mut closest = 0.0_f64;
             for p in points {
                 let seen: Vec<bool> = lights
@@ -118,7 +123,16 @@ fn check_against_oracle(t: &TestScene) -> Result<(), TestCaseError> {
                     }
                     CellClass::Penumbra => witness = true,
                 }
+                if class == CellClass::Penumbra && !lit_witness {
+                    // A sliver seen past the body's edge may fall between
+                    // the samples: illum's visible part says.
+                    lit_witness = any || visible_fraction(t, &casters, &own, p) > 1e-12;
+                }
             }
+            prop_assert!(
+                lit_witness,
+                "a penumbra cell of one body sees none of the light"
+            );
             prop_assert!(
                 witness,
                 "no point of a penumbra cell has light hidden (at most {closest})"
@@ -173,7 +187,35 @@ proptest! {
 
     #[test]
     fn cells_agree_with_the_occlusion_oracle(t in scene()) {
-        check_against_oracle(&t)?;
+        check_against_oracle(&t, false)?;
+    }
+
+    /// A box whose faces may be cut into triangles: its umbra is the
+    /// body's, not just what one face hides alone.
+    #[test]
+    fn one_body_has_exact_cells(
+        lo in prop::array::uniform3(-80_i64..40),
+        size in prop::array::uniform3(6_i64..70),
+        cuts in any::<u32>(),
+        light in (-120_i64..60, -120_i64..60, 20_i64..100, 20_i64..100, 180_i64..260, -40_i64..40),
+    ) {
+        let lo = [lo[0], 40 + lo[1].rem_euclid(60), lo[2]];
+        let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
+        let (x0, z0, w, d, h, tilt) = light;
+        let t = TestScene {
+            objects: vec![
+                (vec![floor(500)], PieceFlags::default()),
+                (triangulated_cuboid(lo, hi, cuts), PieceFlags { closed_surface: true, ..PieceFlags::default() }),
+            ],
+            light: crate::common::light(x0, z0, w, d, h, tilt),
+        };
+        // Below the light's plane (one reaching it keeps its faces' umbrae).
+        let below = t.objects[1].0.iter().all(|f| (0..f.len()).all(|k| {
+            t.light.side_of_point(f.vertex_grid_point(k).unwrap()) == bsp_core::Side::Front
+        }));
+        prop_assume!(below);
+        check_against_oracle(&t, true)?;
+        check_against_area_shadow(&t)?;
     }
 }
 
@@ -183,7 +225,7 @@ proptest! {
     /// Many objects: the floor's tree starts tiled.
     #[test]
     fn tiled_cells_agree_with_the_occlusion_oracle(t in scene_with(9..14)) {
-        check_against_oracle(&t)?;
+        check_against_oracle(&t, false)?;
     }
 
     /// The shadow overlap cube finds every pair that matters too.
@@ -191,5 +233,50 @@ proptest! {
     fn cube_pairs_agree_with_area_shadow(t in scene_with(3..12)) {
         let options = DmOptions { overlap: OverlapKind::Cube, ..DmOptions::default() };
         check_against_area_shadow_with(&t, options)?;
+    }
+}
+
+/// Two boxes side by side, touching over a 1 x 1 square, under a light
+/// across their contact plane (found by `cube_pairs_agree_with_area_shadow`):
+/// the first box's face there is covered by the second, so it sees none of
+/// the light, in both pipelines.
+#[test]
+fn a_face_against_a_box_is_in_its_umbra() {
+    use crate::common::cuboid;
+    let closed = PieceFlags {
+        closed_surface: true,
+        ..PieceFlags::default()
+    };
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(500)], PieceFlags::default()),
+            (cuboid([-20, 30, -92], [14, 70, -82]), closed),
+            (cuboid([14, 69, -83], [24, 79, -73]), closed),
+        ],
+        light: crate::common::light(0, 0, 20, 20, 180, 0),
+    };
+    for overlap in [OverlapKind::Grid, OverlapKind::Cube] {
+        let (scene, ids) = t.build_with(DmOptions {
+            overlap,
+            ..DmOptions::default()
+        });
+        scene.check_invariants().unwrap();
+        // The first box's face x = 14, facing the second box.
+        let face = scene.object_pieces(ids[1]).unwrap()[3];
+        let [lit, penumbra, umbra] = class_areas(&scene, face);
+        assert_eq!(lit, 0.0);
+        assert!((umbra - 1.0).abs() < 1e-9, "{overlap:?}: umbra {umbra}");
+        assert!(
+            (penumbra - 399.0).abs() < 1e-9,
+            "{overlap:?}: penumbra {penumbra}"
+        );
+        check_against_area_shadow_with(
+            &t,
+            DmOptions {
+                overlap,
+                ..DmOptions::default()
+            },
+        )
+        .unwrap();
     }
 }

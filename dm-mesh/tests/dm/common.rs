@@ -1,5 +1,5 @@
-//! Random scenes: a floor, objects of a few triangles or a box above it,
-//! and a parallelogram light above those.
+//! Random scenes: a floor, objects of a few triangles or a box (faces whole
+//! or cut into triangles) above it, and a parallelogram light above those.
 
 use area_shadow::AreaSource;
 use bsp_core::{ConvexPolygon, GridPoint};
@@ -134,6 +134,30 @@ pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
         .collect()
 }
 
+/// [`cuboid`] with each face left whole or cut into two triangles along
+/// either diagonal (two bits of `cuts` per face): the triangles hide the
+/// light together where no one of them does.
+pub fn triangulated_cuboid(lo: [i64; 3], hi: [i64; 3], cuts: u32) -> Vec<ConvexPolygon> {
+    let mut out = Vec::new();
+    for (f, face) in cuboid(lo, hi).into_iter().enumerate() {
+        let g: Vec<GridPoint> = (0..4).map(|k| face.vertex_grid_point(k).unwrap()).collect();
+        let parts = match (cuts >> (2 * f)) & 3 {
+            1 => [[g[0], g[1], g[2]], [g[0], g[2], g[3]]],
+            2 => [[g[1], g[2], g[3]], [g[1], g[3], g[0]]],
+            _ => {
+                out.push(face);
+                continue;
+            }
+        };
+        out.extend(
+            parts
+                .iter()
+                .map(|t| ConvexPolygon::from_grid_points(t, 0).unwrap()),
+        );
+    }
+    out
+}
+
 pub fn scene() -> impl Strategy<Value = TestScene> {
     scene_with(1..5)
 }
@@ -147,6 +171,7 @@ pub fn scene_with(objects: std::ops::Range<usize>) -> impl Strategy<Value = Test
                 prop::array::uniform3(-200_i64..200),
                 prop::collection::vec(prop::array::uniform3(-60_i64..60), 3..7),
                 any::<bool>(),
+                any::<u32>(),
             ),
             objects,
         ),
@@ -161,7 +186,7 @@ pub fn scene_with(objects: std::ops::Range<usize>) -> impl Strategy<Value = Test
     )
         .prop_map(|(objects, (x0, z0, w, d, h, tilt))| {
             let mut out = vec![(vec![floor(500)], PieceFlags::default())];
-            for (c, corners, as_box) in objects {
+            for (c, corners, as_box, cuts) in objects {
                 if as_box {
                     let lo = [c[0], 30 + c[1].rem_euclid(60), c[2]];
                     let size = corners[0].map(|s| 10 + s.abs());
@@ -170,7 +195,7 @@ pub fn scene_with(objects: std::ops::Range<usize>) -> impl Strategy<Value = Test
                         closed_surface: true,
                         ..PieceFlags::default()
                     };
-                    out.push((cuboid(lo, hi), flags));
+                    out.push((triangulated_cuboid(lo, hi, cuts), flags));
                 } else {
                     let tris = triangles(c, &corners[..corners.len() / 3 * 3]);
                     if !tris.is_empty() {
