@@ -208,8 +208,8 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
         }
     }
     let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
-    for k in 0..pieces.len() {
-        if outlines[k].is_some() {
+    for (k, outline) in outlines.iter().enumerate() {
+        if outline.is_some() {
             members
                 .entry(sets.find(k as u32))
                 .or_default()

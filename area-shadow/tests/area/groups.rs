@@ -308,5 +308,5 @@ fn open_or_concave_bodies_form_no_group() {
     assert_eq!(convex_groups(&two, &objects).len(), 2);
     // A box facing in is a group all the same.
     let inward = box_faces(lo, hi, 0, true);
-    assert_eq!(convex_groups(&inward, &vec![Some(0); 6]).len(), 1);
+    assert_eq!(convex_groups(&inward, &[Some(0); 6]).len(), 1);
 }
