@@ -284,7 +284,8 @@ impl AreaTrees {
             Class::Penumbra
         };
         // The side the polygon receives on, for the bodies' volumes (none
-        // when light arrives on both).
+        // when light arrives on both: then a piece in a volume's plane is
+        // inside only in the union's interior).
         let facing = match light.side_of(polygon.support()) {
             SourceSide::Back => Some(polygon.support().flipped()),
             SourceSide::Both if flags.two_sided => None,
@@ -297,14 +298,17 @@ impl AreaTrees {
             out.extend(dark.outside.into_iter().map(|p| (p, Class::Penumbra)));
             out.extend(dark.inside.into_iter().map(|p| (p, Class::Umbra)));
         }
-        if let Some(facing) = facing.filter(|_| !self.bodies.is_empty()) {
+        if !self.bodies.is_empty() {
             let mut bodies_cut = Vec::with_capacity(out.len());
             for (piece, class) in out {
                 if class == Class::Umbra {
                     bodies_cut.push((piece, class));
                     continue;
                 }
-                let dark = self.bodies.partition_facing(piece, &facing);
+                let dark = match &facing {
+                    Some(facing) => self.bodies.partition_facing(piece, facing),
+                    None => self.bodies.partition(piece),
+                };
                 bodies_cut.extend(dark.outside.into_iter().map(|p| (p, class)));
                 bodies_cut.extend(dark.inside.into_iter().map(|p| (p, Class::Umbra)));
             }

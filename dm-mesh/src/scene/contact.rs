@@ -8,8 +8,10 @@
 //! and facing it, the body covers it; facing away, the body hides nothing
 //! from it. area-shadow's body tree decides the same way
 //! (`VolumeTree::partition_facing`). A two-sided receiver that the light
-//! reaches on both sides has no one such side: bodies' umbrae leave it
-//! alone.
+//! reaches on both sides has no one such side: lying in a plane of the
+//! volume, it is outside (area-shadow: inside only in the interior of the
+//! union, which differs only where two bodies' volumes meet in that plane
+//! from either side).
 //!
 //! So per receiver a body unit's planes are adapted before any tree code
 //! sees them: a plane of the receiver's own, facing it, is dropped (the

@@ -280,3 +280,51 @@ fn a_face_against_a_box_is_in_its_umbra() {
         .unwrap();
     }
 }
+
+/// A two-sided triangle through a box, under a light on both of its sides
+/// (found by `cells_agree_with_area_shadow` with 400 cases): where it is
+/// inside the box it sees none of the light, in both pipelines.
+#[test]
+fn a_two_sided_triangle_through_a_box_is_dark_inside_it() {
+    use crate::common::{cuboid, gp};
+    let triangle = bsp_core::ConvexPolygon::from_grid_points(
+        &[gp(-44, 48, 118), gp(-55, 106, 54), gp(-13, 94, 90)],
+        0,
+    )
+    .unwrap();
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(500)], PieceFlags::default()),
+            (
+                vec![triangle],
+                PieceFlags {
+                    two_sided: true,
+                    ..PieceFlags::default()
+                },
+            ),
+            (
+                cuboid([-40, 39, 78], [-30, 78, 91]),
+                PieceFlags {
+                    closed_surface: true,
+                    ..PieceFlags::default()
+                },
+            ),
+        ],
+        light: crate::common::light(-41, 0, 22, 20, 180, 0),
+    };
+    assert_eq!(
+        t.light.side_of(t.objects[1].0[0].support()),
+        area_shadow::SourceSide::Both
+    );
+    for overlap in [OverlapKind::Grid, OverlapKind::Cube] {
+        check_against_area_shadow_with(
+            &t,
+            DmOptions {
+                overlap,
+                ..DmOptions::default()
+            },
+        )
+        .unwrap();
+    }
+    check_against_oracle(&t, false).unwrap();
+}
