@@ -209,6 +209,79 @@ proptest! {
     }
 }
 
+/// A UV sphere of `rings` x `segments` quads, each cut into two
+/// triangles, its vertices rounded to the grid: the quads' two triangles
+/// meet at slight valleys or ridges, so the surface is only nearly convex.
+fn rounded_sphere(centre: [f64; 3], radius: f64, rings: u32, segments: u32) -> Vec<ConvexPolygon> {
+    let at = |i: u32, j: u32| {
+        let (t, f) = (
+            std::f64::consts::PI * f64::from(i) / f64::from(rings),
+            2.0 * std::f64::consts::PI * f64::from(j % segments) / f64::from(segments),
+        );
+        gp(
+            (centre[0] + radius * t.sin() * f.cos()).round() as i64,
+            (centre[1] + radius * t.cos()).round() as i64,
+            (centre[2] + radius * t.sin() * f.sin()).round() as i64,
+        )
+    };
+    let mut out = Vec::new();
+    for i in 0..rings {
+        for j in 0..segments {
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            // Outwards: counter-clockwise seen from outside.
+            for t in [[a, b, c], [a, c, d]] {
+                if let Ok(p) = ConvexPolygon::from_grid_points(&t, 0) {
+                    out.push(p);
+                }
+            }
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// A sphere rounded to the grid is convex only nearly; it still forms a
+    /// body (a hull of its vertices moved in a little), and where that
+    /// body's umbra is no point of the light is seen past the sphere's own
+    /// triangles.
+    #[test]
+    fn a_rounded_sphere_hides_the_light_from_its_bodys_umbra(
+        centre in prop::array::uniform3(-30.0_f64..30.0),
+        radius in 20.0_f64..70.0,
+        rings in 4_u32..9,
+        segments in 5_u32..13,
+        light in light_strategy(),
+        points in prop::collection::vec(prop::array::uniform3(-150_i64..150), 200),
+    ) {
+        let faces = rounded_sphere([centre[0], centre[1] + 110.0, centre[2]], radius, rings, segments);
+        let groups = convex_groups(&faces, &vec![Some(0); faces.len()]);
+        prop_assert_eq!(groups.len(), 1);
+        prop_assert_eq!(groups[0].pieces.len(), faces.len());
+        let Some(planes) = groups[0].umbra_planes(&light) else {
+            return Ok(());
+        };
+        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
+        let inside_light = light_samples(light.polygon());
+        // The body fills most of the sphere: its centre is in the umbra.
+        let middle = gp(centre[0].round() as i64, centre[1].round() as i64 + 110, centre[2].round() as i64);
+        prop_assert!(planes.iter().all(|q| side_of_point(q, middle) == Side::Back));
+        for c in points {
+            let p = gp(c[0], c[1] + 40, c[2]);
+            if faces.iter().any(|f| side_of_point(f.support(), p) == Side::On) {
+                continue;
+            }
+            if planes.iter().all(|q| side_of_point(q, p) == Side::Back) {
+                let q = p.to_f64();
+                prop_assert!(all_hidden(q, &corners, &casters), "{q:?} in the umbra sees a light vertex");
+                prop_assert!(all_hidden(q, &inside_light, &casters), "{q:?} in the umbra sees the light");
+            }
+        }
+    }
+}
+
 /// The floor's area in `class` for a box over it under a light.
 fn floor_area(faces: Vec<ConvexPolygon>, light: &AreaSource, groups: bool, class: Class) -> f64 {
     let mut pieces = vec![

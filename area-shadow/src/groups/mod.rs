@@ -36,7 +36,9 @@
 //!   on or in front of every one: a surface facing in blocks light all the
 //!   same). The pieces then lie on the boundary of the vertices' convex
 //!   hull, all facing out (or all in), and as a closed 2-cycle there they
-//!   cover all of it.
+//!   cover all of it. A closed surface that the grid's rounding left a
+//!   few units from convex stands for a convex body inside it (module
+//!   `solid`), whose umbra is part of the surface's.
 //!
 //! Anything else (T-junctions, concave or open bodies, a face shared by
 //! two bodies) forms no group, and its umbra stays the union of its
@@ -44,9 +46,12 @@
 
 use crate::AreaSource;
 use crate::volumes::volume_planes;
-use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
-use std::collections::{HashMap, HashSet};
+use solid::Solid;
+use std::collections::HashMap;
+
+mod hull;
+mod solid;
 
 /// The most side tests (pieces times vertices) spent checking that one
 /// closed surface is convex; bigger surfaces form no group. About a
@@ -69,15 +74,6 @@ enum Shape {
     Solid(Solid),
 }
 
-#[derive(Debug, Clone, PartialEq)]
-struct Solid {
-    vertices: Vec<GridPoint>,
-    /// Each piece's support plane, the body behind it.
-    faces: Vec<Plane>,
-    /// Each edge once, with the two faces (indices into `faces`) it joins.
-    edges: Vec<(GridPoint, GridPoint, u32, u32)>,
-}
-
 impl ConvexGroup {
     /// Whether the group is flat (a convex polygon cut into pieces).
     pub fn is_flat(&self) -> bool {
@@ -92,83 +88,6 @@ impl ConvexGroup {
         match &self.shape {
             Shape::Flat(polygon) => volume_planes(polygon, light).umbra,
             Shape::Solid(solid) => solid.umbra_planes(light),
-        }
-    }
-}
-
-impl Solid {
-    fn umbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
-        let support = light.support();
-        if self
-            .vertices
-            .iter()
-            .any(|&p| side_of_point(support, p) != Side::Front)
-        {
-            return None;
-        }
-        let lights: Vec<GridPoint> = light.vertices().collect();
-        // sides[f * n + k]: light vertex k against face f.
-        let n = lights.len();
-        let sides: Vec<Side> = self
-            .faces
-            .iter()
-            .flat_map(|f| lights.iter().map(move |&v| side_of_point(f, v)))
-            .collect();
-        let mut planes: Vec<Plane> = Vec::new();
-        let mut seen: HashSet<Plane> = HashSet::new();
-        // The faces some light vertex sees: the ray from it enters there.
-        for (f, face) in self.faces.iter().enumerate() {
-            if sides[f * n..(f + 1) * n].contains(&Side::Front) && seen.insert(*face) {
-                planes.push(*face);
-            }
-        }
-        // The cones' sides: planes through a light vertex and an edge where
-        // the vertex's view of the body turns (one face seen, the other
-        // not, or either edge-on), tangent to the body, all of the light on
-        // or behind.
-        for (k, &v) in lights.iter().enumerate() {
-            for &(a, b, f, g) in &self.edges {
-                let (sf, sg) = (sides[f as usize * n + k], sides[g as usize * n + k]);
-                let turns =
-                    (sf == Side::Front) != (sg == Side::Front) || sf == Side::On || sg == Side::On;
-                if !turns {
-                    continue;
-                }
-                let Some(plane) = Plane::through(a, b, v) else {
-                    continue;
-                };
-                let Some(plane) = self.tangent(plane) else {
-                    continue;
-                };
-                let light_behind = lights
-                    .iter()
-                    .all(|&w| side_of_point(&plane, w) != Side::Front);
-                if light_behind && seen.insert(plane) {
-                    planes.push(plane);
-                }
-            }
-        }
-        Some(planes)
-    }
-
-    /// `plane` oriented with the body behind it, if it has the body on one
-    /// side.
-    fn tangent(&self, plane: Plane) -> Option<Plane> {
-        let (mut back, mut front) = (false, false);
-        for &p in &self.vertices {
-            match side_of_point(&plane, p) {
-                Side::Back => back = true,
-                Side::Front => front = true,
-                Side::On => {}
-            }
-            if back && front {
-                return None;
-            }
-        }
-        match (back, front) {
-            (true, false) => Some(plane),
-            (false, true) => Some(plane.flipped()),
-            _ => None,
         }
     }
 }
@@ -232,7 +151,7 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
             let shape = if supports.iter().all(|s| *s == supports[0]) {
                 flat_shape(&outlines, &supports[0]).map(Shape::Flat)
             } else {
-                solid_shape(&outlines, &supports).map(Shape::Solid)
+                Solid::of_surface(&outlines, &supports).map(Shape::Solid)
             }?;
             Some(ConvexGroup {
                 pieces: members,
@@ -242,13 +161,15 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
         .collect()
 }
 
-fn directed_edges(outline: &[GridPoint]) -> impl Iterator<Item = (GridPoint, GridPoint)> + '_ {
+pub(super) fn directed_edges(
+    outline: &[GridPoint],
+) -> impl Iterator<Item = (GridPoint, GridPoint)> + '_ {
     let n = outline.len();
     (0..n).map(move |i| (outline[i], outline[(i + 1) % n]))
 }
 
 /// Directed edges of the pieces with their counts; `None` if one repeats.
-fn edge_set(outlines: &[&[GridPoint]]) -> Option<HashMap<(GridPoint, GridPoint), u32>> {
+pub(super) fn edge_set(outlines: &[&[GridPoint]]) -> Option<HashMap<(GridPoint, GridPoint), u32>> {
     let mut edges = HashMap::new();
     for (f, outline) in outlines.iter().enumerate() {
         for edge in directed_edges(outline) {
@@ -285,55 +206,6 @@ fn flat_shape(outlines: &[&[GridPoint]], support: &Plane) -> Option<ConvexPolygo
     }
     let polygon = ConvexPolygon::from_grid_points(&cycle, 0).ok()?;
     (polygon.support() == support).then_some(polygon)
-}
-
-/// The closed convex surface the pieces form, if they do.
-fn solid_shape(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Solid> {
-    let edges = edge_set(outlines)?;
-    let mut vertices: Vec<GridPoint> = outlines.iter().flat_map(|o| o.iter().copied()).collect();
-    vertices.sort_unstable();
-    vertices.dedup();
-    if supports.len().saturating_mul(vertices.len()) > MAX_SOLID_WORK {
-        return None;
-    }
-    let mut solid_edges = Vec::with_capacity(edges.len() / 2);
-    for (&(a, b), &f) in &edges {
-        let &g = edges.get(&(b, a))?;
-        if a < b {
-            solid_edges.push((a, b, f, g));
-        }
-    }
-    solid_edges.sort_unstable();
-    // Every vertex on or behind every piece's plane (faces out), or on or
-    // in front of every one (faces in: it blocks light all the same).
-    let (mut outward, mut inward, mut flat) = (true, true, true);
-    for plane in supports {
-        for &p in &vertices {
-            match side_of_point(plane, p) {
-                Side::Front => outward = false,
-                Side::Back => inward = false,
-                Side::On => continue,
-            }
-            flat = false;
-            if !outward && !inward {
-                return None;
-            }
-        }
-    }
-    // A closed surface in one plane is a two-sided sheet, not a body.
-    if flat {
-        return None;
-    }
-    let faces = if outward {
-        supports.to_vec()
-    } else {
-        supports.iter().map(Plane::flipped).collect()
-    };
-    Some(Solid {
-        vertices,
-        faces,
-        edges: solid_edges,
-    })
 }
 
 /// Union-find over piece indices.

@@ -1,0 +1,296 @@
+//! Closed surfaces that block light as a convex body, and that body's
+//! umbra planes.
+//!
+//! A closed surface `S` (every directed edge matched by its reverse once)
+//! blocks light at least as a convex body `B` does whenever `B` lies
+//! within the intersection `K` of the half-spaces behind `S`'s faces:
+//! from a point of `K` every face of `S` turns its back, so the point has a
+//! winding number of at least one and any segment from it to a point
+//! outside `S`'s hull (the light) crosses `S`. When every vertex of `S` is
+//! in `K`, `S` is convex and `B` is its solid. Rounding to the grid often
+//! leaves a convex surface a few units off: two triangles of a planar quad
+//! meet at a slight valley, and the vertices beside it stand out of the
+//! other triangle's plane. Those vertices are moved a few grid units
+//! towards the surface's centre until they are in `K`; if the surface so
+//! moved is convex, its solid lies in `K` (it is the hull of points of
+//! `K`, which is convex) and stands for `B`: its umbra is part of `S`'s,
+//! every plane still through three grid points. Bodies really concave get
+//! no such surface and form no group.
+
+use super::hull::convex_hull;
+use super::{MAX_SOLID_WORK, edge_set};
+use crate::AreaSource;
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{GridPoint, Plane};
+use std::collections::HashSet;
+
+/// The farthest a vertex is moved towards the centre, in grid units.
+const MAX_NUDGE: f64 = 64.0;
+
+/// A closed convex surface: the body a group blocks light as.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Solid {
+    vertices: Vec<GridPoint>,
+    /// Each face's plane, the body behind it.
+    faces: Vec<Plane>,
+    /// Each edge once, with the two faces (indices into `faces`) it joins.
+    edges: Vec<(GridPoint, GridPoint, u32, u32)>,
+}
+
+impl Solid {
+    /// The convex body that the closed surface of `outlines` (with support
+    /// planes `supports`, all facing out or all in) blocks light as: the
+    /// surface itself when convex, else the surface with the vertices that
+    /// stand out moved in (module docs); `None` when neither is convex.
+    pub(super) fn of_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
+        let edges = edge_set(outlines)?;
+        if edges.keys().any(|&(a, b)| !edges.contains_key(&(b, a))) {
+            return None;
+        }
+        let mut vertices: Vec<GridPoint> =
+            outlines.iter().flat_map(|o| o.iter().copied()).collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        if supports.len().saturating_mul(vertices.len()) > MAX_SOLID_WORK {
+            return None;
+        }
+        // Which vertices stand in front of some face (facing out), and
+        // which behind some face (facing in).
+        let (mut ahead, mut behind) = (vec![false; vertices.len()], vec![false; vertices.len()]);
+        for plane in supports {
+            for (k, &p) in vertices.iter().enumerate() {
+                match side_of_point(plane, p) {
+                    Side::Front => ahead[k] = true,
+                    Side::Back => behind[k] = true,
+                    Side::On => {}
+                }
+            }
+        }
+        // A closed surface in one plane is a two-sided sheet, not a body.
+        if !ahead.contains(&true) && !behind.contains(&true) {
+            return None;
+        }
+        let count = |flags: &[bool]| flags.iter().filter(|f| **f).count();
+        let (faces, out): (Vec<Plane>, Vec<bool>) = if count(&ahead) <= count(&behind) {
+            (supports.to_vec(), ahead)
+        } else {
+            (supports.iter().map(Plane::flipped).collect(), behind)
+        };
+        if !out.contains(&true) {
+            return Self::with_faces(outlines, faces, vertices);
+        }
+        Self::moved_in(&faces, &vertices, &out)
+    }
+
+    /// The hull of the surface's vertices, those marked `out` (in front of
+    /// some face) moved towards its centre until they are behind every
+    /// face: a convex body within them all.
+    fn moved_in(faces: &[Plane], vertices: &[GridPoint], out: &[bool]) -> Option<Self> {
+        let n = vertices.len() as f64;
+        let centre: [f64; 3] =
+            std::array::from_fn(|a| vertices.iter().map(|p| p.to_f64()[a]).sum::<f64>() / n);
+        let inside = |p: GridPoint| faces.iter().all(|f| side_of_point(f, p) != Side::Front);
+        let mut points = Vec::with_capacity(vertices.len());
+        for (&p, &stands_out) in vertices.iter().zip(out) {
+            if !stands_out {
+                points.push(p);
+                continue;
+            }
+            let from = p.to_f64();
+            let d: [f64; 3] = std::array::from_fn(|a| centre[a] - from[a]);
+            let length = d.iter().map(|c| c * c).sum::<f64>().sqrt();
+            let mut step = 1.0;
+            loop {
+                if step > MAX_NUDGE || step >= length {
+                    return None;
+                }
+                let q = GridPoint::new(
+                    (from[0] + d[0] / length * step).round() as i64,
+                    (from[1] + d[1] / length * step).round() as i64,
+                    (from[2] + d[2] / length * step).round() as i64,
+                )
+                .ok()?;
+                if inside(q) {
+                    points.push(q);
+                    break;
+                }
+                step *= 2.0;
+            }
+        }
+        let hull = convex_hull(&points)?;
+        let triangles: Vec<&[GridPoint]> = hull.iter().map(|(t, _)| &t[..]).collect();
+        let planes: Vec<Plane> = hull.iter().map(|(_, plane)| *plane).collect();
+        let mut corners: Vec<GridPoint> = hull.iter().flat_map(|(t, _)| *t).collect();
+        corners.sort_unstable();
+        corners.dedup();
+        Self::with_faces(&triangles, planes, corners)
+    }
+
+    /// The solid of a closed convex surface, its faces' planes given.
+    fn with_faces(
+        outlines: &[&[GridPoint]],
+        faces: Vec<Plane>,
+        vertices: Vec<GridPoint>,
+    ) -> Option<Self> {
+        let edges = edge_set(outlines)?;
+        let mut solid_edges = Vec::with_capacity(edges.len() / 2);
+        for (&(a, b), &f) in &edges {
+            let &g = edges.get(&(b, a))?;
+            if a < b {
+                solid_edges.push((a, b, f, g));
+            }
+        }
+        solid_edges.sort_unstable();
+        Some(Self {
+            vertices,
+            faces,
+            edges: solid_edges,
+        })
+    }
+
+    /// The planes of the body's umbra volume under `light` (see
+    /// [`super::ConvexGroup::umbra_planes`]).
+    pub(super) fn umbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
+        let support = light.support();
+        if self
+            .vertices
+            .iter()
+            .any(|&p| side_of_point(support, p) != Side::Front)
+        {
+            return None;
+        }
+        let lights: Vec<GridPoint> = light.vertices().collect();
+        // sides[f * n + k]: light vertex k against face f.
+        let n = lights.len();
+        let sides: Vec<Side> = self
+            .faces
+            .iter()
+            .flat_map(|f| lights.iter().map(move |&v| side_of_point(f, v)))
+            .collect();
+        let mut planes: Vec<Plane> = Vec::new();
+        let mut seen: HashSet<Plane> = HashSet::new();
+        // The faces some light vertex sees: the ray from it enters there.
+        for (f, face) in self.faces.iter().enumerate() {
+            if sides[f * n..(f + 1) * n].contains(&Side::Front) && seen.insert(*face) {
+                planes.push(*face);
+            }
+        }
+        // The cones' sides: planes through a light vertex and an edge where
+        // the vertex's view of the body turns (one face seen, the other
+        // not, or either edge-on), tangent to the body, all of the light on
+        // or behind.
+        for (k, &v) in lights.iter().enumerate() {
+            for &(a, b, f, g) in &self.edges {
+                let (sf, sg) = (sides[f as usize * n + k], sides[g as usize * n + k]);
+                let turns =
+                    (sf == Side::Front) != (sg == Side::Front) || sf == Side::On || sg == Side::On;
+                if !turns {
+                    continue;
+                }
+                let Some(plane) = Plane::through(a, b, v) else {
+                    continue;
+                };
+                let Some(plane) = self.tangent(plane) else {
+                    continue;
+                };
+                let light_behind = lights
+                    .iter()
+                    .all(|&w| side_of_point(&plane, w) != Side::Front);
+                if light_behind && seen.insert(plane) {
+                    planes.push(plane);
+                }
+            }
+        }
+        Some(planes)
+    }
+
+    /// `plane` oriented with the body behind it, if it has the body on one
+    /// side.
+    fn tangent(&self, plane: Plane) -> Option<Plane> {
+        let (mut back, mut front) = (false, false);
+        for &p in &self.vertices {
+            match side_of_point(&plane, p) {
+                Side::Back => back = true,
+                Side::Front => front = true,
+                Side::On => {}
+            }
+            if back && front {
+                return None;
+            }
+        }
+        match (back, front) {
+            (true, false) => Some(plane),
+            (false, true) => Some(plane.flipped()),
+            _ => None,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A UV sphere's quads cut into triangles, rounded: nearly convex.
+    fn rounded_sphere() -> Vec<Vec<GridPoint>> {
+        let at = |i: u32, j: u32| {
+            let (t, f) = (
+                std::f64::consts::PI * f64::from(i) / 6.0,
+                std::f64::consts::PI * f64::from(j % 10) / 5.0,
+            );
+            GridPoint::new(
+                (1000.0 * t.sin() * f.cos()).round() as i64,
+                (1000.0 * t.cos()).round() as i64,
+                (1000.0 * t.sin() * f.sin()).round() as i64,
+            )
+            .unwrap()
+        };
+        let mut out = Vec::new();
+        for i in 0..6 {
+            for j in 0..10 {
+                let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+                for t in [vec![a, b, c], vec![a, c, d]] {
+                    if Plane::through(t[0], t[1], t[2]).is_some() {
+                        out.push(t);
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn a_nearly_convex_surface_stands_for_a_body_inside_it() {
+        let outlines = rounded_sphere();
+        let slices: Vec<&[GridPoint]> = outlines.iter().map(Vec::as_slice).collect();
+        let supports: Vec<Plane> = outlines
+            .iter()
+            .map(|t| Plane::through(t[0], t[1], t[2]).unwrap())
+            .collect();
+        let mut vertices: Vec<GridPoint> = outlines.iter().flatten().copied().collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        // Rounding left some vertex in front of some face.
+        assert!(
+            supports
+                .iter()
+                .any(|f| vertices.iter().any(|&p| side_of_point(f, p) == Side::Front))
+        );
+        let solid = Solid::of_surface(&slices, &supports).unwrap();
+        // The body is convex and behind every face of the surface.
+        for f in solid.faces.iter().chain(&supports) {
+            assert!(
+                solid
+                    .vertices
+                    .iter()
+                    .all(|&p| side_of_point(f, p) != Side::Front)
+            );
+        }
+        // Nearly all vertices are the hull's (moved in or not).
+        assert!(
+            solid.vertices.len() * 10 >= vertices.len() * 9,
+            "{} of {}",
+            solid.vertices.len(),
+            vertices.len()
+        );
+    }
+}
