@@ -281,3 +281,124 @@ fn output_does_not_depend_on_the_thread_count() {
         );
     }
 }
+
+/// The floor's areas (lit, penumbra, umbra) for light 0 in a PLY written
+/// by `umbra shadow` or `umbra dm`.
+fn floor_classes(mesh: &OutputMesh) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for (f, face) in mesh.faces.iter().enumerate() {
+        if face.source != 0 {
+            continue;
+        }
+        let a = area(&face_points(mesh, f));
+        match (face.lit_mask & 1, face.umbra_mask & 1) {
+            (1, 0) => out[0] += a,
+            (0, 0) => out[1] += a,
+            (0, 1) => out[2] += a,
+            _ => panic!("face {f} lit and umbra"),
+        }
+    }
+    out
+}
+
+/// [`SQUARE_UNDER_LIGHT`] with the square given as two triangles of an
+/// OBJ mesh: together they hide all of the light from the square's umbra,
+/// which neither does alone; both commands mark it umbra.
+#[test]
+fn a_square_in_two_triangles_casts_the_squares_umbra() {
+    let scene = SQUARE_UNDER_LIGHT.replace(
+        "polygons = [[[-2, 5, 2], [2, 5, 2], [2, 5, -2], [-2, 5, -2]]]",
+        "mesh = \"square.obj\"",
+    );
+    let obj = "v -2 5 2\nv 2 5 2\nv 2 5 -2\nv -2 5 -2\nf 1 2 3\nf 1 3 4\n";
+    let dir = folder(&[("scene.toml", scene.as_str()), ("square.obj", obj)]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let [lit, pen, umb] = floor_classes(&mesh);
+        assert!((umb - 36.0).abs() < 1e-9, "{command}: umbra {umb}");
+        assert!((pen - 64.0).abs() < 1e-9, "{command}: penumbra {pen}");
+        assert!((lit - 300.0).abs() < 1e-9, "{command}: lit {lit}");
+    }
+}
+
+/// A UV sphere of triangles (its quads' halves meet at slight creases once
+/// rounded to the grid) over the floor: the floor right under it sees none
+/// of the light, and both commands say so.
+#[test]
+fn a_triangulated_sphere_has_an_umbra_under_it() {
+    let mut obj = String::new();
+    let (rings, segments) = (8, 16);
+    for i in 0..=rings {
+        for j in 0..segments {
+            let t = std::f64::consts::PI * f64::from(i) / f64::from(rings);
+            let f = 2.0 * std::f64::consts::PI * f64::from(j) / f64::from(segments);
+            obj += &format!(
+                "v {} {} {}\n",
+                t.sin() * f.cos(),
+                3.0 + t.cos(),
+                t.sin() * f.sin()
+            );
+        }
+    }
+    let at = |i: u32, j: u32| i * segments + j % segments + 1;
+    for i in 0..rings {
+        for j in 0..segments {
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            // Counter-clockwise seen from outside; the poles' slivers are
+            // degenerate and dropped, the surface stays closed.
+            if i > 0 {
+                obj += &format!("f {a} {b} {c}\n");
+            }
+            if i + 1 < rings {
+                obj += &format!("f {a} {c} {d}\n");
+            }
+        }
+    }
+    let scene = r#"
+[[object]]
+name = "floor"
+polygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]
+
+[[object]]
+name = "ball"
+mesh = "ball.obj"
+
+[[light]]
+type = "area"
+vertices = [[-0.5, 8, -0.5], [0.5, 8, -0.5], [0.5, 8, 0.5], [-0.5, 8, 0.5]]
+intensity = 1.0
+"#;
+    let dir = folder(&[("scene.toml", scene), ("ball.obj", obj.as_str())]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        // The floor face holding the point under the sphere's centre.
+        let under = mesh.faces.iter().enumerate().find(|(f, face)| {
+            face.source == 0 && contains_xz(&face_points(&mesh, *f), [0.01, 0.02])
+        });
+        let (_, face) = under.expect("a floor face under the sphere");
+        assert_eq!(
+            face.umbra_mask & 1,
+            1,
+            "{command}: not umbra under the sphere"
+        );
+        let [_, _, umb] = floor_classes(&mesh);
+        // The sphere hides all of the light from a disc of radius about
+        // 0.75 (a cone from the light's corners past the sphere).
+        assert!(umb > 1.0, "{command}: umbra {umb}");
+    }
+}
+
+/// Whether the convex polygon `v` (on the floor) holds the point `p` of
+/// the xz-plane.
+fn contains_xz(v: &[[f64; 3]], p: [f64; 2]) -> bool {
+    let n = v.len();
+    let side = |i: usize| {
+        let (a, b) = (v[i], v[(i + 1) % n]);
+        (b[0] - a[0]) * (p[1] - a[2]) - (b[2] - a[2]) * (p[0] - a[0])
+    };
+    (0..n).all(|i| side(i) > 0.0) || (0..n).all(|i| side(i) < 0.0)
+}
