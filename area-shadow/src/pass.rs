@@ -148,7 +148,7 @@ impl ShadowGroups {
 pub struct AreaTrees {
     /// Where some of the light is hidden.
     pub penumbra: VolumeTree,
-    /// Where all of it is hidden (by one occluder).
+    /// Where all of it is hidden (by one piece).
     pub umbra: VolumeTree,
     /// Where all of it is hidden by one convex body of several pieces.
     pub bodies: VolumeTree,

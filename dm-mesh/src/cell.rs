@@ -39,8 +39,8 @@ pub enum CellClass {
     Lit,
     /// Sees part of it.
     Penumbra,
-    /// Sees none of it (one occluder hides it all, or the light does not
-    /// reach the cell).
+    /// Sees none of it (one occluder, or one convex body of several,
+    /// hides it all, or the light does not reach the cell).
     Umbra,
 }
 
