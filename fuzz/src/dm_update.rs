@@ -370,6 +370,28 @@ mod tests {
         check_dm_update(&case).unwrap();
     }
 
+    /// Found by libFuzzer: a move with collapsing deletion left a cell
+    /// crossed by an internal discontinuity of a unit it lists.
+    #[test]
+    fn collapse_leaves_no_cell_crossed_by_an_internal_discontinuity() {
+        let case = DmCase {
+            objects: vec![
+                vec![
+                    [[0, 6, -8], [-8, 1, 6], [-8, 4, -8]],
+                    [[-6, 1, -8], [-8, 4, -8], [-8, 2, -8]],
+                ],
+                vec![
+                    [[5, 2, -8], [-8, 1, -8], [-8, 4, -8]],
+                    [[-8, 4, -8], [-8, 1, -8], [-8, 1, -8]],
+                ],
+            ],
+            light: ([2, 10, 2], [2, 4], -3),
+            ops: vec![Op::Move(227, [-1, 0, -1]), Op::Remove(56)],
+            deletion: Deletion::Collapse,
+        };
+        check_dm_update(&case).unwrap();
+    }
+
     #[test]
     fn pseudo_random_inputs_pass() {
         for seed in 0..400 {

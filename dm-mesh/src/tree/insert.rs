@@ -202,7 +202,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// Splits the cells of the subtree at `node` that list `unit` outside
     /// its umbra by its internal discontinuities, each where its wedge
     /// crosses the cell.
-    fn grow_internal(&mut self, node: u32, internal: &[&Critical], unit: u32) {
+    pub(super) fn grow_internal(&mut self, node: u32, internal: &[&Critical], unit: u32) {
         let mut cells: Vec<(u32, ConvexPolygon)> = self
             .leaves(node)
             .into_iter()

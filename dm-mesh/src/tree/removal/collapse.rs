@@ -5,7 +5,9 @@
 
 use super::{Planes, ReceiverDm};
 use crate::cell::Entry;
+use crate::critical::Critical;
 use crate::tree::{Node, tracked};
+use smallvec::SmallVec;
 use std::collections::BTreeSet;
 
 impl<K: Copy + Ord> ReceiverDm<K> {
@@ -33,6 +35,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             let Ok(region) = self.mesh.face_polygon(face, 0) else {
                 continue;
             };
+            // A kept unit's internal discontinuity may lie along a line of
+            // the collapsed subtree, between cells it did not cross: in the
+            // merged cell it crosses, so it is grown again there.
+            for entry in kept.iter().filter(|e| !e.umbra) {
+                if let Some((key, light)) = self.unit(entry.unit) {
+                    let internal: SmallVec<[&Critical; 32]> =
+                        planes(key, light).internal.iter().collect();
+                    if !internal.is_empty() {
+                        self.grow_internal(n, &internal, entry.unit);
+                    }
+                }
+            }
             for unit in redo {
                 if let Some((key, light)) = self.unit(unit) {
                     self.merge_unit(n, Some(&region), unit, light, planes(key, light));
