@@ -120,6 +120,26 @@ fn cover(cells: &[&Cell], light: usize) -> Cover {
 }
 
 impl IllumStats {
+    /// The figures of evaluating one vertex with `covers` (kept apart
+    /// from the values: a first call evaluates millions of vertices).
+    fn of_evaluation(covers: &[Cover]) -> Self {
+        let mut stats = Self {
+            evaluated: 1,
+            ..Self::default()
+        };
+        for cover in covers {
+            match cover {
+                Cover::Dark => stats.dark += 1,
+                Cover::Free => stats.unoccluded += 1,
+                Cover::Occluders(units) => {
+                    stats.visibility += 1;
+                    stats.comparisons += units.len();
+                }
+            }
+        }
+        stats
+    }
+
     fn add(mut self, other: Self) -> Self {
         self.vertices += other.vertices;
         self.evaluated += other.evaluated;
@@ -266,7 +286,7 @@ fn illuminate_receiver(
         if values.get(v).is_some_and(|value| value.covers == covers) {
             return None;
         }
-        let (irradiance, stats) = evaluate(
+        let irradiance = evaluate(
             lights,
             pieces,
             dm,
@@ -276,7 +296,7 @@ fn illuminate_receiver(
             &covers,
             scratch,
         );
-        Some((v, VertexValue { covers, irradiance }, stats))
+        Some((v, VertexValue { covers, irradiance }))
     };
     let results: Vec<_> = if vertices.len() >= PARALLEL_VERTICES {
         vertices
@@ -288,8 +308,8 @@ fn illuminate_receiver(
         vertices.iter().map(|&v| work(v, scratch)).collect()
     };
     let values = &mut state.values;
-    for (v, value, s) in results.into_iter().flatten() {
-        stats = stats.add(s);
+    for (v, value) in results.into_iter().flatten() {
+        stats = stats.add(IllumStats::of_evaluation(&value.covers));
         values.insert(v, value);
     }
     // Values of vertices gone since are dropped now and then.
@@ -302,7 +322,7 @@ fn illuminate_receiver(
 }
 
 /// The irradiance at a vertex at `p` (receiver normal `normal`) with the
-/// covers `covers` of the lights, and what it took.
+/// covers `covers` of the lights.
 #[allow(clippy::too_many_arguments)] // (the receiver's fixed context, and the vertex)
 fn evaluate(
     lights: &[DmLight],
@@ -313,25 +333,13 @@ fn evaluate(
     sided: Sidedness,
     covers: &[Cover],
     scratch: &mut VisiblePart,
-) -> (f64, IllumStats) {
-    let mut stats = IllumStats {
-        evaluated: 1,
-        ..IllumStats::default()
-    };
+) -> f64 {
     let mut irradiance = 0.0;
     for (light, cover) in lights.iter().zip(covers) {
         irradiance += match cover {
-            Cover::Dark => {
-                stats.dark += 1;
-                0.0
-            }
-            Cover::Free => {
-                stats.unoccluded += 1;
-                light.illum.irradiance(p, normal, sided)
-            }
+            Cover::Dark => 0.0,
+            Cover::Free => light.illum.irradiance(p, normal, sided),
             Cover::Occluders(units) => {
-                stats.visibility += 1;
-                stats.comparisons += units.len();
                 let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
                     .iter()
                     .filter_map(|u| dm.unit(*u))
@@ -341,5 +349,5 @@ fn evaluate(
             }
         };
     }
-    (irradiance, stats)
+    irradiance
 }
