@@ -108,13 +108,14 @@ pub(crate) fn fresh(units: &[(u32, &UnitPlanes)], tiles: u32) -> ReceiverDm<u32>
     dm
 }
 
-/// The same, the tiles grown apart ([`ReceiverDm::insert_tiled`]).
+/// The same, the tiles grown apart ([`ReceiverDm::insert_tiled`]), three
+/// at a time (so that batches end between tiles and at the last one).
 pub(crate) fn fresh_tiled(units: &[(u32, &UnitPlanes)], tiles: u32) -> ReceiverDm<u32> {
     let mut dm = ReceiverDm::new(floor(), false, &[light()]);
     let order: Vec<(u32, u8)> = units.iter().map(|&(k, _)| (k, 0)).collect();
     let planes =
         |k: u32, _: u8| -> &UnitPlanes { units.iter().find(|u| u.0 == k).expect("a unit").1 };
-    dm.insert_tiles_apart(tiles, &order, &planes, 0);
+    dm.insert_tiles_apart(tiles, &order, &planes, 0, 3);
     dm
 }
 
