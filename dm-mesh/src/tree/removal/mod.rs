@@ -32,6 +32,7 @@ use super::{ReceiverDm, clip};
 use crate::critical::UnitPlanes;
 use crate::hash::KeySet;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, VertexKey};
+use smallvec::SmallVec;
 use std::collections::{BTreeMap, BTreeSet};
 
 mod collapse;
@@ -117,15 +118,19 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         parents: &mut Vec<u32>,
     ) -> BTreeMap<u32, BTreeSet<u32>> {
         let mut freed: BTreeMap<u32, BTreeSet<u32>> = BTreeMap::new();
-        for &(u, light, planes) in removed {
-            let l = usize::from(light);
-            for leaf in self.cells_of(u, planes) {
-                if leaf != self.root {
-                    parents.push(self.parent[leaf as usize]);
-                }
+        let held = self.cells_of(removed);
+        // Each cell's units leave in the order of `removed` (a cell's lists
+        // change only by its own units leaving); the parents are listed
+        // unit by unit, each unit's cells in ascending order.
+        let mut cells_of_unit: Vec<Vec<u32>> = vec![Vec::new(); removed.len()];
+        for (leaf, units) in held {
+            for i in units {
+                let (u, light, _) = removed[i];
+                cells_of_unit[i].push(leaf);
+                let l = usize::from(light);
                 let cell = self.cell(leaf);
                 let was_umbra = cell.in_umbra(l);
-                let culled: Vec<(u32, Option<u8>)> = cell
+                let culled: SmallVec<[(u32, Option<u8>); 4]> = cell
                     .culled
                     .iter()
                     .filter(|&&v| v != u)
@@ -146,31 +151,95 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 }
             }
         }
+        for leaf in cells_of_unit.into_iter().flatten() {
+            if leaf != self.root {
+                parents.push(self.parent[leaf as usize]);
+            }
+        }
         freed
     }
 
-    /// The leaves whose cells list or culled unit `u`. A cell lists it only
-    /// inside its penumbra region, and every cell that meets the region
-    /// lists or culled it (outside the part its light does not reach); a
-    /// cell split after culling it keeps it in both parts. So these cells
-    /// are connected through shared edges (a convex region, and the parts
-    /// of split cells), and are flooded over the mesh from the unit's seed
-    /// cell, or, when that no longer holds the unit or the unit has several
-    /// penumbra regions, from the cells its regions reach down the tree.
-    fn cells_of(&self, u: u32, planes: &UnitPlanes) -> Vec<u32> {
-        let seed = self
-            .seeds
-            .get(u as usize)
-            .copied()
-            .filter(|&f| self.holds(f, u))
-            .filter(|_| planes.volumes.penumbra.len() == 1);
-        let out = match seed {
-            Some(seed) => self.flood(u, vec![seed]),
-            None => self.flood(u, self.cells_by_descent(u, planes)),
+    /// The leaves whose cells list or culled one of the `removed` units
+    /// (ascending), each with the positions in `removed` of those units.
+    ///
+    /// A cell lists a unit only inside its penumbra region, and every cell
+    /// that meets the region lists or culled it (outside the part its
+    /// light does not reach); a cell split after culling it keeps it in
+    /// both parts. So a unit's cells are connected through shared edges (a
+    /// convex region, and the parts of split cells), and all of them are
+    /// found by one flood over the cells holding any removed unit, from
+    /// each unit's seed cell, or, when that no longer holds the unit or the
+    /// unit has several penumbra regions, from the cells its regions reach
+    /// down the tree. (One flood for all: the units of one object cover
+    /// much the same cells.)
+    fn cells_of(&self, removed: &[(u32, u8, &UnitPlanes)]) -> Vec<(u32, SmallVec<[usize; 8]>)> {
+        let mut starts: Vec<FaceKey> = Vec::new();
+        for &(u, _, planes) in removed {
+            let seed = self
+                .seeds
+                .get(u as usize)
+                .copied()
+                .filter(|&f| self.holds(f, u))
+                .filter(|_| planes.volumes.penumbra.len() == 1);
+            match seed {
+                Some(seed) => starts.push(seed),
+                None => starts.extend(self.cells_by_descent(u, planes)),
+            }
+        }
+        // Positions in `removed` (ascending by unit) of the units a face
+        // holds.
+        let units_held = |f: FaceKey| -> SmallVec<[usize; 8]> {
+            let Some(face) = self.mesh.face(f) else {
+                return SmallVec::new();
+            };
+            let data = &face.data;
+            let mut out: SmallVec<[usize; 8]> = data
+                .entries
+                .iter()
+                .map(|e| e.unit)
+                .chain(data.culled.iter().copied())
+                .filter_map(|u| removed.binary_search_by_key(&u, |r| r.0).ok())
+                .collect();
+            out.sort_unstable();
+            out.dedup();
+            out
         };
+        let mut seen: KeySet<FaceKey> = KeySet::default();
+        let mut stack: Vec<FaceKey> = Vec::new();
+        let mut out: Vec<(u32, SmallVec<[usize; 8]>)> = Vec::new();
+        let mut visit = |f: FaceKey, stack: &mut Vec<FaceKey>| {
+            if seen.contains(&f) {
+                return;
+            }
+            let units = units_held(f);
+            if units.is_empty() {
+                return;
+            }
+            seen.insert(f);
+            stack.push(f);
+            out.push((self.mesh.face(f).expect("face").data.leaf, units));
+        };
+        for f in starts {
+            visit(f, &mut stack);
+        }
+        while let Some(f) = stack.pop() {
+            for side in self.mesh.face_sides(f) {
+                if let Some(g) = side.across {
+                    visit(g, &mut stack);
+                }
+            }
+        }
+        out.sort_unstable_by_key(|(leaf, _)| *leaf);
         debug_assert!(
-            seed.is_none() || out == self.flood(u, self.cells_by_descent(u, planes)),
-            "flood of unit {u} from its seed"
+            removed.iter().enumerate().all(|(i, &(u, _, planes))| {
+                let found: Vec<u32> = out
+                    .iter()
+                    .filter(|(_, units)| units.contains(&i))
+                    .map(|(leaf, _)| *leaf)
+                    .collect();
+                found == self.flood(u, self.cells_by_descent(u, planes))
+            }),
+            "one flood for the removed units finds each unit's cells"
         );
         out
     }
@@ -183,7 +252,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     }
 
     /// The leaves of the faces holding unit `u` connected to `starts`
-    /// (faces that hold it) through shared edges, ascending.
+    /// (faces that hold it) through shared edges, ascending (a check of
+    /// [`cells_of`](Self::cells_of) in debug builds).
     fn flood(&self, u: u32, starts: Vec<FaceKey>) -> Vec<u32> {
         let mut seen: KeySet<FaceKey> = starts.iter().copied().collect();
         let mut stack = starts;
