@@ -21,6 +21,16 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         self.faces.reserve(faces);
     }
 
+    /// How many vertices, edges and faces the mesh holds without
+    /// reallocating.
+    pub fn capacity(&self) -> (usize, usize, usize) {
+        (
+            self.vertices.capacity(),
+            self.edges.capacity(),
+            self.faces.capacity(),
+        )
+    }
+
     /// Replaces face `f` by the faces of `sub`, a connected subdivision of
     /// the same convex polygon in the same support plane (for instance a
     /// mesh made by [`from_polygon`](Self::from_polygon) from

@@ -5,11 +5,12 @@
 //! unit's single tree only ever meets the cells of that tile, so each
 //! tile's subtree can be grown on its own: in a mesh of the tile's polygon,
 //! with the pieces of the units' regions that reach the tile, in the
-//! units' order. The tiles are grown in parallel, then grafted into the
-//! receiver's tree and mesh ([`bsp_core::WingedMesh::graft`] sews each
-//! tile's outline to its neighbours'), in tile order, so the result does not
-//! depend on the number of threads. It is the tree that inserting the units
-//! one by one makes, up to the numbering of nodes and faces.
+//! units' order. The tiles are grown in parallel, a batch at a time, and
+//! grafted into the receiver's tree and mesh ([`bsp_core::WingedMesh::graft`]
+//! sews each tile's outline to its neighbours'), in tile order, so the
+//! result does not depend on the number of threads; a batch is grafted
+//! while the next one grows. It is the tree that inserting the units one by
+//! one makes, up to the numbering of nodes and faces.
 
 use super::arena::UNLISTED;
 use super::{Node, Reach, ReceiverDm, clip};
@@ -22,11 +23,11 @@ use rayon::prelude::*;
 /// mesh per tile and the grafting cost more than they save).
 const APART_UNITS: usize = 256;
 
-/// Tiles grown side by side before they are grafted (a busy receiver's
-/// 4096 tiles in 16 batches: each batch's tile meshes are dropped before
-/// the next is grown, which keeps the 10k hall's peak memory during the
-/// build at 2.2 GB instead of 3.2 GB).
-const TILE_BATCH: usize = 256;
+/// Tiles grown side by side before they are grafted (the 10k hall floor's
+/// 512 tiles in 8 batches: each batch's tile meshes are dropped soon, which
+/// keeps the hall's peak memory during the build at 2.0 GB instead of 3.2
+/// GB).
+const TILE_BATCH: usize = 64;
 
 /// What reaches one tile: per unit, in order, the pieces of its penumbra
 /// regions (unit, penumbra part, piece).
@@ -103,22 +104,15 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
                 (polygon, self.cell(t).clone())
             })
             .collect();
-        // Tiles are grown and grafted a batch at a time: the grown tiles
-        // of one batch are copied into the receiver's mesh and dropped
-        // before the next is grown, so that the memory they free is taken
-        // again (the tile meshes together are as big as the receiver's).
+        // Tiles are grown and grafted a batch at a time, a batch grafted
+        // while the next grows: the tile meshes of a batch are copied into
+        // the receiver's mesh and dropped before the one after next is
+        // grown, so that the memory they free is taken again (the tile
+        // meshes together are as big as the receiver's), and the grafting,
+        // one thread's work, runs beside the growing.
         let (reach, count) = (self.reach.clone(), self.units.len());
-        let mut jobs = jobs.into_iter();
-        let mut starts = starts.into_iter();
-        let mut tiles = tiles.into_iter();
-        loop {
-            let next: Vec<((ConvexPolygon, Cell), TileJobs)> =
-                starts.by_ref().zip(jobs.by_ref()).take(batch.max(1)).collect();
-            if next.is_empty() {
-                break;
-            }
-            let grown: Vec<ReceiverDm<K>> = next
-                .into_par_iter()
+        let grow = |next: Vec<((ConvexPolygon, Cell), TileJobs)>| -> Vec<ReceiverDm<K>> {
+            next.into_par_iter()
                 .map(|((polygon, cell), jobs)| {
                     let mut tile = Self::tile_part(polygon, cell, reach.clone(), count);
                     for (unit, part, piece) in jobs {
@@ -129,20 +123,84 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
                     }
                     tile
                 })
-                .collect();
-            let (v, e, f, n) = grown.iter().fold((0, 0, 0, 0), |(v, e, f, n), tile| {
-                let (tv, te, tf) = tile.mesh.counts();
-                (v + tv, e + te, f + tf, n + tile.nodes.len())
-            });
-            self.mesh.reserve(v, e, f);
-            self.nodes.reserve(n);
-            self.parent.reserve(n);
-            self.slot.reserve(n);
-            // (`grown` first: a zip asks its first iterator first.)
-            for (tile, t) in grown.into_iter().zip(tiles.by_ref()) {
-                self.graft_tile(t, tile);
+                .collect()
+        };
+        let mut pieces_left: usize = jobs.iter().map(Vec::len).sum();
+        let mut jobs = jobs.into_iter();
+        let mut starts = starts.into_iter();
+        let mut tiles = tiles.into_iter();
+        // The batch grown last, with its pieces.
+        let mut grown: Option<(Vec<ReceiverDm<K>>, usize)> = None;
+        loop {
+            let next: Vec<((ConvexPolygon, Cell), TileJobs)> =
+                starts.by_ref().zip(jobs.by_ref()).take(batch.max(1)).collect();
+            let pieces: usize = next.iter().map(|(_, jobs)| jobs.len()).sum();
+            let ready = grown.take();
+            if ready.is_none() && next.is_empty() {
+                break;
             }
+            let ((), now) = rayon::join(
+                || {
+                    if let Some((ready, pieces)) = ready {
+                        pieces_left -= pieces;
+                        self.graft_batch(ready, &mut tiles, pieces, pieces_left);
+                    }
+                },
+                || (!next.is_empty()).then(|| grow(next)),
+            );
+            grown = now.map(|tiles| (tiles, pieces));
         }
+    }
+
+    /// Grafts a batch of grown tiles, made from `pieces` pieces, in place
+    /// of the next leaves of `tiles`; `left` pieces are still to be grafted
+    /// after them.
+    fn graft_batch(
+        &mut self,
+        grown: Vec<ReceiverDm<K>>,
+        tiles: &mut impl Iterator<Item = u32>,
+        pieces: usize,
+        left: usize,
+    ) {
+        let counts = grown.iter().fold([0; 4], |[v, e, f, n], tile| {
+            let (tv, te, tf) = tile.mesh.counts();
+            [v + tv, e + te, f + tf, n + tile.nodes.len()]
+        });
+        self.make_room(counts, pieces, left);
+        // (`grown` first: a zip asks its first iterator first.)
+        for (tile, t) in grown.into_iter().zip(tiles) {
+            self.graft_tile(t, tile);
+        }
+    }
+
+    /// Makes room for a batch of grown tiles with `grown` vertices, edges,
+    /// faces and nodes from `pieces` pieces, `left` pieces still to come.
+    /// Where the batch does not fit, room is made at once for it and,
+    /// guessed from its share of the pieces (and a quarter more), for the
+    /// batches to come: growing the receiver's arrays batch by batch would
+    /// copy them again and again (a second of the 10k hall's build), while
+    /// room never used costs address space only.
+    fn make_room(&mut self, grown: [usize; 4], pieces: usize, left: usize) {
+        // (An eighth more for the vertices and edges that sewing the tiles'
+        // outlines adds.)
+        let [v, e, f, n] = grown.map(|x| x + x / 8);
+        let (len_v, len_e, len_f) = self.mesh.counts();
+        let (cap_v, cap_e, cap_f) = self.mesh.capacity();
+        let fits = len_v + v <= cap_v
+            && len_e + e <= cap_e
+            && len_f + f <= cap_f
+            && self.nodes.len() + n <= self.nodes.capacity();
+        let room = |x: usize| {
+            if fits {
+                x
+            } else {
+                x + x * left / pieces.max(1) * 5 / 4
+            }
+        };
+        self.mesh.reserve(room(v), room(e), room(f));
+        self.nodes.reserve(room(n));
+        self.parent.reserve(room(n));
+        self.slot.reserve(room(n));
     }
 
     /// A tile's own tree: one cell, `cell`, over `polygon`, before any unit
