@@ -7,7 +7,8 @@ use std::time::Instant;
 
 use area_shadow::AreaSource;
 use bsp_core::{ConvexPolygon, GridPoint, VertexKey};
-use dm_mesh::{CellClass, DmLight, DmOptions, DmScene, IllumStats, ObjectId};
+use dm_mesh::{CellClass, DmLight, DmOptions, DmScene, IllumStats, ObjectId, PieceId};
+use rayon::prelude::*;
 use serde::Serialize;
 use slotmap::SecondaryMap;
 use svbsp::PieceFlags;
@@ -186,54 +187,80 @@ pub fn dm_scene_with(scene: &Scene, options: DmOptions) -> Result<DmRun> {
 }
 
 impl DmRun {
-    /// The cells as an output mesh (world units; one face per cell).
+    /// The cells as an output mesh (world units; one face per cell), the
+    /// receivers in scene order.
     pub fn mesh(&self) -> OutputMesh {
+        let receivers: Vec<(usize, PieceId)> = self
+            .objects
+            .iter()
+            .filter_map(|(id, ks)| {
+                let handles = self.dm.object_pieces(*id)?;
+                Some(ks.iter().copied().zip(handles.iter().copied()))
+            })
+            .flatten()
+            .collect();
+        // Each receiver's part on its own (in parallel: millions of cells
+        // on a big scene), then joined in order.
+        let parts: Vec<OutputMesh> = receivers
+            .par_iter()
+            .map(|&(k, piece)| self.receiver_mesh(k, piece))
+            .collect();
+        let mut mesh = OutputMesh {
+            vertices: Vec::with_capacity(parts.iter().map(|p| p.vertices.len()).sum()),
+            faces: Vec::with_capacity(parts.iter().map(|p| p.faces.len()).sum()),
+        };
+        for part in parts {
+            let offset = mesh.vertices.len() as u32;
+            mesh.vertices.extend(part.vertices);
+            mesh.faces.extend(part.faces.into_iter().map(|mut face| {
+                face.vertices.iter_mut().for_each(|v| *v += offset);
+                face
+            }));
+        }
+        mesh
+    }
+
+    /// The cells of one receiver (`piece`, of scene piece `k`), its
+    /// vertices numbered from 0 as first met.
+    fn receiver_mesh(&self, k: usize, piece: PieceId) -> OutputMesh {
         let mut mesh = OutputMesh::default();
+        let Some(receiver) = self.dm.receiver(piece) else {
+            return mesh;
+        };
         let lights = self.dm.lights().len();
-        for (id, ks) in &self.objects {
-            let Some(handles) = self.dm.object_pieces(*id) else {
-                continue;
-            };
-            for (&k, &piece) in ks.iter().zip(handles) {
-                let Some(receiver) = self.dm.receiver(piece) else {
-                    continue;
+        let mut index: SecondaryMap<VertexKey, u32> = SecondaryMap::new();
+        for (face, cell) in receiver.cells() {
+            let corners = receiver.mesh().face_vertices(face);
+            let mut vertices = Vec::with_capacity(corners.len());
+            for v in corners {
+                let slot = match index.get(v) {
+                    Some(&slot) => slot,
+                    None => {
+                        let slot = mesh.vertices.len() as u32;
+                        let p = receiver.mesh().vertex(v).map(|x| x.position.to_f64());
+                        let e = self.dm.vertex_irradiance(piece, v).unwrap_or(0.0);
+                        let p = self.pieces.grid.grid_to_world(p.unwrap_or([0.0; 3]));
+                        mesh.vertices.push((p, e as f32));
+                        index.insert(v, slot);
+                        slot
+                    }
                 };
-                // Output index of each vertex, numbered as first met.
-                let mut index: SecondaryMap<VertexKey, u32> = SecondaryMap::new();
-                for (face, cell) in receiver.cells() {
-                    let corners = receiver.mesh().face_vertices(face);
-                    let mut vertices = Vec::with_capacity(corners.len());
-                    for v in corners {
-                        let slot = match index.get(v) {
-                            Some(&slot) => slot,
-                            None => {
-                                let slot = mesh.vertices.len() as u32;
-                                let p = receiver.mesh().vertex(v).map(|x| x.position.to_f64());
-                                let e = self.dm.vertex_irradiance(piece, v).unwrap_or(0.0);
-                                let p = self.pieces.grid.grid_to_world(p.unwrap_or([0.0; 3]));
-                                mesh.vertices.push((p, e as f32));
-                                index.insert(v, slot);
-                                slot
-                            }
-                        };
-                        vertices.push(slot);
-                    }
-                    let (mut lit_mask, mut umbra_mask) = (0, 0);
-                    for i in 0..lights {
-                        match receiver.class(cell, i) {
-                            CellClass::Lit => lit_mask |= 1 << i,
-                            CellClass::Umbra => umbra_mask |= 1 << i,
-                            CellClass::Penumbra => {}
-                        }
-                    }
-                    mesh.faces.push(OutputFace {
-                        vertices,
-                        source: self.pieces.input_of[k],
-                        lit_mask,
-                        umbra_mask,
-                    });
+                vertices.push(slot);
+            }
+            let (mut lit_mask, mut umbra_mask) = (0, 0);
+            for i in 0..lights {
+                match receiver.class(cell, i) {
+                    CellClass::Lit => lit_mask |= 1 << i,
+                    CellClass::Umbra => umbra_mask |= 1 << i,
+                    CellClass::Penumbra => {}
                 }
             }
+            mesh.faces.push(OutputFace {
+                vertices,
+                source: self.pieces.input_of[k],
+                lit_mask,
+                umbra_mask,
+            });
         }
         mesh
     }
