@@ -11,10 +11,23 @@ use std::process::ExitCode;
 use umbra_benches::rooms;
 
 fn main() -> ExitCode {
+    const USAGE: &str = "usage: write-hall DIR [BOXES] [SEED]";
     let mut args = std::env::args().skip(1);
-    let Some(dir) = args.next().map(PathBuf::from) else {
-        eprintln!("usage: write-hall DIR [BOXES] [SEED]");
-        return ExitCode::FAILURE;
+    let dir = match args.next() {
+        Some(flag) if flag == "-h" || flag == "--help" => {
+            println!("{USAGE}");
+            return ExitCode::SUCCESS;
+        }
+        // (An option is no folder name: `--help` made a folder of that name.)
+        Some(flag) if flag.starts_with('-') => {
+            eprintln!("write-hall: unknown option {flag}\n{USAGE}");
+            return ExitCode::FAILURE;
+        }
+        Some(dir) => PathBuf::from(dir),
+        None => {
+            eprintln!("{USAGE}");
+            return ExitCode::FAILURE;
+        }
     };
     let parse = |arg: Option<String>, default: u64| match arg {
         None => Ok(default),
