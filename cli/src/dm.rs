@@ -203,6 +203,7 @@ impl DmRun {
         // on a big scene), then joined in order.
         let parts: Vec<OutputMesh> = receivers
             .par_iter()
+            .with_max_len(1)
             .map(|&(k, piece)| self.receiver_mesh(k, piece))
             .collect();
         let mut mesh = OutputMesh {

@@ -194,9 +194,14 @@ impl DmScene {
             .iter_mut()
             .filter_map(|(r, dm)| states.remove(&r).map(|state| (r, dm, state)))
             .collect();
-        // Big receivers first, so that no thread is left with one at the end.
+        // Big receivers first, so that no thread is left with one at the
+        // end; each receiver a task of its own, so that while one thread
+        // works on the biggest the other can take any of the rest (a run of
+        // receivers split off together goes on one thread, and would hold
+        // the other idle at the end).
         work.sort_by_key(|(_, dm, _)| std::cmp::Reverse(dm.cell_count()));
         work.par_iter_mut()
+            .with_max_len(1)
             .map_init(VisiblePart::new, |scratch, (r, dm, state)| {
                 illuminate_receiver(lights, pieces, *r, dm, state, scratch)
             })
