@@ -132,8 +132,11 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
         // The batch grown last, with its pieces.
         let mut grown: Option<(Vec<ReceiverDm<K>>, usize)> = None;
         loop {
-            let next: Vec<((ConvexPolygon, Cell), TileJobs)> =
-                starts.by_ref().zip(jobs.by_ref()).take(batch.max(1)).collect();
+            let next: Vec<((ConvexPolygon, Cell), TileJobs)> = starts
+                .by_ref()
+                .zip(jobs.by_ref())
+                .take(batch.max(1))
+                .collect();
             let pieces: usize = next.iter().map(|(_, jobs)| jobs.len()).sum();
             let ready = grown.take();
             if ready.is_none() && next.is_empty() {
