@@ -139,6 +139,9 @@ pub struct DmScene {
     pub(crate) pieces: SlotMap<PieceId, Piece>,
     pub(crate) receivers: SecondaryMap<PieceId, ReceiverDm<PieceId>>,
     pub(crate) illum: SecondaryMap<PieceId, ReceiverIllum>,
+    /// Per receiver, the body units it sees adapted (kept as units come
+    /// and go).
+    pub(crate) contacts: SecondaryMap<PieceId, ContactPlanes>,
     pub(crate) overlap: Overlap,
     pub(crate) options: DmOptions,
 }
@@ -161,6 +164,7 @@ impl DmScene {
             pieces: SlotMap::with_key(),
             receivers: SecondaryMap::new(),
             illum: SecondaryMap::new(),
+            contacts: SecondaryMap::new(),
             overlap,
             options,
         })

@@ -24,7 +24,7 @@ use area_shadow::{AreaSource, SourceSide};
 use bsp_core::Plane;
 
 /// Body units whose planes a receiver sees adapted.
-#[derive(Debug, Default)]
+#[derive(Debug, Clone, Default)]
 pub(crate) struct ContactPlanes(KeyMap<(PieceId, u8), UnitPlanes>);
 
 impl ContactPlanes {
@@ -36,7 +36,22 @@ impl ContactPlanes {
         units: impl Iterator<Item = (PieceId, u8)>,
         piece: impl Fn(PieceId) -> &'p Piece,
     ) -> Self {
-        let mut adapted = KeyMap::default();
+        let mut contact = Self::default();
+        contact.add(receiver, lights, units, piece);
+        contact
+    }
+
+    /// Adds the adapted planes of the body units among `units` (units
+    /// entering `receiver`). A receiver keeps its contact planes from
+    /// change to change, so that a change looks at its own units only,
+    /// not at every unit of the receiver (a floor lists thousands).
+    pub(crate) fn add<'p>(
+        &mut self,
+        receiver: &Piece,
+        lights: &[AreaSource],
+        units: impl Iterator<Item = (PieceId, u8)>,
+        piece: impl Fn(PieceId) -> &'p Piece,
+    ) {
         for (key, light) in units {
             let occluder = piece(key);
             if occluder.kind != PieceKind::Body {
@@ -45,10 +60,17 @@ impl ContactPlanes {
             let planes = &occluder.volumes[usize::from(light)];
             let light_source = &lights[usize::from(light)];
             if let Some(seen) = seen_from(receiver, light_source, planes) {
-                adapted.insert((key, light), seen);
+                self.0.insert((key, light), seen);
             }
         }
-        Self(adapted)
+    }
+
+    /// Forgets the units of the occluders for which `gone` holds (once
+    /// their units left the receiver).
+    pub(crate) fn forget(&mut self, gone: impl Fn(PieceId) -> bool) {
+        if !self.0.is_empty() {
+            self.0.retain(|(key, _), _| !gone(*key));
+        }
     }
 
     /// The planes of unit `(key, light)` as the receiver sees them.

@@ -36,6 +36,7 @@ type Insertions = KeyMap<PieceId, Order>;
 type Work<'a> = (
     PieceId,
     &'a mut ReceiverDm<PieceId>,
+    &'a mut ContactPlanes,
     Option<BTreeSet<u32>>,
     Option<Order>,
 );
@@ -96,6 +97,7 @@ impl DmScene {
             });
             self.receivers.insert(key, receiver);
             self.illum.insert(key, ReceiverIllum::default());
+            self.contacts.insert(key, ContactPlanes::default());
             self.overlap.insert(key, &self.pieces[key], true);
             added.push(key);
         }
@@ -223,6 +225,7 @@ impl DmScene {
             self.overlap.remove(p);
             self.receivers.remove(p);
             self.illum.remove(p);
+            self.contacts.remove(p);
             if let Some(piece) = self.pieces.remove(p) {
                 left.insert(p, piece);
             }
@@ -296,21 +299,27 @@ impl DmScene {
     ) {
         let (pieces, how) = (&self.pieces, self.options.deletion);
         let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
+        let mut contacts: KeyMap<PieceId, &mut ContactPlanes> = self
+            .contacts
+            .iter_mut()
+            .filter(|(r, _)| removals.contains_key(r) || insertions.contains_key(r))
+            .collect();
         let mut work: Vec<Work> = self
             .receivers
             .iter_mut()
             .filter_map(|(r, dm)| {
+                let contact = contacts.remove(&r)?;
                 let (out, into) = (removals.remove(&r), insertions.remove(&r));
-                (out.is_some() || into.is_some()).then_some((r, dm, out, into))
+                (out.is_some() || into.is_some()).then_some((r, dm, contact, out, into))
             })
             .collect();
-        let run = |(r, dm, out, into): &mut Work| {
+        let run = |(r, dm, contact, out, into): &mut Work| {
             let piece = |o: PieceId| left.get(&o).unwrap_or_else(|| &pieces[o]);
             let entering = into.iter().flat_map(|(_, order)| order.iter().copied());
-            let units = dm.units().map(|(_, unit)| unit).chain(entering);
-            let contact = ContactPlanes::new(&pieces[*r], &sources, units, piece);
+            contact.add(&pieces[*r], &sources, entering, piece);
+            let seen = &**contact;
             let planes = |occluder: PieceId, light: u8| {
-                contact.get(occluder, light, unit_planes(pieces, left, occluder, light))
+                seen.get(occluder, light, unit_planes(pieces, left, occluder, light))
             };
             if let Some(units) = out {
                 dm.remove_units(units, planes, how);
@@ -318,13 +327,16 @@ impl DmScene {
             if let Some((depth, order)) = into {
                 dm.insert_tiled(*depth, order, &planes);
             }
+            if out.is_some() {
+                contact.forget(|o| left.contains_key(&o));
+            }
         };
         if work.len() <= 2 {
             // A small change: no tasks to hand out.
             work.iter_mut().for_each(run);
             return;
         }
-        work.sort_by_key(|(_, dm, out, into)| {
+        work.sort_by_key(|(_, dm, _, out, into)| {
             let units = into.as_ref().map_or(0, |(_, order)| order.len());
             std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
         });

@@ -27,7 +27,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// A face's cell, to change (recorded as touched).
     pub(super) fn face_data_mut(&mut self, f: FaceKey) -> &mut Cell {
-        if self.tracking {
+        // (A cell is often changed several times in a row: recorded once.)
+        if self.tracking && self.touched.last() != Some(&f) {
             self.touched.push(f);
         }
         self.mesh.face_data_mut(f).expect("a leaf's face exists")
