@@ -392,6 +392,32 @@ mod tests {
         check_dm_update(&case).unwrap();
     }
 
+    /// Found by libFuzzer: a move with local deletion left a cell crossed
+    /// by an internal discontinuity of a unit it lists. Two cells were
+    /// merged across a node whose plane meets the floor in the line of that
+    /// discontinuity: the planes differ in space, so the discontinuity was
+    /// not seen to lie there. (Also in the seed corpus as
+    /// `regression-same-trace`.)
+    #[test]
+    fn local_move_leaves_no_cell_crossed_by_an_internal_discontinuity() {
+        let case = DmCase {
+            objects: vec![
+                vec![
+                    [[0, 6, 5], [8, 4, -8], [-8, 4, -6]],
+                    [[-8, 1, -8], [1, 1, 6], [-8, 4, -8]],
+                ],
+                vec![
+                    [[-6, 8, -8], [-8, 4, -8], [-2, 3, -8]],
+                    [[-8, 2, 5], [-8, 2, -8], [8, 4, -8]],
+                ],
+            ],
+            light: ([-3, 10, -1], [3, 5], 0),
+            ops: vec![Op::Move(88, [1, 1, 0])],
+            deletion: Deletion::Local,
+        };
+        check_dm_update(&case).unwrap();
+    }
+
     #[test]
     fn pseudo_random_inputs_pass() {
         for seed in 0..400 {

@@ -183,7 +183,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             let face = self.face_of(leaf);
             let mut on_line = false;
             for side in self.mesh.face_sides(face) {
-                if side.edge.line.is_coincident(line) {
+                if self.same_trace(&side.edge.line, line) {
                     on_line = true;
                     across.extend(side.across);
                 }

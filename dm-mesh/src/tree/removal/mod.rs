@@ -31,6 +31,7 @@
 use super::{ReceiverDm, clip};
 use crate::critical::UnitPlanes;
 use crate::hash::KeySet;
+use bsp_core::predicates::in_pencil;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, VertexKey};
 use smallvec::SmallVec;
 use std::collections::{BTreeMap, BTreeSet};
@@ -349,8 +350,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     }
 
     /// The smallest live unit listed in one of `leaves` whose penumbra,
-    /// umbra or internal discontinuity planes hold `line`: the owner of a
-    /// discontinuity there, if any.
+    /// umbra or internal discontinuity planes hold `line` on the receiver:
+    /// the owner of a discontinuity there, if any.
     fn owner_of_line(
         &self,
         line: &Plane,
@@ -367,23 +368,24 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     continue;
                 };
                 let p = planes(key, light);
-                let holds = p.internal.iter().any(|c| c.plane.is_coincident(line))
-                    || p.volumes
-                        .penumbra
-                        .iter()
-                        .flatten()
-                        .any(|q| q.is_coincident(line))
-                    || p.volumes
-                        .umbra
-                        .iter()
-                        .flatten()
-                        .any(|q| q.is_coincident(line));
+                let on_line = |q: &Plane| self.same_trace(q, line);
+                let holds = p.internal.iter().any(|c| on_line(&c.plane))
+                    || p.volumes.penumbra.iter().flatten().any(on_line)
+                    || p.volumes.umbra.iter().flatten().any(on_line);
                 if holds {
                     owner = Some(e.unit);
                 }
             }
         }
         owner
+    }
+
+    /// Whether planes `q` and `line` (which cuts the receiver) meet the
+    /// receiver in the same line. Planes other than `line` may: a
+    /// discontinuity plane and the plane of a node, both through one line
+    /// of the receiver, differ in space but bound the same cells.
+    pub(super) fn same_trace(&self, q: &Plane, line: &Plane) -> bool {
+        q.is_coincident(line) || in_pencil(line, self.polygon.support(), q)
     }
 }
 
