@@ -425,26 +425,112 @@ pub fn in_pencil(a: &Plane, b: &Plane, q: &Plane) -> bool {
         b.normal().map(i128::from),
         q.normal().map(i128::from),
     );
-    // The line's direction (components below 2^103).
-    let d = [
-        na[1] * nb[2] - na[2] * nb[1],
-        na[2] * nb[0] - na[0] * nb[2],
-        na[0] * nb[1] - na[1] * nb[0],
-    ];
-    if dot_sign(nq, d) != Side::On {
+    let direction = cross_i128(na, nb);
+    if dot_sign(nq, direction) != Side::On {
         return false;
     }
-    let wide = I256::from;
-    // q's normal is alpha na + beta nb: Cramer's rule on two coordinates
-    // whose 2x2 determinant (a component of d) is not zero; then q holds
-    // the line if its offset is the same combination.
-    let Some(k) = (0..3).find(|&k| d[k] != 0) else {
+    let Some(pivot) = (0..3).find(|&k| direction[k] != 0) else {
         return false;
     };
-    let (i, j) = ((k + 1) % 3, (k + 2) % 3);
-    let alpha = nq[i] * nb[j] - nq[j] * nb[i];
-    let beta = na[i] * nq[j] - na[j] * nq[i];
-    wide(q.offset()) * wide(d[k]) == wide(alpha) * wide(a.offset()) + wide(beta) * wide(b.offset())
+    let (alpha, beta) = combination([na, nb], nq, pivot);
+    offset_combines(q, direction[pivot], [alpha, beta], [a.offset(), b.offset()])
+}
+
+/// The `(alpha, beta)`, scaled by `(na x nb)[pivot]`, with `nq = alpha na +
+/// beta nb` (Cramer's rule on the two coordinates other than the pivot,
+/// whose 2x2 determinant is that nonzero component), for `nq` orthogonal
+/// to `na x nb`.
+fn combination(normals: [[i128; 3]; 2], nq: [i128; 3], pivot: usize) -> (i128, i128) {
+    let [na, nb] = normals;
+    let (i, j) = ((pivot + 1) % 3, (pivot + 2) % 3);
+    (nq[i] * nb[j] - nq[j] * nb[i], na[i] * nq[j] - na[j] * nq[i])
+}
+
+/// Whether `q`'s offset is the combination of `offsets` that its normal
+/// is of the normals (scaled by `scale`): then it holds their line.
+fn offset_combines(q: &Plane, scale: i128, combination: [i128; 2], offsets: [i128; 2]) -> bool {
+    let wide = I256::from;
+    wide(q.offset()) * wide(scale)
+        == wide(combination[0]) * wide(offsets[0]) + wide(combination[1]) * wide(offsets[1])
+}
+
+/// `u x v` for normals (components at most 2^51; the product's below
+/// 2^103).
+fn cross_i128(u: [i128; 3], v: [i128; 3]) -> [i128; 3] {
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
+/// The line where two planes meet, set up once to ask of many planes
+/// whether they hold it ([`in_pencil`] with its first two planes fixed:
+/// the line's direction and the pivot are computed once).
+#[derive(Debug, Clone, Copy)]
+pub struct Pencil {
+    normals: [[i128; 3]; 2],
+    offsets: [i128; 2],
+    /// The line's direction (components below 2^103).
+    direction: [i128; 3],
+    /// `direction` and `offsets` rounded, for the filters of
+    /// [`Self::holds`].
+    rounded: [f64; 3],
+    rounded_offsets: [f64; 2],
+    /// A coordinate in which `direction` is not zero.
+    pivot: usize,
+}
+
+impl Pencil {
+    /// The line `a ∩ b`; `None` when the planes are parallel.
+    pub fn new(a: &Plane, b: &Plane) -> Option<Self> {
+        let (na, nb) = (a.normal().map(i128::from), b.normal().map(i128::from));
+        let direction = cross_i128(na, nb);
+        let pivot = (0..3).find(|&k| direction[k] != 0)?;
+        Some(Self {
+            normals: [na, nb],
+            offsets: [a.offset(), b.offset()],
+            direction,
+            rounded: direction.map(|d| d as f64),
+            rounded_offsets: [a.approx()[3], b.approx()[3]],
+            pivot,
+        })
+    }
+
+    /// Whether `q` holds the line, exactly.
+    pub fn holds(&self, q: &Plane) -> bool {
+        // The filter of `dot_sign`, the direction rounded once: most
+        // planes do not hold the line, and are told so here.
+        let normal = q.normal();
+        let (mut estimate, mut permanent) = (0.0_f64, 0.0_f64);
+        for k in 0..3 {
+            let term = normal[k] as f64 * self.rounded[k];
+            estimate += term;
+            permanent += term.abs();
+        }
+        if estimate.abs() > 8.0 * U * permanent {
+            return false;
+        }
+        let nq = normal.map(i128::from);
+        if dot_sign(nq, self.direction) != Side::On {
+            return false;
+        }
+        let k = self.pivot;
+        let (alpha, beta) = combination(self.normals, nq, k);
+        // Filter: each product below is within 3u of its value (two
+        // factors rounded, one product), the difference within two more
+        // roundings, so beyond 8u of the terms' magnitudes it is not zero
+        // (planes whose lines on the receiver are parallel end here).
+        let [t1, t2, t3] = [
+            q.approx()[3] * self.rounded[k],
+            alpha as f64 * self.rounded_offsets[0],
+            beta as f64 * self.rounded_offsets[1],
+        ];
+        if (t1 - (t2 + t3)).abs() > 8.0 * U * (t1.abs() + t2.abs() + t3.abs()) {
+            return false;
+        }
+        offset_combines(q, self.direction[k], [alpha, beta], self.offsets)
+    }
 }
 
 /// The sign of `u · v`, exactly, for `|u_k| < 2^53` and `|v_k| < 2^103`
@@ -726,10 +812,11 @@ mod tests {
     fn pencils_are_the_planes_through_both_points_of_a_line() {
         use rand::{Rng, SeedableRng};
         let mut rng = rand_pcg::Pcg64::seed_from_u64(12);
-        let (mut inside, mut outside) = (0, 0);
+        let (mut inside, mut outside, mut parallel) = (0, 0, 0);
         for round in 0..4000 {
+            // (Full range less the step below.)
             let l = if round % 2 == 0 {
-                crate::GRID_LIMIT
+                crate::GRID_LIMIT - 2
             } else {
                 50
             };
@@ -750,12 +837,25 @@ mod tests {
             if a.is_coincident(&b) {
                 continue;
             }
-            let third = if round % 3 == 0 { w } else { r };
-            let Some(q) = Plane::through(p, z, third) else {
+            // Or a plane through the line moved by a step, parallel to it
+            // (usually not in the pencil, its normal orthogonal to the
+            // line all the same).
+            let step = |g: GridPoint, t: [i32; 3]| gp(g.x - t[0], g.y - t[1], g.z - t[2]);
+            let t = [0; 3].map(|_| rng.random_range(-2..=2));
+            let q = if round % 4 == 1 {
+                Plane::through(step(p, t), step(r, t), z)
+            } else {
+                let third = if round % 3 == 0 { w } else { r };
+                Plane::through(p, z, third)
+            };
+            let Some(q) = q else {
                 continue;
             };
             // Oracle: q holds the line iff it holds both of its grid points.
             let expected = side_of_point(&q, p) == Side::On && side_of_point(&q, r) == Side::On;
+            if round % 4 == 1 {
+                parallel += usize::from(!expected);
+            }
             if expected {
                 inside += 1;
             } else {
@@ -764,11 +864,14 @@ mod tests {
             for (a, b) in [(a, b), (b, a), (a.flipped(), b)] {
                 assert_eq!(in_pencil(&a, &b, &q), expected);
                 assert_eq!(in_pencil(&a, &b, &q.flipped()), expected);
+                let pencil = Pencil::new(&a, &b).expect("a and b are not parallel");
+                assert_eq!(pencil.holds(&q), expected);
+                assert_eq!(pencil.holds(&q.flipped()), expected);
             }
         }
         assert!(
-            inside > 1000 && outside > 1000,
-            "{inside} in, {outside} out"
+            inside > 1000 && outside > 1000 && parallel > 500,
+            "{inside} in, {outside} out ({parallel} parallel)"
         );
     }
 

@@ -179,11 +179,14 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// side, at the deleted node's line `line`.
     fn dangling(&self, leaves: &[u32], line: &Plane) -> (u64, u64) {
         let (mut mine, mut across) = (0_u64, Vec::new());
+        let trace = self.trace(line);
         for &leaf in leaves {
             let face = self.face_of(leaf);
             let mut on_line = false;
             for side in self.mesh.face_sides(face) {
-                if self.same_trace(&side.edge.line, line) {
+                if side.edge.line.is_coincident(line)
+                    || trace.is_some_and(|t| t.holds(&side.edge.line))
+                {
                     on_line = true;
                     across.extend(side.across);
                 }
@@ -351,7 +354,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     ) -> u32 {
         if unit == CONSTRUCTION
             && self.may_merge(back, front)
-            && self.owner_of_line(line, &[back], planes).is_none()
+            && self.owner_of_line(line, &[back], planes, true).is_none()
         {
             self.merge_leaves(back, front);
             return back;
@@ -387,12 +390,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         planes: &Planes<'_, '_, K>,
         made: &mut Vec<u32>,
     ) {
-        let owner = if self.is_leaf(sub) {
-            self.owner_of_line(&line, &[leaf, sub], planes)
+        let both = [leaf, sub];
+        let leaves = if self.is_leaf(sub) {
+            &both[..]
         } else {
-            self.owner_of_line(&line, &[leaf], planes)
+            &both[..1]
         };
-        if owner.is_none() && self.may_merge(leaf, sub) {
+        // Whether the cells may merge is decided on the receiver; a node
+        // that stays goes to the occluder whose plane it lies in, if any
+        // (the cheaper test: most cells along the line cannot merge).
+        let mergeable = self.may_merge(leaf, sub);
+        let owner = self.owner_of_line(&line, leaves, planes, mergeable);
+        if owner.is_none() && mergeable {
             self.merge_leaves(leaf, sub);
             if leaf != self.root {
                 made.push(self.parent[leaf as usize]);
@@ -463,7 +472,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             if !self.may_merge(back, front) {
                 continue;
             }
-            if let Some(owner) = self.owner_of_line(&line, &[back], planes) {
+            if let Some(owner) = self.owner_of_line(&line, &[back], planes, true) {
                 self.set_node(
                     n,
                     Node::Split {

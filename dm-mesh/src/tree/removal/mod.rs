@@ -31,7 +31,7 @@
 use super::{ReceiverDm, clip};
 use crate::critical::UnitPlanes;
 use crate::hash::KeySet;
-use bsp_core::predicates::in_pencil;
+use bsp_core::predicates::Pencil;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, VertexKey};
 use smallvec::SmallVec;
 use std::collections::{BTreeMap, BTreeSet};
@@ -350,15 +350,19 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     }
 
     /// The smallest live unit listed in one of `leaves` whose penumbra,
-    /// umbra or internal discontinuity planes hold `line` on the receiver:
-    /// the owner of a discontinuity there, if any.
+    /// umbra or internal discontinuity planes hold `line`: on the receiver
+    /// (`on_receiver`: the owner of a discontinuity there, if any, before
+    /// cells merge across it), or in space (the occluder a node on `line`
+    /// belongs to).
     fn owner_of_line(
         &self,
         line: &Plane,
         leaves: &[u32],
         planes: &Planes<'_, '_, K>,
+        on_receiver: bool,
     ) -> Option<u32> {
         let mut owner: Option<u32> = None;
+        let trace = if on_receiver { self.trace(line) } else { None };
         for &leaf in leaves {
             for e in &self.cell(leaf).entries {
                 if owner.is_some_and(|o| o <= e.unit) {
@@ -368,7 +372,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     continue;
                 };
                 let p = planes(key, light);
-                let on_line = |q: &Plane| self.same_trace(q, line);
+                let on_line =
+                    |q: &Plane| q.is_coincident(line) || trace.is_some_and(|t| t.holds(q));
                 let holds = p.internal.iter().any(|c| on_line(&c.plane))
                     || p.volumes.penumbra.iter().flatten().any(on_line)
                     || p.volumes.umbra.iter().flatten().any(on_line);
@@ -380,12 +385,12 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         owner
     }
 
-    /// Whether planes `q` and `line` (which cuts the receiver) meet the
-    /// receiver in the same line. Planes other than `line` may: a
-    /// discontinuity plane and the plane of a node, both through one line
-    /// of the receiver, differ in space but bound the same cells.
-    pub(super) fn same_trace(&self, q: &Plane, line: &Plane) -> bool {
-        q.is_coincident(line) || in_pencil(line, self.polygon.support(), q)
+    /// The line where `line` meets the receiver, to find the planes that
+    /// meet it there too: planes other than `line` may (a discontinuity
+    /// plane and the plane of a node, both through one line of the
+    /// receiver, differ in space but bound the same cells).
+    pub(super) fn trace(&self, line: &Plane) -> Option<Pencil> {
+        Pencil::new(line, self.polygon.support())
     }
 }
 
