@@ -503,8 +503,8 @@ impl Pencil {
         // planes do not hold the line, and are told so here.
         let normal = q.normal();
         let (mut estimate, mut permanent) = (0.0_f64, 0.0_f64);
-        for k in 0..3 {
-            let term = normal[k] as f64 * self.rounded[k];
+        for (&n, &d) in normal.iter().zip(&self.rounded) {
+            let term = n as f64 * d;
             estimate += term;
             permanent += term.abs();
         }
