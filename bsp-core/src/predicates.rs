@@ -473,9 +473,10 @@ pub struct Pencil {
     offsets: [i128; 2],
     /// The line's direction (components below 2^103).
     direction: [i128; 3],
-    /// `direction` and `offsets` rounded, for the filters of
-    /// [`Self::holds`].
+    /// `direction`, `normals` and `offsets` rounded (the normals exactly),
+    /// for the filters of [`Self::holds`].
     rounded: [f64; 3],
+    rounded_normals: [[f64; 3]; 2],
     rounded_offsets: [f64; 2],
     /// A coordinate in which `direction` is not zero.
     pivot: usize,
@@ -492,6 +493,7 @@ impl Pencil {
             offsets: [a.offset(), b.offset()],
             direction,
             rounded: direction.map(|d| d as f64),
+            rounded_normals: [a.normal().map(|c| c as f64), b.normal().map(|c| c as f64)],
             rounded_offsets: [a.approx()[3], b.approx()[3]],
             pivot,
         })
@@ -501,34 +503,47 @@ impl Pencil {
     pub fn holds(&self, q: &Plane) -> bool {
         // The filter of `dot_sign`, the direction rounded once: most
         // planes do not hold the line, and are told so here.
-        let normal = q.normal();
+        let normal = q.normal().map(|c| c as f64);
         let (mut estimate, mut permanent) = (0.0_f64, 0.0_f64);
         for (&n, &d) in normal.iter().zip(&self.rounded) {
-            let term = n as f64 * d;
+            let term = n * d;
             estimate += term;
             permanent += term.abs();
         }
         if estimate.abs() > 8.0 * U * permanent {
             return false;
         }
-        let nq = normal.map(i128::from);
-        if dot_sign(nq, self.direction) != Side::On {
+        // Past the filter `|nq . direction| < 2^110` (see `dot_sign`): the
+        // wrapping sum is the exact value.
+        let nq = q.normal().map(i128::from);
+        let dot = (0..3).fold(0_i128, |acc, k| {
+            acc.wrapping_add(nq[k].wrapping_mul(self.direction[k]))
+        });
+        if dot != 0 {
             return false;
         }
+        // Planes whose lines on the receiver are parallel to this one end
+        // here, most of them: the offset test in f64. The combination's
+        // products are exact below 2^102 and rounded once, its difference
+        // once more (within 2u of |p1| + |p2|); each term below is then
+        // within 4u of |combination| |offset| (the offset rounded, one
+        // product), the first within 3u of its value, the sum and the
+        // difference within 2u more: in all within 6u of `permanent`, so
+        // beyond 8u the offsets do not combine.
         let k = self.pivot;
-        let (alpha, beta) = combination(self.normals, nq, k);
-        // Filter: each product below is within 3u of its value (two
-        // factors rounded, one product), the difference within two more
-        // roundings, so beyond 8u of the terms' magnitudes it is not zero
-        // (planes whose lines on the receiver are parallel end here).
-        let [t1, t2, t3] = [
-            q.approx()[3] * self.rounded[k],
-            alpha as f64 * self.rounded_offsets[0],
-            beta as f64 * self.rounded_offsets[1],
-        ];
-        if (t1 - (t2 + t3)).abs() > 8.0 * U * (t1.abs() + t2.abs() + t3.abs()) {
+        let (i, j) = ((k + 1) % 3, (k + 2) % 3);
+        let [na, nb] = self.rounded_normals;
+        let [oa, ob] = self.rounded_offsets;
+        let (p1, p2) = (normal[i] * nb[j], normal[j] * nb[i]);
+        let (p3, p4) = (na[i] * normal[j], na[j] * normal[i]);
+        let t1 = q.approx()[3] * self.rounded[k];
+        let (t2, t3) = ((p1 - p2) * oa, (p3 - p4) * ob);
+        let permanent =
+            t1.abs() + (p1.abs() + p2.abs()) * oa.abs() + (p3.abs() + p4.abs()) * ob.abs();
+        if (t1 - (t2 + t3)).abs() > 8.0 * U * permanent {
             return false;
         }
+        let (alpha, beta) = combination(self.normals, nq, k);
         offset_combines(q, self.direction[k], [alpha, beta], self.offsets)
     }
 }

@@ -179,14 +179,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// side, at the deleted node's line `line`.
     fn dangling(&self, leaves: &[u32], line: &Plane) -> (u64, u64) {
         let (mut mine, mut across) = (0_u64, Vec::new());
-        let trace = self.trace(line);
         for &leaf in leaves {
             let face = self.face_of(leaf);
             let mut on_line = false;
             for side in self.mesh.face_sides(face) {
-                if side.edge.line.is_coincident(line)
-                    || trace.is_some_and(|t| t.holds(&side.edge.line))
-                {
+                if side.edge.line.is_coincident(line) {
                     on_line = true;
                     across.extend(side.across);
                 }

@@ -373,7 +373,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 };
                 let p = planes(key, light);
                 let on_line =
-                    |q: &Plane| q.is_coincident(line) || trace.is_some_and(|t| t.holds(q));
+                    |q: &Plane| q.is_coincident(line) || trace.as_ref().is_some_and(|t| t.holds(q));
                 let holds = p.internal.iter().any(|c| on_line(&c.plane))
                     || p.volumes.penumbra.iter().flatten().any(on_line)
                     || p.volumes.umbra.iter().flatten().any(on_line);
