@@ -23,9 +23,11 @@
 //! 4. **Condense.** Where a leaf of `a` received a single cell with the
 //!    same occluder list, the two merge across `L` (straight vertices
 //!    removed); construction nodes whose two cells have equal lists merge
-//!    too. A construction line that some listed occluder's discontinuity
-//!    plane holds is kept and given to that occluder (its internal
-//!    discontinuity, say, would be lost otherwise).
+//!    too. A construction line along which some listed occluder's
+//!    discontinuity plane meets the receiver is kept and given to that
+//!    occluder (its internal discontinuity, say, would be lost otherwise);
+//!    the planes need not be the same in space, only their lines on the
+//!    receiver.
 //!
 //! Nodes are deleted deepest first, so a node's subtrees hold no node of
 //! a removed unit when it goes. Every decision is an exact side test of

@@ -389,7 +389,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// meet it there too: planes other than `line` may (a discontinuity
     /// plane and the plane of a node, both through one line of the
     /// receiver, differ in space but bound the same cells).
-    pub(super) fn trace(&self, line: &Plane) -> Option<Pencil> {
+    fn trace(&self, line: &Plane) -> Option<Pencil> {
         Pencil::new(line, self.polygon.support())
     }
 }
