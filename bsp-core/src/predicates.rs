@@ -516,10 +516,7 @@ impl Pencil {
         // Past the filter `|nq . direction| < 2^110` (see `dot_sign`): the
         // wrapping sum is the exact value.
         let nq = q.normal().map(i128::from);
-        let dot = (0..3).fold(0_i128, |acc, k| {
-            acc.wrapping_add(nq[k].wrapping_mul(self.direction[k]))
-        });
-        if dot != 0 {
+        if wrapping_dot(nq, self.direction) != 0 {
             return false;
         }
         // Planes whose lines on the receiver are parallel to this one end
@@ -568,7 +565,14 @@ fn dot_sign(u: [i128; 3], v: [i128; 3]) -> Side {
     if estimate.abs() > 8.0 * U * permanent {
         return Side::of_sign(estimate);
     }
-    Side::of_sign((0..3).fold(0_i128, |acc, k| acc.wrapping_add(u[k].wrapping_mul(v[k]))))
+    Side::of_sign(wrapping_dot(u, v))
+}
+
+/// `u · v` modulo `2^128`: the value itself where it is known to be below
+/// `2^127` in magnitude (past the filters of `dot_sign` and
+/// [`Pencil::holds`]).
+fn wrapping_dot(u: [i128; 3], v: [i128; 3]) -> i128 {
+    (0..3).fold(0_i128, |acc, k| acc.wrapping_add(u[k].wrapping_mul(v[k])))
 }
 
 /// Side of a point of the line `support ∩ edge` that lies at a grid point
