@@ -24,7 +24,7 @@
 //! changed are evaluated again.
 
 use crate::cell::Cell;
-use crate::hash::{KeyMap, KeySet};
+use crate::hash::KeyMap;
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
 use crate::tree::ReceiverDm;
 use bsp_core::{Side, VertexKey};
@@ -249,19 +249,20 @@ fn illuminate_receiver(
     };
     let mesh = dm.mesh();
     // Each vertex once: all of them the first time; after a change those
-    // of the faces touched (a hash set, not a secondary map: after a move
-    // only a few faces of a big receiver are looked at, and a secondary map
-    // would be as long as the receiver's vertex arena).
+    // of the faces touched, in the order of their keys: on a big receiver
+    // they are scattered over its arenas, and taken in memory order they
+    // are evaluated a quarter faster (10k hall floor after a move, one
+    // thread), their values and neighbours sharing cache lines.
     let vertices: Vec<VertexKey> = if everything {
         mesh.vertices().map(|(v, _)| v).collect()
     } else {
-        let mut seen: KeySet<VertexKey> = KeySet::default();
-        seen.reserve(4 * touched.len());
-        touched
+        let mut all: Vec<VertexKey> = touched
             .iter()
             .flat_map(|&f| mesh.face_sides(f).map(|side| side.start))
-            .filter(|&v| seen.insert(v))
-            .collect()
+            .collect();
+        all.sort_unstable();
+        all.dedup();
+        all
     };
     stats.vertices = vertices.len();
     let values = &state.values;
