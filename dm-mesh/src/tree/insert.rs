@@ -110,23 +110,33 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             if planes.internal.is_empty() {
                 continue;
             }
-            if grown && exact {
-                let crossing = &crossing[range.start as usize..range.end as usize];
-                if !crossing.is_empty() {
-                    self.grow_internal(leaf, crossing, unit);
+            match grown {
+                Some(grown) if exact => {
+                    let crossing = &crossing[range.start as usize..range.end as usize];
+                    if crossing.is_empty() {
+                        continue;
+                    }
+                    match grown {
+                        // (No face polygon to make: the cell is the piece.)
+                        Grown::Whole(inner) => {
+                            self.split_by_internal(vec![(inner, piece)], crossing, unit)
+                        }
+                        Grown::Parts => self.grow_internal(leaf, crossing, unit),
+                    }
                 }
-            } else {
-                let all: SmallVec<[&Critical; 32]> = planes.internal.iter().collect();
-                self.grow_internal(leaf, &all, unit);
+                _ => {
+                    let all: SmallVec<[&Critical; 32]> = planes.internal.iter().collect();
+                    self.grow_internal(leaf, &all, unit);
+                }
             }
         }
     }
 
     /// Grows the unit's single tree at one leaf whose cell meets the
     /// unit's penumbra region in `piece` (with area; `exact`: `piece` is
-    /// all of the leaf's part of the region). Whether it did: the leaf did
-    /// not list the unit yet, and its cells inside the region now do (the
-    /// part outside the umbra, if any).
+    /// all of the leaf's part of the region). Whether it did (the leaf did
+    /// not list the unit yet, and its cells inside the region now do: the
+    /// part outside the umbra, if any), and how.
     #[allow(clippy::too_many_arguments)] // (the leaf, the unit's region and its context)
     fn grow_leaf(
         &mut self,
@@ -137,18 +147,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         umbra: Option<&[Plane]>,
         unit: u32,
         light: u8,
-    ) -> bool {
+    ) -> Option<Grown> {
         let cell = self.cell(leaf);
         if cell.has_unit(unit) || cell.culled.contains(&unit) || cell.unreached(usize::from(light))
         {
-            return false;
+            return None;
         }
         if cell.in_umbra(usize::from(light)) {
             // Umbra already: the occluder changes nothing here, unless the
             // occluder making the umbra goes; remember it for then.
             self.cell_mut(leaf).culled.push(unit);
             self.seeds[unit as usize] = self.face_of(leaf);
-            return false;
+            return None;
         }
         // Only the planes that bound the cell's part of the region cut the
         // cell where it matters: the others are redundant there (the cell
@@ -161,20 +171,26 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         } else {
             self.chain(leaf, penumbra, unit)
         };
-        let Some(inner) = inner else {
-            return false;
-        };
+        let inner = inner?;
         self.cell_mut(inner).add(Entry {
             unit,
             light,
             umbra: false,
         });
         self.seeds[unit as usize] = self.face_of(inner);
-        let Some(umbra) = umbra else { return true };
+        // The inner cell is `piece` when it is exact, until the umbra cuts it.
+        let whole = if exact {
+            Grown::Whole(inner)
+        } else {
+            Grown::Parts
+        };
+        let Some(umbra) = umbra else {
+            return Some(whole);
+        };
         let core = if exact {
             // The inner cell is `piece`: its umbra part is the piece's.
             let Some(core) = clip(piece, umbra) else {
-                return true;
+                return Some(whole);
             };
             self.chain(inner, bounding(umbra, &core), unit)
         } else {
@@ -185,7 +201,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 .face_polygon(self.face_of(inner), 0)
                 .is_ok_and(|cell| clip(&cell, umbra).is_some());
             if !meets {
-                return true;
+                return Some(Grown::Parts);
             }
             self.chain(inner, umbra, unit)
         };
@@ -196,14 +212,14 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 umbra: true,
             });
         }
-        true
+        Some(Grown::Parts)
     }
 
     /// Splits the cells of the subtree at `node` that list `unit` outside
     /// its umbra by its internal discontinuities, each where its wedge
     /// crosses the cell.
     pub(super) fn grow_internal(&mut self, node: u32, internal: &[&Critical], unit: u32) {
-        let mut cells: Vec<(u32, ConvexPolygon)> = self
+        let cells: Vec<(u32, ConvexPolygon)> = self
             .leaves(node)
             .into_iter()
             .filter(|&n| {
@@ -217,6 +233,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 Some((n, polygon))
             })
             .collect();
+        self.split_by_internal(cells, internal, unit);
+    }
+
+    /// Splits `cells` (leaves listing `unit` outside its umbra, each with
+    /// its polygon) by the unit's internal discontinuities `internal`, each
+    /// where its wedge crosses a cell.
+    fn split_by_internal(
+        &mut self,
+        mut cells: Vec<(u32, ConvexPolygon)>,
+        internal: &[&Critical],
+        unit: u32,
+    ) {
         for critical in internal {
             let mut next = Vec::with_capacity(cells.len());
             for (leaf, polygon) in cells {
@@ -265,6 +293,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         }
         Some(cur)
     }
+}
+
+/// How [`ReceiverDm::grow_leaf`] grew a leaf.
+enum Grown {
+    /// Its part of the region is one cell listing the unit outside its
+    /// umbra, this leaf, whose polygon is the piece.
+    Whole(u32),
+    /// Its part is in cells of the leaf's subtree, to be looked up.
+    Parts,
 }
 
 /// Whether an internal discontinuity crosses `polygon`: its plane cuts

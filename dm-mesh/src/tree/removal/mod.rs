@@ -208,15 +208,16 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         let mut seen: KeySet<FaceKey> = KeySet::default();
         let mut stack: Vec<FaceKey> = Vec::new();
         let mut out: Vec<(u32, SmallVec<[usize; 8]>)> = Vec::new();
+        // (A face holding none is marked too: the cells around the flood
+        // are each reached from several inside it.)
         let mut visit = |f: FaceKey, stack: &mut Vec<FaceKey>| {
-            if seen.contains(&f) {
+            if !seen.insert(f) {
                 return;
             }
             let units = units_held(f);
             if units.is_empty() {
                 return;
             }
-            seen.insert(f);
             stack.push(f);
             out.push((self.mesh.face(f).expect("face").data.leaf, units));
         };
