@@ -4,6 +4,7 @@
 //! polygons built and a box moved, with and without the EV / VE
 //! discontinuities.
 
+use crate::output_change::OutputChange;
 use bsp_core::{ConvexPolygon, GridPoint};
 use std::path::Path;
 use std::time::Instant;
@@ -32,7 +33,8 @@ pub fn demo(dir: &Path, name: &str) -> Scene {
 const HALL_MOVES: usize = 21;
 
 /// Seconds of `moves` moves of object `name` by 0.05 along x and back,
-/// each with its re-illumination, in order.
+/// each with its re-illumination, in order; `run`'s polygons follow the
+/// object.
 fn back_and_forth(run: &mut DmRun, scene: &Scene, name: &str, moves: usize) -> Vec<f64> {
     let index = scene
         .objects
@@ -43,7 +45,7 @@ fn back_and_forth(run: &mut DmRun, scene: &Scene, name: &str, moves: usize) -> V
     let step = (0.05 * run.pieces.grid.scale()).round() as i64;
     let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
     let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
-    (0..moves)
+    let seconds = (0..moves)
         .map(|m| {
             let to = if m % 2 == 0 { &there } else { &here };
             let start = Instant::now();
@@ -51,7 +53,14 @@ fn back_and_forth(run: &mut DmRun, scene: &Scene, name: &str, moves: usize) -> V
             run.dm.illuminate();
             start.elapsed().as_secs_f64()
         })
-        .collect()
+        .collect();
+    // The scene's polygons where the last move left the object, for a
+    // rebuild of the same state.
+    let last = if moves % 2 == 1 { there } else { here };
+    for (&k, p) in ks.iter().zip(last) {
+        run.pieces.polygons[k] = p;
+    }
+    seconds
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -92,6 +101,19 @@ fn delete_seconds(run: &DmRun, scene: &Scene, name: &str, runs: usize) -> f64 {
         })
         .collect();
     median(times)
+}
+
+/// A moved object's figures.
+struct MoveRow<'a> {
+    scene: &'a str,
+    object: &'a str,
+    /// The object's share of the scene's polygons.
+    share: f64,
+    delete: f64,
+    update: f64,
+    rebuild: f64,
+    /// What one step of the move changes in the output.
+    change: OutputChange,
 }
 
 /// Prints the table.
@@ -151,31 +173,52 @@ pub fn print() {
             let figures = moving
                 .move_steps(&scene, object, *by, 11, |_, _, _| {})
                 .expect("moves");
-            rows.push((
-                *scene_name,
-                *object,
+            let mut one_step = dm_scene(&scene).expect("builds");
+            one_step
+                .move_steps(&scene, object, *by, 1, |_, _, _| {})
+                .expect("moves");
+            let change =
+                OutputChange::between(&run.mesh(), &one_step.rebuilt().expect("rebuilds").mesh());
+            rows.push(MoveRow {
+                scene: scene_name,
+                object,
                 share,
                 delete,
-                median(figures.update_seconds.clone()),
-                median(figures.rebuild_seconds.clone()),
-            ));
+                update: median(figures.update_seconds.clone()),
+                rebuild: median(figures.rebuild_seconds.clone()),
+                change,
+            });
         }
     }
     println!(
-        "{:<10} {:<10} {:>7} {:>10} {:>10} {:>11} {:>9} {:>9}",
-        "scene", "object", "share", "delete ms", "move ms", "rebuild ms", "delete %", "move %"
+        "  new cells / values: the share of a rebuild's output that one step's move must write (cells it lacked before, vertices new or of another irradiance)"
     );
-    for (scene, object, share, delete, update, rebuild) in rows {
+    println!(
+        "{:<10} {:<10} {:>7} {:>10} {:>10} {:>11} {:>9} {:>9} {:>10} {:>7}",
+        "scene",
+        "object",
+        "share",
+        "delete ms",
+        "move ms",
+        "rebuild ms",
+        "delete %",
+        "move %",
+        "new cells",
+        "values"
+    );
+    for row in rows {
         println!(
-            "{:<10} {:<10} {:>6.1}% {:>10.3} {:>10.3} {:>11.3} {:>8.1}% {:>8.1}%",
-            scene,
-            object,
-            100.0 * share,
-            1e3 * delete,
-            1e3 * update,
-            1e3 * rebuild,
-            100.0 * delete / rebuild,
-            100.0 * update / rebuild
+            "{:<10} {:<10} {:>6.1}% {:>10.3} {:>10.3} {:>11.3} {:>8.1}% {:>8.1}% {:>9.1}% {:>6.1}%",
+            row.scene,
+            row.object,
+            100.0 * row.share,
+            1e3 * row.delete,
+            1e3 * row.update,
+            1e3 * row.rebuild,
+            100.0 * row.delete / row.rebuild,
+            100.0 * row.update / row.rebuild,
+            100.0 * row.change.cell_share(),
+            100.0 * row.change.value_share()
         );
     }
     let hall = crate::rooms::box_hall(&dir, 1665, 7);
@@ -184,8 +227,16 @@ pub fn print() {
         hall.objects.len()
     );
     println!(
-        "  {:<16} {:>7} {:>8} {:>8} {:>9} {:>10} {:>11}",
-        "discontinuities", "input", "build s", "cells", "rebuild s", "first ms", "median ms"
+        "  {:<16} {:>7} {:>8} {:>8} {:>9} {:>10} {:>11} {:>10} {:>7}",
+        "discontinuities",
+        "input",
+        "build s",
+        "cells",
+        "rebuild s",
+        "first ms",
+        "median ms",
+        "new cells",
+        "values"
     );
     for (label, internal) in [("outer only", false), ("with EV/VE", true)] {
         let options = DmOptions {
@@ -195,16 +246,20 @@ pub fn print() {
         let start = Instant::now();
         let mut run = dm_scene_with(&hall, options).expect("the hall builds");
         let build = start.elapsed().as_secs_f64();
+        let before = run.mesh();
         let moves = back_and_forth(&mut run, &hall, "box0", HALL_MOVES);
         let start = Instant::now();
-        drop(dm_scene_with(&hall, options).expect("the hall builds"));
+        let moved = run.rebuilt().expect("the hall rebuilds");
         let rebuild = start.elapsed().as_secs_f64();
+        let change = OutputChange::between(&before, &moved.mesh());
         println!(
-            "  {label:<16} {:>7} {build:>8.2} {:>8} {rebuild:>9.2} {:>10.2} {:>11.2}",
+            "  {label:<16} {:>7} {build:>8.2} {:>8} {rebuild:>9.2} {:>10.2} {:>11.2} {:>9.2}% {:>6.2}%",
             run.stats.stats.input_polygons,
             run.stats.dm.cells,
             1e3 * moves[0],
-            1e3 * median(moves)
+            1e3 * median(moves),
+            100.0 * change.cell_share(),
+            100.0 * change.value_share()
         );
     }
     let _ = std::fs::remove_dir_all(&dir);

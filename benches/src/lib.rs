@@ -3,10 +3,12 @@
 //!
 //! [`random`] makes deterministic kernel inputs (grid points, planes,
 //! implicit-point queries, quads, triangle soups); [`scene`] and [`tetra`]
-//! build the scenes of the papers.
+//! build the scenes of the papers; [`output_change`] weighs what a move
+//! must rewrite.
 
 pub mod dm_table;
 pub mod illum_scene;
+pub mod output_change;
 pub mod random;
 pub mod rooms;
 pub mod scene;

@@ -85,6 +85,15 @@ impl DmStats {
     }
 }
 
+/// DM-trees built from scratch, with the figures of their build.
+struct FreshDm {
+    dm: DmScene,
+    ids: Vec<ObjectId>,
+    illum: IllumStats,
+    build_seconds: f64,
+    illum_seconds: f64,
+}
+
 /// A scene's DM-trees, built.
 pub struct DmRun {
     /// The scene on the grid.
@@ -397,6 +406,43 @@ impl DmRun {
     /// takes.
     fn rebuild_seconds(&self) -> Result<f64> {
         let started = Instant::now();
+        drop(self.fresh_dm()?);
+        Ok(started.elapsed().as_secs_f64())
+    }
+
+    /// A from-scratch build and illumination of the current state (the
+    /// objects where the updates left them), with the same objects, pieces
+    /// and options: what the incremental updates must agree with.
+    pub fn rebuilt(&self) -> Result<DmRun> {
+        let started = Instant::now();
+        let fresh = self.fresh_dm()?;
+        let objects = fresh
+            .ids
+            .into_iter()
+            .zip(self.objects.iter().map(|(_, ks)| ks.clone()))
+            .collect();
+        let mut run = DmRun {
+            pieces: self.pieces.clone(),
+            dm: fresh.dm,
+            objects,
+            stats: DmStats {
+                stats: Stats::default(),
+                dm: DmFigures::default(),
+                update: None,
+            },
+        };
+        run.stats = run.figures(
+            fresh.build_seconds,
+            fresh.illum_seconds,
+            &fresh.illum,
+            started.elapsed().as_secs_f64(),
+        );
+        Ok(run)
+    }
+
+    /// The DM-trees of the current state built and illuminated from
+    /// scratch.
+    fn fresh_dm(&self) -> Result<FreshDm> {
         let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = self
             .objects
             .iter()
@@ -415,11 +461,20 @@ impl DmRun {
                 )
             })
             .collect();
-        let (mut fresh, _) =
+        let build_started = Instant::now();
+        let (mut dm, ids) =
             DmScene::build_with(self.dm.lights().to_vec(), objects, self.dm.options())
                 .map_err(|e| Error::Dm(e.to_string()))?;
-        fresh.illuminate();
-        Ok(started.elapsed().as_secs_f64())
+        let build_seconds = build_started.elapsed().as_secs_f64();
+        let illum_started = Instant::now();
+        let illum = dm.illuminate();
+        Ok(FreshDm {
+            dm,
+            ids,
+            illum,
+            build_seconds,
+            illum_seconds: illum_started.elapsed().as_secs_f64(),
+        })
     }
 
     /// Recomputes the figures after updates (timings of the build kept).
