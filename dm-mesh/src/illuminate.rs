@@ -140,7 +140,7 @@ impl IllumStats {
         stats
     }
 
-    fn add(mut self, other: Self) -> Self {
+    pub(crate) fn add(mut self, other: Self) -> Self {
         self.vertices += other.vertices;
         self.evaluated += other.evaluated;
         self.unoccluded += other.unoccluded;
@@ -157,7 +157,20 @@ impl DmScene {
     /// of every vertex whose covering occluders did not change. Receivers
     /// are worked on in parallel; the values do not depend on the number of
     /// threads.
+    ///
+    /// Once it has run, every change (adding, removing or moving an
+    /// object) illuminates the receivers it touched as it updates them, so
+    /// that their vertex irradiance is current right after the change;
+    /// this call then has little left to do, and its figures include the
+    /// work those changes did since the last call.
     pub fn illuminate(&mut self) -> IllumStats {
+        self.lit = true;
+        let since = std::mem::take(&mut self.lit_since);
+        since.add(self.illuminate_pending())
+    }
+
+    /// The receivers changed and not illuminated yet, illuminated.
+    pub(crate) fn illuminate_pending(&mut self) -> IllumStats {
         let pending: BTreeSet<PieceId> = self
             .receivers
             .iter()
@@ -220,7 +233,7 @@ impl DmScene {
 }
 
 /// [`DmScene::illuminate`] on one receiver.
-fn illuminate_receiver(
+pub(crate) fn illuminate_receiver(
     lights: &[DmLight],
     pieces: &SlotMap<PieceId, Piece>,
     r: PieceId,

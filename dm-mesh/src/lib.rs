@@ -22,7 +22,11 @@
 //! default): the node's edge leaves the mesh, the subtree with the smaller
 //! expected cost `D_a * size_b` is kept and its dangling lines expanded
 //! across the node's cell, the other subtree's cells are inserted into it,
-//! and cells no discontinuity separates any more are merged.
+//! and cells no discontinuity separates any more are merged. Once
+//! [`DmScene::illuminate`] has run, every change illuminates the receivers
+//! it touched as it updates them, each right after its own update (while
+//! one thread still updates a big receiver, another illuminates the small
+//! ones), so vertex irradiance is current after every change.
 //! [`Deletion::Collapse`] instead collapses the subtrees the occluder grew
 //! and merges the later occluders there again. Re-illumination evaluates
 //! only vertices whose covering occluders changed. A receiver that many

@@ -3,7 +3,7 @@
 
 use crate::critical::UnitPlanes;
 use crate::error::Error;
-use crate::illuminate::ReceiverIllum;
+use crate::illuminate::{IllumStats, ReceiverIllum};
 use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
 use crate::tree::{Deletion, ReceiverDm};
 use area_shadow::AreaSource;
@@ -144,6 +144,14 @@ pub struct DmScene {
     pub(crate) contacts: SecondaryMap<PieceId, ContactPlanes>,
     pub(crate) overlap: Overlap,
     pub(crate) options: DmOptions,
+    /// Whether [`illuminate`](Self::illuminate) has run: from then on a
+    /// change illuminates each receiver it touched right after updating
+    /// it, in the same parallel pass (so the small receivers' illumination
+    /// runs while a big one is still being updated).
+    pub(crate) lit: bool,
+    /// Figures of the illumination that changes did since the last
+    /// [`illuminate`](Self::illuminate) call.
+    pub(crate) lit_since: IllumStats,
 }
 
 impl DmScene {
@@ -167,6 +175,8 @@ impl DmScene {
             contacts: SecondaryMap::new(),
             overlap,
             options,
+            lit: false,
+            lit_since: IllumStats::default(),
         })
     }
 

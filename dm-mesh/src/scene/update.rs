@@ -15,7 +15,7 @@ use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind,
 use crate::critical::{UnitPlanes, internal_planes};
 use crate::error::Error;
 use crate::hash::KeyMap;
-use crate::illuminate::ReceiverIllum;
+use crate::illuminate::{IllumStats, ReceiverIllum, illuminate_receiver};
 use crate::order::unit_order;
 use crate::surface::surroundings;
 use crate::tree::ReceiverDm;
@@ -23,6 +23,7 @@ use area_shadow::{
     AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, volume_planes,
 };
 use bsp_core::ConvexPolygon;
+use illum::VisiblePart;
 use rayon::prelude::*;
 use slotmap::SlotMap;
 use std::collections::BTreeSet;
@@ -32,13 +33,15 @@ use svbsp::PieceFlags;
 type Removals = KeyMap<PieceId, BTreeSet<u32>>;
 /// Per receiver, the units that enter it (after tiling it to a depth).
 type Insertions = KeyMap<PieceId, Order>;
-/// One receiver's part of a change: units out, then units in.
+/// One receiver's part of a change: units out, then units in, then its
+/// illumination if the scene keeps it.
 type Work<'a> = (
     PieceId,
     &'a mut ReceiverDm<PieceId>,
     &'a mut ContactPlanes,
     Option<BTreeSet<u32>>,
     Option<Order>,
+    Option<&'a mut ReceiverIllum>,
 );
 
 impl DmScene {
@@ -288,32 +291,40 @@ impl DmScene {
     }
 
     /// Applies a change: each receiver named removes its leaving units,
-    /// then merges its entering ones; the receivers in parallel, the
-    /// biggest first (so that no thread is left with one at the end).
-    /// `left` holds the pieces already gone whose units leave.
+    /// then merges its entering ones, then (once the scene has been
+    /// illuminated) computes its vertices' irradiance again; the receivers
+    /// in parallel, the biggest first (so that no thread is left with one
+    /// at the end). `left` holds the pieces already gone whose units leave.
     fn apply(
         &mut self,
         mut removals: Removals,
         mut insertions: Insertions,
         left: &KeyMap<PieceId, Piece>,
     ) {
-        let (pieces, how) = (&self.pieces, self.options.deletion);
-        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
+        let (lights, pieces, how) = (&self.lights, &self.pieces, self.options.deletion);
+        let sources: Vec<AreaSource> = lights.iter().map(|l| l.source.clone()).collect();
+        let changed = |r: &PieceId| removals.contains_key(r) || insertions.contains_key(r);
         let mut contacts: KeyMap<PieceId, &mut ContactPlanes> = self
             .contacts
             .iter_mut()
-            .filter(|(r, _)| removals.contains_key(r) || insertions.contains_key(r))
+            .filter(|(r, _)| changed(r))
             .collect();
+        let mut illum: KeyMap<PieceId, &mut ReceiverIllum> = if self.lit {
+            self.illum.iter_mut().filter(|(r, _)| changed(r)).collect()
+        } else {
+            KeyMap::default()
+        };
         let mut work: Vec<Work> = self
             .receivers
             .iter_mut()
             .filter_map(|(r, dm)| {
                 let contact = contacts.remove(&r)?;
                 let (out, into) = (removals.remove(&r), insertions.remove(&r));
-                (out.is_some() || into.is_some()).then_some((r, dm, contact, out, into))
+                (out.is_some() || into.is_some())
+                    .then(|| (r, dm, contact, out, into, illum.remove(&r)))
             })
             .collect();
-        let run = |(r, dm, contact, out, into): &mut Work| {
+        let run = |(r, dm, contact, out, into, illum): &mut Work| {
             let piece = |o: PieceId| left.get(&o).unwrap_or_else(|| &pieces[o]);
             let entering = into.iter().flat_map(|(_, order)| order.iter().copied());
             contact.add(&pieces[*r], &sources, entering, piece);
@@ -330,21 +341,35 @@ impl DmScene {
             if out.is_some() {
                 contact.forget(|o| left.contains_key(&o));
             }
+            illum.as_mut().map_or_else(IllumStats::default, |state| {
+                illuminate_receiver(lights, pieces, *r, dm, state, &mut VisiblePart::new())
+            })
         };
-        if work.len() <= 2 {
+        let stats = if work.len() <= 2 {
             // A small change: no tasks to hand out.
-            work.iter_mut().for_each(run);
-            return;
+            work.iter_mut()
+                .map(run)
+                .fold(IllumStats::default(), IllumStats::add)
+        } else {
+            work.sort_by_key(|(_, dm, _, out, into, _)| {
+                let units = into.as_ref().map_or(0, |(_, order)| order.len());
+                std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
+            });
+            // Each receiver a task of its own: a run of receivers split off
+            // together would go on one thread, after the biggest, while the
+            // other waits at the end (10k hall: the last 1.3-1.7 s of the
+            // build on about one core).
+            work.par_iter_mut()
+                .with_max_len(1)
+                .map(run)
+                .reduce(IllumStats::default, IllumStats::add)
+        };
+        self.lit_since = self.lit_since.add(stats);
+        if self.lit {
+            // New receivers that no unit reaches, not among the work.
+            let rest = self.illuminate_pending();
+            self.lit_since = self.lit_since.add(rest);
         }
-        work.sort_by_key(|(_, dm, _, out, into)| {
-            let units = into.as_ref().map_or(0, |(_, order)| order.len());
-            std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
-        });
-        // Each receiver a task of its own: a run of receivers split off
-        // together would go on one thread, after the biggest, while the
-        // other waits at the end (10k hall: the last 1.3-1.7 s of the build
-        // on about one core).
-        work.par_iter_mut().with_max_len(1).for_each(run);
     }
 }
 
