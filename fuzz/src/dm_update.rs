@@ -16,6 +16,7 @@ use arbitrary::{Arbitrary, Unstructured};
 use area_shadow::{AreaSource, Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
 use dm_mesh::{CellClass, Deletion, DmLight, DmOptions, DmScene, ObjectId, PieceId};
+use std::collections::HashMap;
 use svbsp::PieceFlags;
 
 /// One operation on object `object % objects`.
@@ -169,6 +170,44 @@ fn areas(scene: &DmScene, ids: &[ObjectId]) -> Result<Vec<[f64; 3]>, String> {
     Ok(out)
 }
 
+/// Vertex irradiance of the updated scene `a` against the rebuilt `b`,
+/// where both have a vertex (at the same coordinates).
+fn same_irradiance(
+    a: &DmScene,
+    ids_a: &[ObjectId],
+    b: &DmScene,
+    ids_b: &[ObjectId],
+) -> Result<(), String> {
+    let pieces = |scene: &DmScene, ids: &[ObjectId]| -> Result<Vec<PieceId>, String> {
+        let mut out = Vec::new();
+        for id in ids {
+            out.extend_from_slice(scene.object_pieces(*id).ok_or("object lost")?);
+        }
+        Ok(out)
+    };
+    for (ra, rb) in pieces(a, ids_a)?.into_iter().zip(pieces(b, ids_b)?) {
+        let (da, db) = (
+            a.receiver(ra).ok_or("receiver lost")?,
+            b.receiver(rb).ok_or("receiver lost")?,
+        );
+        let mut at: HashMap<[u64; 3], f64> = HashMap::new();
+        for (v, vertex) in db.mesh().vertices() {
+            let e = b.vertex_irradiance(rb, v).ok_or("a rebuilt vertex has no value")?;
+            at.insert(vertex.position.to_f64().map(f64::to_bits), e);
+        }
+        for (v, vertex) in da.mesh().vertices() {
+            let ea = a.vertex_irradiance(ra, v).ok_or("an updated vertex has no value")?;
+            let p = vertex.position.to_f64();
+            if let Some(&eb) = at.get(&p.map(f64::to_bits))
+                && (ea - eb).abs() > 1e-9 * ea.abs().max(eb.abs()) + 1e-15
+            {
+                return Err(format!("irradiance at {p:?}: updated {ea} vs rebuilt {eb}"));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Applies the operations and checks; `Err` describes the first violated
 /// invariant.
 pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
@@ -216,6 +255,9 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
             .map_err(|e| format!("after {what}: {e}"))
     };
     check(&scene, "the build")?;
+    // Illuminated once, the scene illuminates what each change touches as
+    // it makes it.
+    scene.illuminate();
     let movable = case.objects.len();
     for op in &case.ops {
         let k = |o: u8| 1 + usize::from(o) % movable;
@@ -263,8 +305,10 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
             (triangles(&case.objects[k - 1], *offset), two_sided())
         });
     }
-    let (fresh, fresh_ids) =
+    let (mut fresh, fresh_ids) =
         DmScene::build(vec![light], live.clone()).map_err(|e| e.to_string())?;
+    fresh.illuminate();
+    same_irradiance(&scene, &live_ids, &fresh, &fresh_ids)?;
     let got = areas(&scene, &live_ids)?;
     let want = areas(&fresh, &fresh_ids)?;
     let polygons: Vec<ConvexPolygon> = live

@@ -87,8 +87,19 @@ pub struct Vertex {
 }
 
 /// An edge with its wings.
+///
+/// Laid out in this order (`repr(C)`) so that a walk around a face or a
+/// vertex, which reads the ends, the faces and the next edges, touches one
+/// cache line of the edge's 128-byte slot, the one that also holds the
+/// slot's version: the line plane and the previous edges, which edits use,
+/// fill the other.
 #[derive(Debug, Clone, PartialEq)]
+#[repr(C)]
 pub struct Edge<E> {
+    /// The plane through the edge's line, the left face behind it.
+    pub line: Plane,
+    left_prev: EdgeKey,
+    right_prev: EdgeKey,
     /// First vertex (left face walks from here).
     pub start: VertexKey,
     /// Second vertex.
@@ -97,12 +108,8 @@ pub struct Edge<E> {
     pub left: Option<FaceKey>,
     /// Face on the right (walked `end -> start`), or the outside.
     pub right: Option<FaceKey>,
-    left_prev: EdgeKey,
     left_next: EdgeKey,
-    right_prev: EdgeKey,
     right_next: EdgeKey,
-    /// The plane through the edge's line, the left face behind it.
-    pub line: Plane,
     /// Whether the right face lies in front of `line` (always so between
     /// faces of one plane; between faces of two planes the line plane need
     /// not separate them).
@@ -422,6 +429,29 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             edge.left_prev
         } else {
             edge.right_prev
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Edge;
+    use std::mem::{offset_of, size_of};
+
+    /// An edge's slot is 128 bytes (the edge, then the slot's version), and
+    /// the fields a walk reads share its second 64 bytes with the version.
+    #[test]
+    fn a_walk_reads_one_half_of_an_edge_slot() {
+        assert_eq!(size_of::<Edge<()>>(), 120);
+        for offset in [
+            offset_of!(Edge<()>, start),
+            offset_of!(Edge<()>, end),
+            offset_of!(Edge<()>, left),
+            offset_of!(Edge<()>, right),
+            offset_of!(Edge<()>, left_next),
+            offset_of!(Edge<()>, right_next),
+        ] {
+            assert!((64..120).contains(&offset), "a walked field at {offset}");
         }
     }
 }
