@@ -192,11 +192,15 @@ fn same_irradiance(
         );
         let mut at: HashMap<[u64; 3], f64> = HashMap::new();
         for (v, vertex) in db.mesh().vertices() {
-            let e = b.vertex_irradiance(rb, v).ok_or("a rebuilt vertex has no value")?;
+            let e = b
+                .vertex_irradiance(rb, v)
+                .ok_or("a rebuilt vertex has no value")?;
             at.insert(vertex.position.to_f64().map(f64::to_bits), e);
         }
         for (v, vertex) in da.mesh().vertices() {
-            let ea = a.vertex_irradiance(ra, v).ok_or("an updated vertex has no value")?;
+            let ea = a
+                .vertex_irradiance(ra, v)
+                .ok_or("an updated vertex has no value")?;
             let p = vertex.position.to_f64();
             if let Some(&eb) = at.get(&p.map(f64::to_bits))
                 && (ea - eb).abs() > 1e-9 * ea.abs().max(eb.abs()) + 1e-15
@@ -410,6 +414,29 @@ mod tests {
                 Op::Move(0, [-3, -2, -3]),
             ],
             deletion: Deletion::Local,
+        };
+        check_dm_update(&case).unwrap();
+    }
+
+    /// Found by libFuzzer once the target illuminated after the build: a
+    /// move with collapsing deletion left a cell listing a unit outside
+    /// its penumbra.
+    #[test]
+    fn collapse_move_after_illumination_keeps_lists_inside_penumbrae() {
+        let case = DmCase {
+            objects: vec![
+                vec![
+                    [[-3, 1, 1], [-5, 6, 6], [8, 13, -1]],
+                    [[-2, 8, 0], [4, 14, -6], [8, 11, -2]],
+                ],
+                vec![
+                    [[0, 13, 3], [7, 13, -4], [-6, 13, -1]],
+                    [[-2, 8, 0], [4, 14, -6], [8, 11, -2]],
+                ],
+            ],
+            light: ([4, 10, -5], [4, 4], 3),
+            ops: vec![Op::Move(26, [-1, -1, 3]), Op::Move(41, [0, -1, -3])],
+            deletion: Deletion::Collapse,
         };
         check_dm_update(&case).unwrap();
     }

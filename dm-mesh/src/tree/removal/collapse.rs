@@ -7,8 +7,15 @@ use super::{Planes, ReceiverDm};
 use crate::cell::Entry;
 use crate::critical::Critical;
 use crate::tree::{Node, tracked};
+use bsp_core::{ConvexPolygon, Plane, PolygonSide};
 use smallvec::SmallVec;
 use std::collections::BTreeSet;
+
+/// Whether `polygon` lies inside every plane of `part` (behind each).
+fn inside(polygon: &ConvexPolygon, part: &[Plane]) -> bool {
+    part.iter()
+        .all(|q| polygon.classify(q) == PolygonSide::Back)
+}
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Collapses the subtrees under the topmost nodes of the units in
@@ -26,13 +33,30 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             .filter(|&n| !self.ancestors(n).any(|a| self.owned_by(a, gone)))
             .collect();
         for n in starts {
-            let (kept, redo) = self.units_under(n);
+            let (mut kept, mut redo) = self.units_under(n);
             self.collapse(n);
+            let face = self.face_of(n);
+            let region = self.mesh.face_polygon(face, 0).ok();
+            // A unit whose penumbra comes in parts can be listed by every
+            // cell under `n` from different parts, the line between them
+            // another unit's node: the merged cell then lies in no one part,
+            // and the unit is merged again there instead of kept.
+            if let Some(region) = &region {
+                kept.retain(|e| {
+                    let whole = self.unit(e.unit).is_none_or(|(key, light)| {
+                        let parts = &planes(key, light).volumes.penumbra;
+                        parts.len() == 1 || parts.iter().any(|part| inside(region, part))
+                    });
+                    if !whole {
+                        redo.insert(e.unit);
+                    }
+                    whole
+                });
+            }
             let cell = self.cell_mut(n);
             cell.entries = kept.iter().copied().collect();
             cell.culled.clear();
-            let face = self.face_of(n);
-            let Ok(region) = self.mesh.face_polygon(face, 0) else {
+            let Some(region) = region else {
                 continue;
             };
             // A kept unit's internal discontinuity may lie along a line of
