@@ -5,10 +5,11 @@
 //! receiver, in what order), then applied: every receiver removes its
 //! leaving units and then merges its entering ones, the receivers side by
 //! side (each tree only ever sees its own units, in the same order, so the
-//! result does not depend on the number of threads). A move does both in
-//! that one pass: a big receiver's removal and insertion run on one thread
-//! while the small ones share the other, instead of two passes each
-//! waiting for the big receiver.
+//! result does not depend on the number of threads), and, once the scene
+//! has been illuminated, illuminates each receiver right after its update.
+//! A move does both in that one pass: a big receiver's removal and
+//! insertion run on one thread while the small ones share the other,
+//! instead of two passes each waiting for the big receiver.
 
 use super::contact::ContactPlanes;
 use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS};
