@@ -90,6 +90,21 @@ impl ConvexGroup {
             Shape::Solid(solid) => solid.umbra_planes(light),
         }
     }
+
+    /// The planes of a solid group's penumbra volume under `light`, each
+    /// with the volume behind it: the points from which the body hides
+    /// part or all of the light, for any receiver (the volume is convex:
+    /// it is where no plane through the point separates the body from the
+    /// light). `None` for a flat group (its polygon's volume planes are
+    /// the group's), for a nearly convex surface that stands for a body
+    /// moved in (that body's penumbra would miss some of the surface's),
+    /// and when the body touches or crosses the light's plane.
+    pub fn penumbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
+        match &self.shape {
+            Shape::Flat(_) => None,
+            Shape::Solid(solid) => solid.penumbra_planes(light),
+        }
+    }
 }
 
 /// The convex groups among `pieces`: `objects[k]` is the object of piece

@@ -35,6 +35,8 @@ pub(super) struct Solid {
     faces: Vec<Plane>,
     /// Each edge once, with the two faces (indices into `faces`) it joins.
     edges: Vec<(GridPoint, GridPoint, u32, u32)>,
+    /// Whether the body is the surface's own solid (not moved in).
+    exact: bool,
 }
 
 impl Solid {
@@ -77,7 +79,7 @@ impl Solid {
             (supports.iter().map(Plane::flipped).collect(), behind)
         };
         if !out.contains(&true) {
-            return Self::with_faces(outlines, faces, vertices);
+            return Self::with_faces(outlines, faces, vertices, true);
         }
         Self::moved_in(&faces, &vertices, &out)
     }
@@ -123,14 +125,16 @@ impl Solid {
         let mut corners: Vec<GridPoint> = hull.iter().flat_map(|(t, _)| *t).collect();
         corners.sort_unstable();
         corners.dedup();
-        Self::with_faces(&triangles, planes, corners)
+        Self::with_faces(&triangles, planes, corners, false)
     }
 
-    /// The solid of a closed convex surface, its faces' planes given.
+    /// The solid of a closed convex surface, its faces' planes given;
+    /// `exact`: the surface's own (not moved in).
     fn with_faces(
         outlines: &[&[GridPoint]],
         faces: Vec<Plane>,
         vertices: Vec<GridPoint>,
+        exact: bool,
     ) -> Option<Self> {
         let edges = edge_set(outlines)?;
         let mut solid_edges = Vec::with_capacity(edges.len() / 2);
@@ -145,7 +149,58 @@ impl Solid {
             vertices,
             faces,
             edges: solid_edges,
+            exact,
         })
+    }
+
+    /// The planes of the body's penumbra volume under `light` (see
+    /// [`super::ConvexGroup::penumbra_planes`]): every plane that separates
+    /// the body from the light is a plane through a face of one with the
+    /// other on or in front, or through an edge of one and a vertex of the
+    /// other; the volume is strictly on the body's side of all of them.
+    pub(super) fn penumbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
+        let support = light.support();
+        if !self.exact
+            || self
+                .vertices
+                .iter()
+                .any(|&p| side_of_point(support, p) != Side::Front)
+        {
+            return None;
+        }
+        let lights: Vec<GridPoint> = light.vertices().collect();
+        // The body behind `plane`, the light on or in front.
+        let separates = |plane: &Plane| {
+            lights
+                .iter()
+                .all(|&w| side_of_point(plane, w) != Side::Back)
+        };
+        let mut planes: Vec<Plane> = vec![support.flipped()];
+        let mut seen: HashSet<Plane> = planes.iter().copied().collect();
+        for face in &self.faces {
+            if separates(face) && seen.insert(*face) {
+                planes.push(*face);
+            }
+        }
+        let light_edges = (0..lights.len()).map(|i| (lights[i], lights[(i + 1) % lights.len()]));
+        let through_edges = self
+            .edges
+            .iter()
+            .flat_map(|&(a, b, _, _)| lights.iter().map(move |&v| Plane::through(a, b, v)));
+        let through_vertices = self.vertices.iter().flat_map(|&p| {
+            light_edges
+                .clone()
+                .map(move |(c, d)| Plane::through(c, d, p))
+        });
+        for plane in through_edges.chain(through_vertices).flatten() {
+            let Some(plane) = self.tangent(plane) else {
+                continue;
+            };
+            if separates(&plane) && seen.insert(plane) {
+                planes.push(plane);
+            }
+        }
+        Some(planes)
     }
 
     /// The planes of the body's umbra volume under `light` (see
@@ -292,5 +347,17 @@ mod tests {
             solid.vertices.len(),
             vertices.len()
         );
+        // The body moved in has its umbra inside the surface's, but its
+        // penumbra would miss some of the surface's: none is given.
+        let g = |x, y, z| GridPoint::new(x, y, z).unwrap();
+        let light = AreaSource::from_grid_points(&[
+            g(-500, 3000, -500),
+            g(500, 3000, -500),
+            g(500, 3000, 500),
+            g(-500, 3000, 500),
+        ])
+        .unwrap();
+        assert!(solid.umbra_planes(&light).is_some());
+        assert!(solid.penumbra_planes(&light).is_none());
     }
 }
