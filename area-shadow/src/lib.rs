@@ -12,7 +12,8 @@
 //! lit, inside the umbra tree it is in umbra, otherwise in penumbra
 //! ([`AreaTrees`], [`shadow_area_light`]). Pieces that form one convex
 //! body ([`convex_groups`]) add the body's umbra too, where they hide the
-//! whole light only together. [`compute_shadows`] runs point, directional
+//! whole light only together; an exactly convex body's penumbra volume is
+//! one convex volume too ([`ConvexGroup::penumbra_planes`]). [`compute_shadows`] runs point, directional
 //! and area lights together, one mask bit each.
 //!
 //! Every plane is a plane through three grid points and every side
