@@ -94,6 +94,29 @@ struct FreshDm {
     illum_seconds: f64,
 }
 
+impl FreshDm {
+    /// Builds and illuminates `objects` under `lights`, timing both.
+    fn build(
+        lights: Vec<DmLight>,
+        objects: Vec<(Vec<ConvexPolygon>, PieceFlags)>,
+        options: DmOptions,
+    ) -> Result<Self> {
+        let build_started = Instant::now();
+        let (mut dm, ids) =
+            DmScene::build_with(lights, objects, options).map_err(|e| Error::Dm(e.to_string()))?;
+        let build_seconds = build_started.elapsed().as_secs_f64();
+        let illum_started = Instant::now();
+        let illum = dm.illuminate();
+        Ok(Self {
+            dm,
+            ids,
+            illum,
+            build_seconds,
+            illum_seconds: illum_started.elapsed().as_secs_f64(),
+        })
+    }
+}
+
 /// A scene's DM-trees, built.
 pub struct DmRun {
     /// The scene on the grid.
@@ -165,37 +188,34 @@ pub fn dm_scene_with(scene: &Scene, options: DmOptions) -> Result<DmRun> {
         .iter()
         .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
         .collect();
-    let build_started = Instant::now();
-    let (mut dm, ids) =
-        DmScene::build_with(lights, objects, options).map_err(|e| Error::Dm(e.to_string()))?;
-    let build = build_started.elapsed().as_secs_f64();
-    let illum_started = Instant::now();
-    let illum = dm.illuminate();
-    let illum_seconds = illum_started.elapsed().as_secs_f64();
-    let objects = ids
-        .into_iter()
-        .zip(groups.into_iter().map(|g| g.0))
-        .collect();
-    let mut run = DmRun {
-        pieces,
-        dm,
-        objects,
-        stats: DmStats {
-            stats: Stats::default(),
-            dm: DmFigures::default(),
-            update: None,
-        },
-    };
-    run.stats = run.figures(
-        build,
-        illum_seconds,
-        &illum,
-        started.elapsed().as_secs_f64(),
-    );
-    Ok(run)
+    let fresh = FreshDm::build(lights, objects, options)?;
+    let groups = groups.into_iter().map(|g| g.0).collect();
+    Ok(DmRun::assemble(pieces, fresh, groups, started))
 }
 
 impl DmRun {
+    /// The run of `fresh` (built from `pieces`, object `k` of the pieces
+    /// `groups[k]`), its figures timed from `started`.
+    fn assemble(pieces: Pieces, fresh: FreshDm, groups: Vec<Vec<usize>>, started: Instant) -> Self {
+        let mut run = DmRun {
+            pieces,
+            dm: fresh.dm,
+            objects: fresh.ids.into_iter().zip(groups).collect(),
+            stats: DmStats {
+                stats: Stats::default(),
+                dm: DmFigures::default(),
+                update: None,
+            },
+        };
+        run.stats = run.figures(
+            fresh.build_seconds,
+            fresh.illum_seconds,
+            &fresh.illum,
+            started.elapsed().as_secs_f64(),
+        );
+        run
+    }
+
     /// The cells as an output mesh (world units; one face per cell), the
     /// receivers in scene order.
     pub fn mesh(&self) -> OutputMesh {
@@ -416,28 +436,8 @@ impl DmRun {
     pub fn rebuilt(&self) -> Result<DmRun> {
         let started = Instant::now();
         let fresh = self.fresh_dm()?;
-        let objects = fresh
-            .ids
-            .into_iter()
-            .zip(self.objects.iter().map(|(_, ks)| ks.clone()))
-            .collect();
-        let mut run = DmRun {
-            pieces: self.pieces.clone(),
-            dm: fresh.dm,
-            objects,
-            stats: DmStats {
-                stats: Stats::default(),
-                dm: DmFigures::default(),
-                update: None,
-            },
-        };
-        run.stats = run.figures(
-            fresh.build_seconds,
-            fresh.illum_seconds,
-            &fresh.illum,
-            started.elapsed().as_secs_f64(),
-        );
-        Ok(run)
+        let groups = self.objects.iter().map(|(_, ks)| ks.clone()).collect();
+        Ok(DmRun::assemble(self.pieces.clone(), fresh, groups, started))
     }
 
     /// The DM-trees of the current state built and illuminated from
@@ -461,20 +461,7 @@ impl DmRun {
                 )
             })
             .collect();
-        let build_started = Instant::now();
-        let (mut dm, ids) =
-            DmScene::build_with(self.dm.lights().to_vec(), objects, self.dm.options())
-                .map_err(|e| Error::Dm(e.to_string()))?;
-        let build_seconds = build_started.elapsed().as_secs_f64();
-        let illum_started = Instant::now();
-        let illum = dm.illuminate();
-        Ok(FreshDm {
-            dm,
-            ids,
-            illum,
-            build_seconds,
-            illum_seconds: illum_started.elapsed().as_secs_f64(),
-        })
+        FreshDm::build(self.dm.lights().to_vec(), objects, self.dm.options())
     }
 
     /// Recomputes the figures after updates (timings of the build kept).
