@@ -426,6 +426,7 @@ fn dm_options(outer_only: bool, deletion: DeletionArg, overlap: OverlapArg) -> D
             OverlapArg::Grid => OverlapKind::Grid,
             OverlapArg::Cube => OverlapKind::Cube,
         },
+        ..DmOptions::default()
     }
 }
 

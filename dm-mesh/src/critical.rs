@@ -87,9 +87,59 @@ pub(crate) fn internal_planes(
     volumes: &VolumePlanes,
     around: &Surroundings,
 ) -> Vec<Critical> {
-    let Some(umbra) = &volumes.umbra else {
-        return Vec::new();
-    };
+    let mut out = Vec::new();
+    if volumes.umbra.is_some() {
+        critical_planes(occluder, light, &[volumes], around, None, &mut out);
+    }
+    out
+}
+
+/// The internal EV and VE discontinuities of a convex body (wholly in
+/// front of the light) that casts one unit in place of its polygons,
+/// given the body's volume planes; `members` are its polygons with some of
+/// the light in front, each with its surroundings. These are the EV
+/// surfaces through a light vertex and an edge the vertex sees on the
+/// body's silhouette, and the VE surfaces through a vertex and a light
+/// edge from where the vertex is on the silhouette, that do not bound the
+/// body's volumes: found member by member as for a polygon (its
+/// surroundings leave out what the body hides on both sides), but from
+/// every member, whether or not the light is all on one side of it. The
+/// wedges are bounded by planes through the body's vertices, the same
+/// from every member, so that an edge or vertex two members share gives
+/// one surface.
+pub(crate) fn body_internal_planes(
+    members: &[(&ConvexPolygon, &Surroundings)],
+    light: &AreaSource,
+    volumes: &VolumePlanes,
+) -> Vec<Critical> {
+    let mut others: Vec<GridPoint> = light.vertices().collect();
+    let mut vertices: Vec<GridPoint> = members
+        .iter()
+        .flat_map(|(m, _)| (0..m.len()).filter_map(|k| m.vertex_grid_point(k)))
+        .collect();
+    vertices.sort_unstable();
+    vertices.dedup();
+    others.extend(vertices);
+    let mut out = Vec::new();
+    for (member, around) in members {
+        critical_planes(member, light, &[volumes], around, Some(&others), &mut out);
+    }
+    out
+}
+
+/// Appends to `out` the EV and VE surfaces of `occluder` (if all of its
+/// vertices are strictly in front of the light) that are neither planes
+/// of `known` volumes, nor the occluder's plane, nor already in `out`.
+/// Wedges are bounded by planes through the light's vertices and `others`
+/// (by default the occluder's vertices).
+fn critical_planes(
+    occluder: &ConvexPolygon,
+    light: &AreaSource,
+    known: &[&VolumePlanes],
+    around: &Surroundings,
+    others: Option<&[GridPoint]>,
+    out: &mut Vec<Critical>,
+) {
     let o: Vec<GridPoint> = (0..occluder.len())
         .filter_map(|k| occluder.vertex_grid_point(k))
         .collect();
@@ -98,28 +148,43 @@ pub(crate) fn internal_planes(
         || o.iter()
             .any(|&p| predicates::side_of_point(light.support(), p) != Side::Front)
     {
-        return Vec::new();
+        return;
     }
-    let others: Vec<GridPoint> = l.iter().chain(&o).copied().collect();
+    let own: Vec<GridPoint>;
+    let others = match others {
+        Some(others) => others,
+        None => {
+            own = l.iter().chain(&o).copied().collect();
+            &own
+        }
+    };
     let known = |plane: &Plane| {
         plane.is_coincident(occluder.support())
-            || volumes
-                .penumbra
-                .iter()
-                .flatten()
-                .any(|q| q.is_coincident(plane))
-            || umbra.iter().any(|q| q.is_coincident(plane))
+            || known.iter().any(|volumes| {
+                volumes
+                    .penumbra
+                    .iter()
+                    .flatten()
+                    .chain(volumes.umbra.iter().flatten())
+                    .any(|q| q.is_coincident(plane))
+            })
     };
-    let mut out: Vec<Critical> = Vec::new();
     // A plane already known (a volume's, or found before) is skipped before
     // its wedge is made.
+    // Surfaces of other members (earlier in `out`) with the same plane
+    // may hold other wedges (two triangles of a face along one line): only
+    // the same wedge is left out.
+    let start = out.len();
     let mut push = |plane: Option<Plane>, wedge: &dyn Fn(&Plane) -> Option<[Plane; 2]>| {
         let Some(plane) = plane else { return };
-        if known(&plane) || out.iter().any(|d| d.plane.is_coincident(&plane)) {
+        if known(&plane) || out[start..].iter().any(|d| d.plane.is_coincident(&plane)) {
             return;
         }
         if let Some(wedge) = wedge(&plane) {
-            out.push(Critical { plane, wedge });
+            let critical = Critical { plane, wedge };
+            if !out[..start].contains(&critical) {
+                out.push(critical);
+            }
         }
     };
     // EV: light vertex v, occluder edge ab; the wedge is the sector at v
@@ -132,8 +197,8 @@ pub(crate) fn internal_planes(
             let (a, b) = (o[i], o[(i + 1) % o.len()]);
             push(Plane::through(v, a, b), &|plane| {
                 Some([
-                    bound(v, a, b, false, plane, &others)?,
-                    bound(v, b, a, false, plane, &others)?,
+                    bound(v, a, b, false, plane, others)?,
+                    bound(v, b, a, false, plane, others)?,
                 ])
             });
         }
@@ -154,17 +219,16 @@ pub(crate) fn internal_planes(
                 Some([
                     match at_c {
                         Some(end) => end.flipped(),
-                        None => bound(p, c, d, true, plane, &others)?,
+                        None => bound(p, c, d, true, plane, others)?,
                     },
                     match at_d {
                         Some(end) => end.flipped(),
-                        None => bound(p, d, c, true, plane, &others)?,
+                        None => bound(p, d, c, true, plane, others)?,
                     },
                 ])
             });
         }
     }
-    out
 }
 
 #[cfg(test)]

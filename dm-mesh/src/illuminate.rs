@@ -27,7 +27,7 @@ use crate::cell::Cell;
 use crate::hash::{KeyMap, KeySet};
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
 use crate::tree::ReceiverDm;
-use bsp_core::{Side, VertexKey};
+use bsp_core::{Side, VertexKey, VertexPosition};
 use illum::{Sidedness, VisiblePart, visible_irradiance};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
@@ -81,7 +81,9 @@ pub struct IllumStats {
     /// Vertex-light pairs whose visible part was computed (case 3).
     pub visibility: usize,
     /// Light/occluder comparisons made by those visibility computations
-    /// (occluders clipped against the light), summed.
+    /// (occluder polygons clipped against the light: of a convex body
+    /// casting one unit, those with the vertex on their outer side),
+    /// summed.
     pub comparisons: usize,
 }
 
@@ -120,9 +122,10 @@ fn cover(cells: &[&Cell], light: usize) -> Cover {
 }
 
 impl IllumStats {
-    /// The figures of evaluating one vertex with `covers` (kept apart
-    /// from the values: a first call evaluates millions of vertices).
-    fn of_evaluation(covers: &[Cover]) -> Self {
+    /// The figures of evaluating one vertex with `covers`, clipping
+    /// `comparisons` occluder polygons (kept apart from the values: a first
+    /// call evaluates millions of vertices).
+    fn of_evaluation(covers: &[Cover], comparisons: usize) -> Self {
         let mut stats = Self {
             evaluated: 1,
             ..Self::default()
@@ -131,12 +134,10 @@ impl IllumStats {
             match cover {
                 Cover::Dark => stats.dark += 1,
                 Cover::Free => stats.unoccluded += 1,
-                Cover::Occluders(units) => {
-                    stats.visibility += 1;
-                    stats.comparisons += units.len();
-                }
+                Cover::Occluders(_) => stats.visibility += 1,
             }
         }
+        stats.comparisons = comparisons;
         stats
     }
 
@@ -308,17 +309,17 @@ pub(crate) fn illuminate_receiver(
         if values.get(v).is_some_and(|value| value.covers == covers) {
             return None;
         }
-        let irradiance = evaluate(
+        let (irradiance, comparisons) = evaluate(
             lights,
             pieces,
             dm,
-            position.to_f64(),
+            &position,
             normal,
             sided,
             &covers,
             scratch,
         );
-        Some((v, VertexValue { covers, irradiance }))
+        Some((v, VertexValue { covers, irradiance }, comparisons))
     };
     let results: Vec<_> = if vertices.len() >= PARALLEL_VERTICES {
         vertices
@@ -330,8 +331,8 @@ pub(crate) fn illuminate_receiver(
         vertices.iter().map(|&v| work(v, scratch)).collect()
     };
     let values = &mut state.values;
-    for (v, value) in results.into_iter().flatten() {
-        stats = stats.add(IllumStats::of_evaluation(&value.covers));
+    for (v, value, comparisons) in results.into_iter().flatten() {
+        stats = stats.add(IllumStats::of_evaluation(&value.covers, comparisons));
         values.insert(v, value);
     }
     // Values of vertices gone since are dropped now and then.
@@ -343,33 +344,36 @@ pub(crate) fn illuminate_receiver(
     stats
 }
 
-/// The irradiance at a vertex at `p` (receiver normal `normal`) with the
-/// covers `covers` of the lights.
+/// The irradiance at a vertex at `position` (receiver normal `normal`)
+/// with the covers `covers` of the lights, and the number of occluder
+/// polygons clipped against a light for it.
 #[allow(clippy::too_many_arguments)] // (the receiver's fixed context, and the vertex)
 fn evaluate(
     lights: &[DmLight],
     pieces: &SlotMap<PieceId, Piece>,
     dm: &ReceiverDm<PieceId>,
-    p: [f64; 3],
+    position: &VertexPosition,
     normal: [f64; 3],
     sided: Sidedness,
     covers: &[Cover],
     scratch: &mut VisiblePart,
-) -> f64 {
+) -> (f64, usize) {
+    let p = position.to_f64();
     let mut irradiance = 0.0;
+    let mut comparisons = 0;
     for (light, cover) in lights.iter().zip(covers) {
         irradiance += match cover {
             Cover::Dark => 0.0,
             Cover::Free => light.illum.irradiance(p, normal, sided),
             Cover::Occluders(units) => {
-                let outlines: SmallVec<[&[[f64; 3]]; 4]> = units
-                    .iter()
-                    .filter_map(|u| dm.unit(*u))
-                    .map(|(o, _)| pieces[o].outline.as_slice())
-                    .collect();
+                let mut outlines: SmallVec<[&[[f64; 3]]; 8]> = SmallVec::new();
+                for (o, _) in units.iter().filter_map(|u| dm.unit(*u)) {
+                    pieces[o].occluder_outlines(pieces, position, &mut outlines);
+                }
+                comparisons += outlines.len();
                 visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
             }
         };
     }
-    irradiance
+    (irradiance, comparisons)
 }

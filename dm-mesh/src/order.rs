@@ -8,14 +8,14 @@
 //! `AreaTrees::build`, units go nearest the light's centroid first, a
 //! stand-in for front-to-back that finds most of the culling.
 
-use crate::scene::{DmLight, Piece, PieceId, PieceKind};
+use crate::scene::{DmLight, Piece, PieceId};
 use slotmap::SlotMap;
 
 /// The units (occluder, light) of `candidates` that cast any shadow, light
 /// by light, each light's nearest first (ties by position in
-/// `candidates`), bodies after polygons (a body hides the whole light only
-/// where its polygons hide it together; merged last, it culls none of
-/// them).
+/// `candidates`), bodies that cast only their umbra after the rest (such a
+/// body hides the whole light only where its polygons hide it together;
+/// merged last, it culls none of them).
 pub(crate) fn unit_order(
     lights: &[DmLight],
     pieces: &SlotMap<PieceId, Piece>,
@@ -30,8 +30,7 @@ pub(crate) fn unit_order(
             .filter(|(_, k)| !pieces[**k].volumes[i].volumes.penumbra.is_empty())
             .map(|(n, k)| {
                 let piece = &pieces[*k];
-                let body = piece.kind == PieceKind::Body;
-                (body, distance2(piece.polygon.centroid(), centre), n)
+                (piece.umbra_only(i), distance2(piece.centre(), centre), n)
             })
             .collect();
         list.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));

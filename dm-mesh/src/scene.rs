@@ -7,7 +7,7 @@ use crate::illuminate::{IllumStats, ReceiverIllum};
 use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
 use crate::tree::{Deletion, ReceiverDm};
 use area_shadow::AreaSource;
-use bsp_core::ConvexPolygon;
+use bsp_core::{ConvexPolygon, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use svbsp::PieceFlags;
@@ -70,9 +70,12 @@ pub(crate) enum PieceKind {
     /// object casts shadows.
     Polygon,
     /// A convex body that several polygons of an object form
-    /// ([`area_shadow::convex_groups`]): an occluder whose one volume is
-    /// the body's umbra (its polygons may hide the whole light only
-    /// together), and no receiver.
+    /// ([`area_shadow::convex_groups`]), an occluder and no receiver: under
+    /// a light where it is exactly convex and wholly in front of the light
+    /// ([`area_shadow::ConvexGroup::penumbra_planes`]) it casts in place of
+    /// its polygons (one unit with the body's penumbra, umbra and internal
+    /// discontinuities); under the others its one volume is its umbra (its
+    /// polygons may hide the whole light only together).
     Body,
 }
 
@@ -91,6 +94,57 @@ pub(crate) struct Piece {
     /// Grid-unit vertices (of a body, all its polygons'), for illumination
     /// and the overlap structure.
     pub(crate) outline: Vec<[f64; 3]>,
+    /// Of a body: its polygons, each with its plane facing out of the
+    /// body. Empty for a polygon.
+    pub(crate) members: Vec<(PieceId, Plane)>,
+    /// Of a body: the lights (bit per light) under which it casts in place
+    /// of its polygons.
+    pub(crate) whole: u32,
+}
+
+impl Piece {
+    /// Appends the polygons that hide what this occluder hides of a light
+    /// from a vertex at `position`: a polygon's own outline, or a body's
+    /// polygons that have the vertex strictly on their outer side (a
+    /// segment from the light through the body leaves it through one of
+    /// them; at most three of a box, and never the receiver's own).
+    pub(crate) fn occluder_outlines<'p>(
+        &'p self,
+        pieces: &'p SlotMap<PieceId, Piece>,
+        position: &VertexPosition,
+        out: &mut impl Extend<&'p [[f64; 3]]>,
+    ) {
+        match self.kind {
+            PieceKind::Polygon => out.extend([self.outline.as_slice()]),
+            PieceKind::Body => out.extend(
+                self.members
+                    .iter()
+                    .filter(|(_, outward)| position.side(outward) == Side::Front)
+                    .map(|&(m, _)| pieces[m].outline.as_slice()),
+            ),
+        }
+    }
+
+    /// Whether under light `light` this piece is a body that casts its
+    /// umbra only (its polygons casting their own units).
+    pub(crate) fn umbra_only(&self, light: usize) -> bool {
+        self.kind == PieceKind::Body && self.whole & (1 << light) == 0
+    }
+
+    /// Where the piece is, for the order units merge in: a polygon's
+    /// centroid, the mean of a body's vertices.
+    pub(crate) fn centre(&self) -> [f64; 3] {
+        match self.kind {
+            PieceKind::Polygon => self.polygon.centroid(),
+            PieceKind::Body => {
+                let n = self.outline.len().max(1) as f64;
+                let sum = self.outline.iter().fold([0.0; 3], |acc, v| {
+                    [acc[0] + v[0], acc[1] + v[1], acc[2] + v[2]]
+                });
+                sum.map(|c| c / n)
+            }
+        }
+    }
 }
 
 #[derive(Debug, Clone, Default)]
@@ -117,6 +171,14 @@ pub struct DmOptions {
     /// by default a uniform grid of boxes (it localises better than the
     /// paper's shadow overlap cube on the benchmark scenes).
     pub overlap: OverlapKind,
+    /// Whether a closed, exactly convex body wholly in front of a light
+    /// casts one unit under it in place of its polygons (default): its
+    /// penumbra volume is one convex set of planes, so a box puts one
+    /// region in each receiver's tree instead of one per face facing the
+    /// light, and none of the faces' penumbra planes through edges the
+    /// light sees on both sides. Off, each polygon casts its own unit and
+    /// the body only its umbra (the paper's way).
+    pub convex_bodies: bool,
 }
 
 impl Default for DmOptions {
@@ -125,6 +187,7 @@ impl Default for DmOptions {
             internal_discontinuities: true,
             deletion: Deletion::default(),
             overlap: OverlapKind::default(),
+            convex_bodies: true,
         }
     }
 }

@@ -14,7 +14,8 @@
 //! `DM_COST_OUTER=1` leaves the internal discontinuities out (as
 //! `paper-tables dm` builds the hall); `DM_COST_OVERLAP=cube` pairs
 //! occluders and receivers through the shadow overlap cube instead of the
-//! grid.
+//! grid; `DM_COST_FACES=1` has each polygon of a convex body cast its
+//! own unit (the body only its umbra).
 
 use std::process::ExitCode;
 
@@ -58,6 +59,7 @@ fn main() -> ExitCode {
             Ok("cube") => OverlapKind::Cube,
             _ => OverlapKind::Grid,
         },
+        convex_bodies: std::env::var_os("DM_COST_FACES").is_none(),
     };
     let mut run = dm_scene_with(&scene, options).expect("the scene builds");
     let (id, ks) = run.objects[index].clone();

@@ -13,17 +13,18 @@
 
 use super::contact::ContactPlanes;
 use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS};
-use crate::critical::{UnitPlanes, internal_planes};
+use crate::critical::{UnitPlanes, body_internal_planes, internal_planes};
 use crate::error::Error;
 use crate::hash::KeyMap;
 use crate::illuminate::{IllumStats, ReceiverIllum, illuminate_receiver};
 use crate::order::unit_order;
-use crate::surface::surroundings;
+use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
 use area_shadow::{
     AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, volume_planes,
 };
-use bsp_core::ConvexPolygon;
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{ConvexPolygon, Plane};
 use illum::VisiblePart;
 use rayon::prelude::*;
 use slotmap::SlotMap;
@@ -67,19 +68,43 @@ impl DmScene {
         } else {
             Vec::new()
         };
-        for (i, polygon) in polygons.into_iter().enumerate() {
+        // Per body and light, its penumbra volume where it casts in place
+        // of its polygons; per polygon, the lights its body casts for it.
+        let penumbras: Vec<Vec<Option<Vec<Plane>>>> = bodies
+            .iter()
+            .map(|body| {
+                sources
+                    .iter()
+                    .map(|light| {
+                        self.options
+                            .convex_bodies
+                            .then(|| body.penumbra_planes(light))
+                            .flatten()
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut in_body = vec![0_u32; polygons.len()];
+        for (body, penumbra) in bodies.iter().zip(&penumbras) {
+            let whole = light_mask(penumbra.iter().map(Option::is_some));
+            for &k in &body.pieces {
+                in_body[k as usize] |= whole;
+            }
+        }
+        for (i, polygon) in polygons.iter().enumerate() {
             let volumes = sources
                 .iter()
-                .map(|light| {
+                .enumerate()
+                .map(|(l, light)| {
                     let turned_away = flags.closed_surface
                         && matches!(
                             light.side_of(polygon.support()),
                             SourceSide::Back | SourceSide::In
                         );
-                    if flags.casts_shadows && !turned_away {
-                        let volumes = volume_planes(&polygon, light);
+                    if flags.casts_shadows && !turned_away && in_body[i] & (1 << l) == 0 {
+                        let volumes = volume_planes(polygon, light);
                         let internal = if self.options.internal_discontinuities {
-                            internal_planes(&polygon, light, &volumes, &surface[i])
+                            internal_planes(polygon, light, &volumes, &surface[i])
                         } else {
                             Vec::new()
                         };
@@ -92,12 +117,14 @@ impl DmScene {
             let outline = polygon.vertices_f64();
             let receiver = ReceiverDm::new(polygon.clone(), flags.two_sided, &sources);
             let key = self.pieces.insert(Piece {
-                polygon,
+                polygon: polygon.clone(),
                 kind: PieceKind::Polygon,
                 object: id,
                 flags,
                 volumes,
                 outline,
+                members: Vec::new(),
+                whole: 0,
             });
             self.receivers.insert(key, receiver);
             self.illum.insert(key, ReceiverIllum::default());
@@ -108,52 +135,113 @@ impl DmScene {
         self.objects[id].pieces.extend(&added);
         let made: Vec<PieceId> = bodies
             .iter()
-            .map(|body| self.attach_body(id, flags, body, &added, &sources))
+            .zip(penumbras)
+            .map(|(body, penumbra)| {
+                let members: Vec<(&ConvexPolygon, Option<&Surroundings>)> = body
+                    .pieces
+                    .iter()
+                    .map(|&k| (&polygons[k as usize], surface.get(k as usize)))
+                    .collect();
+                let cast = BodyCast {
+                    body,
+                    members: &members,
+                    keys: body.pieces.iter().map(|&k| added[k as usize]).collect(),
+                    penumbra,
+                };
+                self.attach_body(id, flags, cast, &sources)
+            })
             .collect();
         self.objects[id].bodies.extend(&made);
         added.extend(made);
         Ok(added)
     }
 
-    /// Creates the occluder of a body that the object's pieces `of`
-    /// (indexed by the group) form.
+    /// Creates the occluder of a body of the object's polygons.
     fn attach_body(
         &mut self,
         id: ObjectId,
         flags: PieceFlags,
-        body: &ConvexGroup,
-        of: &[PieceId],
+        cast: BodyCast,
         sources: &[AreaSource],
     ) -> PieceId {
-        let members: Vec<&Piece> = body
-            .pieces
+        let BodyCast {
+            body,
+            members,
+            keys,
+            penumbra,
+        } = cast;
+        // Each member's plane facing out of the body (the surface may face
+        // in), and the lights with some area in front of it.
+        let outward: Vec<Plane> = members
             .iter()
-            .map(|&k| &self.pieces[of[k as usize]])
+            .map(|(polygon, _)| {
+                let support = polygon.support();
+                let inside = members
+                    .iter()
+                    .flat_map(|(other, _)| (0..other.len()).filter_map(|k| other.vertex_grid_point(k)))
+                    .map(|p| side_of_point(support, p))
+                    .find(|side| *side != Side::On);
+                if inside == Some(Side::Front) {
+                    support.flipped()
+                } else {
+                    *support
+                }
+            })
+            .collect();
+        let facing: Vec<u32> = outward
+            .iter()
+            .map(|plane| {
+                light_mask(sources.iter().map(|light| {
+                    !matches!(light.side_of(plane), SourceSide::Back | SourceSide::In)
+                }))
+            })
             .collect();
         let volumes = sources
             .iter()
-            .map(|light| match body.umbra_planes(light) {
-                // All of the region is umbra: penumbra and umbra planes alike.
-                Some(planes) => UnitPlanes {
-                    volumes: VolumePlanes {
-                        penumbra: [planes.clone()].into_iter().collect(),
-                        umbra: Some(planes),
+            .zip(&penumbra)
+            .enumerate()
+            .map(|(l, (light, penumbra))| {
+                let umbra = body.umbra_planes(light);
+                match (penumbra, umbra) {
+                    (Some(penumbra), umbra @ Some(_)) => {
+                        let volumes = VolumePlanes {
+                            penumbra: [penumbra.clone()].into_iter().collect(),
+                            umbra,
+                        };
+                        let lit: Vec<(&ConvexPolygon, &Surroundings)> = members
+                            .iter()
+                            .zip(&facing)
+                            .filter(|(_, f)| *f & (1 << l) != 0)
+                            .filter_map(|((polygon, around), _)| Some((*polygon, (*around)?)))
+                            .collect();
+                        let internal = body_internal_planes(&lit, light, &volumes);
+                        UnitPlanes { volumes, internal }
+                    }
+                    // All of the region is umbra: penumbra and umbra planes
+                    // alike.
+                    (_, Some(planes)) => UnitPlanes {
+                        volumes: VolumePlanes {
+                            penumbra: [planes.clone()].into_iter().collect(),
+                            umbra: Some(planes),
+                        },
+                        internal: Vec::new(),
                     },
-                    internal: Vec::new(),
-                },
-                None => UnitPlanes::default(),
+                    (_, None) => UnitPlanes::default(),
+                }
             })
             .collect();
         let piece = Piece {
-            polygon: members[0].polygon.clone(),
+            polygon: members[0].0.clone(),
             kind: PieceKind::Body,
             object: id,
             flags,
             volumes,
             outline: members
                 .iter()
-                .flat_map(|m| m.outline.iter().copied())
+                .flat_map(|(polygon, _)| polygon.vertices_f64())
                 .collect(),
+            members: keys.into_iter().zip(outward).collect(),
+            whole: light_mask(penumbra.iter().map(Option::is_some)),
         };
         let key = self.pieces.insert(piece);
         self.overlap.insert(key, &self.pieces[key], false);
@@ -372,6 +460,26 @@ impl DmScene {
             self.lit_since = self.lit_since.add(rest);
         }
     }
+}
+
+/// A convex body of an object's polygons, as [`DmScene::attach_body`]
+/// makes its occluder from it.
+struct BodyCast<'a> {
+    body: &'a ConvexGroup,
+    /// Its polygons, with their surroundings when internal discontinuities
+    /// are made.
+    members: &'a [(&'a ConvexPolygon, Option<&'a Surroundings>)],
+    /// Their pieces.
+    keys: Vec<PieceId>,
+    /// Per light, its penumbra volume if it casts in place of its polygons.
+    penumbra: Vec<Option<Vec<Plane>>>,
+}
+
+/// One bit per light, set where `set` holds.
+fn light_mask(set: impl Iterator<Item = bool>) -> u32 {
+    set.enumerate()
+        .filter(|(_, on)| *on)
+        .fold(0, |mask, (l, _)| mask | 1 << l)
 }
 
 /// A unit's volume planes: of a piece of the scene, or of one that left.
