@@ -40,12 +40,23 @@
 //! count, so results are identical with any number of threads; call the
 //! library inside `rayon::ThreadPool::install` to choose it.
 //!
-//! Polygons of one object that form a convex body (a triangulated sphere,
-//! a box whose faces were cut, [`area_shadow::convex_groups`]) may hide
-//! the whole light only together: each such body is an occluder of its
-//! own whose one volume is its umbra, so that cells where nothing of the
-//! light is seen are umbra; it is added, removed and moved with its
-//! object.
+//! Polygons of one object that form a convex body (a box, a triangulated
+//! sphere, [`area_shadow::convex_groups`]) hide light together. Under a
+//! light the body is wholly in front of, an exactly convex closed body
+//! casts one unit in place of its polygons
+//! ([`DmOptions::convex_bodies`]): its penumbra volume is one convex set of
+//! planes (those separating it from the light,
+//! [`area_shadow::ConvexGroup::penumbra_planes`]), its umbra the body's,
+//! its internal discontinuities the EV and VE surfaces of its silhouette,
+//! and a vertex's visible part is computed past the body's polygons that
+//! have the vertex on their outer side. A box then puts one region into a
+//! floor's tree per light instead of one per face facing the light (the
+//! 3k-box hall: 39 % fewer cells), and no face's penumbra plane through an
+//! edge between two faces the light sees. Otherwise (a body that reaches
+//! the light's plane, or a nearly convex surface) each polygon casts its
+//! own unit and the body is an occluder whose one volume is its umbra, so
+//! that cells where nothing of the light is seen are umbra. Bodies are
+//! added, removed and moved with their object.
 //!
 //! Inside each penumbra the internal EV and VE discontinuities (a light
 //! vertex crossing an occluder edge, an occluder vertex crossing a light

@@ -122,5 +122,6 @@ fn seen_from(receiver: &Piece, light: &AreaSource, planes: &UnitPlanes) -> Optio
         None => return Some(seen),
     }
     seen.volumes.umbra = planes.volumes.umbra.as_deref().and_then(adapt);
+    seen.internal.clone_from(&planes.internal);
     Some(seen)
 }

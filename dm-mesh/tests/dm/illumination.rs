@@ -11,7 +11,7 @@ use rand::{Rng, SeedableRng};
 use svbsp::PieceFlags;
 
 /// Every vertex's value against `illum` given every caster of the scene.
-fn check_vertices(t: &TestScene, scene: &mut DmScene) -> Result<(), TestCaseError> {
+pub fn check_vertices(t: &TestScene, scene: &mut DmScene) -> Result<(), TestCaseError> {
     let stats = scene.illuminate();
     prop_assert_eq!(stats.evaluated, stats.vertices);
     let corners: Vec<[f64; 3]> = t.light.vertices().map(|g| g.to_f64()).collect();

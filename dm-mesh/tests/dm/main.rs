@@ -1,5 +1,6 @@
 //! Integration tests of dm-mesh, one binary.
 
+mod bodies;
 mod classes;
 mod common;
 mod illumination;

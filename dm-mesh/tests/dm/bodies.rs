@@ -1,0 +1,83 @@
+//! A convex body that casts one unit in place of its polygons
+//! (`DmOptions::convex_bodies`): cells and irradiance against the oracles,
+//! and against each polygon casting its own unit.
+
+use crate::classes::check_against_area_shadow_with;
+use crate::common::{TestScene, class_areas, floor, triangulated_cuboid};
+use crate::illumination::check_vertices;
+use dm_mesh::{DmOptions, DmScene, ObjectId, PieceId};
+use proptest::prelude::*;
+use std::collections::BTreeSet;
+use svbsp::PieceFlags;
+
+/// The units on `receiver` whose occluder is a piece of `object`.
+fn units_of(scene: &DmScene, receiver: PieceId, object: ObjectId) -> BTreeSet<u32> {
+    let dm = scene.receiver(receiver).unwrap();
+    dm.cells()
+        .flat_map(|(_, cell)| cell.entries().iter().map(|e| e.unit))
+        .filter(|&u| {
+            dm.unit_source(u)
+                .is_some_and(|(o, _)| scene.piece_object(o) == Some(object))
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A box whose faces may be cut into triangles and may face in, over a
+    /// floor, below a light.
+    #[test]
+    fn a_convex_body_casts_one_unit(
+        lo in prop::array::uniform3(-80_i64..40),
+        size in prop::array::uniform3(6_i64..70),
+        cuts in any::<u32>(),
+        inward in any::<bool>(),
+        light in (-120_i64..60, -120_i64..60, 20_i64..100, 20_i64..100, 180_i64..260, -40_i64..40),
+    ) {
+        let lo = [lo[0], 40 + lo[1].rem_euclid(60), lo[2]];
+        let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
+        let (x0, z0, w, d, h, tilt) = light;
+        let mut faces = triangulated_cuboid(lo, hi, cuts);
+        if inward {
+            faces = faces.iter().map(|f| f.flipped()).collect();
+        }
+        // (A surface facing in is not a closed surface's outside.)
+        let flags = PieceFlags { closed_surface: !inward, ..PieceFlags::default() };
+        let t = TestScene {
+            objects: vec![(vec![floor(500)], PieceFlags::default()), (faces, flags)],
+            light: crate::common::light(x0, z0, w, d, h, tilt),
+        };
+        let below = t.objects[1].0.iter().all(|f| (0..f.len()).all(|k| {
+            t.light.side_of_point(f.vertex_grid_point(k).unwrap()) == bsp_core::Side::Front
+        }));
+        prop_assume!(below);
+        let (mut scene, ids) = t.build();
+        scene.check_invariants().map_err(TestCaseError::fail)?;
+        let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+        check_vertices(&t, &mut scene)?;
+        check_against_area_shadow_with(&t, DmOptions::default())?;
+        // Each polygon casting its own unit: the same classes.
+        let per_polygon = DmOptions { convex_bodies: false, ..DmOptions::default() };
+        let (faces_scene, faces_ids) = t.build_with(per_polygon);
+        // One unit on the floor where the polygons put any.
+        let faces_floor = faces_scene.object_pieces(faces_ids[0]).unwrap()[0];
+        prop_assert_eq!(
+            units_of(&scene, floor_piece, ids[1]).len(),
+            usize::from(!units_of(&faces_scene, faces_floor, faces_ids[1]).is_empty())
+        );
+        for (k, (id, other)) in ids.iter().zip(&faces_ids).enumerate() {
+            let (a, b) = (scene.object_pieces(*id).unwrap(), faces_scene.object_pieces(*other).unwrap());
+            for (pa, pb) in a.iter().zip(b) {
+                let (x, y) = (class_areas(&scene, *pa), class_areas(&faces_scene, *pb));
+                let scale = scene.piece_polygon(*pa).unwrap().area();
+                for c in 0..3 {
+                    prop_assert!(
+                        (x[c] - y[c]).abs() <= 1e-9 * scale,
+                        "object {k} class {c}: one unit {} vs per polygon {}", x[c], y[c]
+                    );
+                }
+            }
+        }
+    }
+}
