@@ -81,9 +81,8 @@ pub struct IllumStats {
     /// Vertex-light pairs whose visible part was computed (case 3).
     pub visibility: usize,
     /// Light/occluder comparisons made by those visibility computations
-    /// (occluder polygons clipped against the light: of a convex body
-    /// casting one unit, those with the vertex on their outer side),
-    /// summed.
+    /// (occluder polygons clipped against the light, a convex body's
+    /// that can hide it from the vertex each), summed.
     pub comparisons: usize,
 }
 
@@ -361,14 +360,14 @@ fn evaluate(
     let p = position.to_f64();
     let mut irradiance = 0.0;
     let mut comparisons = 0;
-    for (light, cover) in lights.iter().zip(covers) {
+    for (i, (light, cover)) in lights.iter().zip(covers).enumerate() {
         irradiance += match cover {
             Cover::Dark => 0.0,
             Cover::Free => light.illum.irradiance(p, normal, sided),
             Cover::Occluders(units) => {
                 let mut outlines: SmallVec<[&[[f64; 3]]; 8]> = SmallVec::new();
                 for (o, _) in units.iter().filter_map(|u| dm.unit(*u)) {
-                    pieces[o].occluder_outlines(pieces, position, &mut outlines);
+                    pieces[o].occluder_outlines(pieces, i, position, &mut outlines);
                 }
                 comparisons += outlines.len();
                 visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)

@@ -10,6 +10,7 @@ use area_shadow::AreaSource;
 use bsp_core::{ConvexPolygon, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
+use smallvec::SmallVec;
 use svbsp::PieceFlags;
 
 mod contact;
@@ -94,35 +95,53 @@ pub(crate) struct Piece {
     /// Grid-unit vertices (of a body, all its polygons'), for illumination
     /// and the overlap structure.
     pub(crate) outline: Vec<[f64; 3]>,
-    /// Of a body: its polygons, each with its plane facing out of the
-    /// body. Empty for a polygon.
-    pub(crate) members: Vec<(PieceId, Plane)>,
+    /// Of a body: its polygons. Empty for a polygon.
+    pub(crate) members: Vec<Member>,
     /// Of a body: the lights (bit per light) under which it casts in place
     /// of its polygons.
     pub(crate) whole: u32,
 }
 
 impl Piece {
-    /// Appends the polygons that hide what this occluder hides of a light
-    /// from a vertex at `position`: a polygon's own outline, or a body's
-    /// polygons that have the vertex strictly on their outer side (a
-    /// segment from the light through the body leaves it through one of
-    /// them; at most three of a box, and never the receiver's own).
+    /// Appends the polygons that hide what this occluder hides of light
+    /// `light` from a vertex at `position`: a polygon's own outline, or
+    /// some of a body's polygons. From outside the body, those with the
+    /// vertex strictly on their outer side (a segment from the light
+    /// through the body leaves it through one of them: at most three of a
+    /// box); from its boundary (a two-sided receiver of the body's own
+    /// sees light from behind, through the body), those with some of the
+    /// light in front that do not hold the vertex (the segment enters
+    /// through one of them).
     pub(crate) fn occluder_outlines<'p>(
         &'p self,
         pieces: &'p SlotMap<PieceId, Piece>,
+        light: usize,
         position: &VertexPosition,
         out: &mut impl Extend<&'p [[f64; 3]]>,
     ) {
-        match self.kind {
-            PieceKind::Polygon => out.extend([self.outline.as_slice()]),
-            PieceKind::Body => out.extend(
-                self.members
-                    .iter()
-                    .filter(|(_, outward)| position.side(outward) == Side::Front)
-                    .map(|&(m, _)| pieces[m].outline.as_slice()),
-            ),
+        if self.kind == PieceKind::Polygon {
+            out.extend([self.outline.as_slice()]);
+            return;
         }
+        let sides: SmallVec<[Side; 8]> = self
+            .members
+            .iter()
+            .map(|m| position.side(&m.outward))
+            .collect();
+        let outside = sides.contains(&Side::Front);
+        out.extend(
+            self.members
+                .iter()
+                .zip(sides)
+                .filter(|(m, side)| {
+                    if outside {
+                        *side == Side::Front
+                    } else {
+                        *side != Side::On && m.facing & (1 << light) != 0
+                    }
+                })
+                .map(|(m, _)| pieces[m.piece].outline.as_slice()),
+        );
     }
 
     /// Whether under light `light` this piece is a body that casts its
@@ -145,6 +164,16 @@ impl Piece {
             }
         }
     }
+}
+
+/// A polygon of a body.
+#[derive(Debug, Clone)]
+pub(crate) struct Member {
+    pub(crate) piece: PieceId,
+    /// Its plane, facing out of the body.
+    pub(crate) outward: Plane,
+    /// The lights (bit per light) with some of their area in front of it.
+    pub(crate) facing: u32,
 }
 
 #[derive(Debug, Clone, Default)]

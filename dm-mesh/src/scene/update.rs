@@ -12,7 +12,9 @@
 //! instead of two passes each waiting for the big receiver.
 
 use super::contact::ContactPlanes;
-use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS};
+use super::{
+    DmScene, MAX_TILE_DEPTH, Member, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS,
+};
 use crate::critical::{UnitPlanes, body_internal_planes, internal_planes};
 use crate::error::Error;
 use crate::hash::KeyMap;
@@ -240,7 +242,16 @@ impl DmScene {
                 .iter()
                 .flat_map(|(polygon, _)| polygon.vertices_f64())
                 .collect(),
-            members: keys.into_iter().zip(outward).collect(),
+            members: keys
+                .into_iter()
+                .zip(outward)
+                .zip(facing)
+                .map(|((piece, outward), facing)| Member {
+                    piece,
+                    outward,
+                    facing,
+                })
+                .collect(),
             whole: light_mask(penumbra.iter().map(Option::is_some)),
         };
         let key = self.pieces.insert(piece);

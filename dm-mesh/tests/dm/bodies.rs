@@ -25,14 +25,15 @@ fn units_of(scene: &DmScene, receiver: PieceId, object: ObjectId) -> BTreeSet<u3
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(64))]
 
-    /// A box whose faces may be cut into triangles and may face in, over a
-    /// floor, below a light.
+    /// A box whose faces may be cut into triangles, may face in and may be
+    /// two-sided, over a floor, below a light.
     #[test]
     fn a_convex_body_casts_one_unit(
         lo in prop::array::uniform3(-80_i64..40),
         size in prop::array::uniform3(6_i64..70),
         cuts in any::<u32>(),
         inward in any::<bool>(),
+        two_sided in any::<bool>(),
         light in (-120_i64..60, -120_i64..60, 20_i64..100, 20_i64..100, 180_i64..260, -40_i64..40),
     ) {
         let lo = [lo[0], 40 + lo[1].rem_euclid(60), lo[2]];
@@ -42,8 +43,10 @@ proptest! {
         if inward {
             faces = faces.iter().map(|f| f.flipped()).collect();
         }
-        // (A surface facing in is not a closed surface's outside.)
-        let flags = PieceFlags { closed_surface: !inward, ..PieceFlags::default() };
+        // (A surface facing in is not a closed surface's outside.) A
+        // two-sided face of the body sees light through the body from
+        // behind when the light is on both sides of it.
+        let flags = PieceFlags { closed_surface: !inward, two_sided, ..PieceFlags::default() };
         let t = TestScene {
             objects: vec![(vec![floor(500)], PieceFlags::default()), (faces, flags)],
             light: crate::common::light(x0, z0, w, d, h, tilt),
@@ -80,4 +83,47 @@ proptest! {
             }
         }
     }
+}
+
+/// A two-sided box under a light on both sides of one of its faces, and a
+/// square whose shadow cuts that face into cells: from behind, the face
+/// sees the light's part on its back only through the box, so the box
+/// hides it (its polygons the light enters by, not those facing the
+/// vertex, which lies on the box).
+#[test]
+fn a_two_sided_face_of_a_body_sees_nothing_through_it() {
+    use crate::common::{cuboid, gp};
+    let square = bsp_core::ConvexPolygon::from_grid_points(
+        &[gp(25, 90, 10), gp(35, 90, 10), gp(35, 90, 30), gp(25, 90, 30)],
+        0,
+    )
+    .unwrap();
+    let two_sided = PieceFlags {
+        two_sided: true,
+        ..PieceFlags::default()
+    };
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(500)], PieceFlags::default()),
+            (cuboid([0, 40, 0], [40, 80, 40]), two_sided),
+            (vec![square], PieceFlags::default()),
+        ],
+        light: crate::common::light(-50, -50, 100, 100, 200, 0),
+    };
+    let (mut scene, ids) = t.build();
+    // The face at x = 40 has cells of the square's shadow, so vertices
+    // inside it.
+    let side = scene
+        .object_pieces(ids[1])
+        .unwrap()
+        .iter()
+        .copied()
+        .find(|&p| {
+            let polygon = scene.piece_polygon(p).unwrap();
+            polygon.vertices_f64().iter().all(|v| v[0] == 40.0)
+        })
+        .unwrap();
+    let dm = scene.receiver(side).unwrap();
+    assert!(units_of(&scene, side, ids[2]).len() == 1 && dm.cells().count() > 2);
+    check_vertices(&t, &mut scene).unwrap();
 }
