@@ -3,8 +3,9 @@
 //! re-additions.
 //!
 //! [`DmCase::arbitrary`] decodes a floor, up to four objects of one or two
-//! triangles with small coordinates (they touch, share planes and cross
-//! the light's plane), a parallelogram light, up to six operations and the
+//! triangles or four (a tetrahedron, a convex body casting one unit) with
+//! small coordinates (they touch, share planes and cross the light's
+//! plane), a parallelogram light, up to six operations and the
 //! way removals work (the paper's local deletion unless the last byte asks
 //! for collapse and re-merge). [`check_dm_update`] applies them and checks
 //! the scene's invariants after every one (trees, meshes, and every cell's
@@ -34,7 +35,8 @@ pub enum Op {
 /// code.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DmCase {
-    /// Objects of one or two triangles over the floor.
+    /// Objects of one or two triangles, or of a tetrahedron's four, over
+    /// the floor.
     pub objects: Vec<Vec<[[i64; 3]; 3]>>,
     /// The light: corner, extents along x and z, rise along x.
     pub light: ([i64; 3], [i64; 2], i64),
@@ -52,20 +54,27 @@ impl<'a> Arbitrary<'a> for DmCase {
     fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
         let n = u.int_in_range(1_usize..=4)?;
         let mut objects = Vec::with_capacity(n);
+        let mut point = |u: &mut Unstructured<'a>| -> arbitrary::Result<[i64; 3]> {
+            Ok([
+                coordinate(u, -8, 8)?,
+                coordinate(u, 1, 14)?,
+                coordinate(u, -8, 8)?,
+            ])
+        };
         for _ in 0..n {
-            let k = u.int_in_range(1_usize..=2)?;
-            let mut triangles = Vec::with_capacity(k);
-            for _ in 0..k {
-                let mut t = [[0_i64; 3]; 3];
-                for p in &mut t {
-                    *p = [
-                        coordinate(u, -8, 8)?,
-                        coordinate(u, 1, 14)?,
-                        coordinate(u, -8, 8)?,
-                    ];
+            // One or two triangles, or (3) a tetrahedron: a convex body.
+            let k = u.int_in_range(1_usize..=3)?;
+            let triangles = if k == 3 {
+                let [a, b, c, d] = [point(u)?, point(u)?, point(u)?, point(u)?];
+                // Consistently oriented: every edge once each way.
+                vec![[a, b, c], [a, c, d], [a, d, b], [b, d, c]]
+            } else {
+                let mut triangles = Vec::with_capacity(k);
+                for _ in 0..k {
+                    triangles.push([point(u)?, point(u)?, point(u)?]);
                 }
-                triangles.push(t);
-            }
+                triangles
+            };
             objects.push(triangles);
         }
         let corner = [
