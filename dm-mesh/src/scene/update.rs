@@ -94,28 +94,11 @@ impl DmScene {
             }
         }
         for (i, polygon) in polygons.iter().enumerate() {
-            let volumes = sources
-                .iter()
-                .enumerate()
-                .map(|(l, light)| {
-                    let turned_away = flags.closed_surface
-                        && matches!(
-                            light.side_of(polygon.support()),
-                            SourceSide::Back | SourceSide::In
-                        );
-                    if flags.casts_shadows && !turned_away && in_body[i] & (1 << l) == 0 {
-                        let volumes = volume_planes(polygon, light);
-                        let internal = if self.options.internal_discontinuities {
-                            internal_planes(polygon, light, &volumes, &surface[i])
-                        } else {
-                            Vec::new()
-                        };
-                        UnitPlanes { volumes, internal }
-                    } else {
-                        UnitPlanes::default()
-                    }
-                })
-                .collect();
+            let volumes = if flags.casts_shadows {
+                self.polygon_units(polygon, flags, in_body[i], surface.get(i), &sources)
+            } else {
+                vec![UnitPlanes::default(); sources.len()]
+            };
             let outline = polygon.vertices_f64();
             let receiver = ReceiverDm::new(polygon.clone(), flags.two_sided, &sources);
             let key = self.pieces.insert(Piece {
@@ -156,6 +139,40 @@ impl DmScene {
         self.objects[id].bodies.extend(&made);
         added.extend(made);
         Ok(added)
+    }
+
+    /// What a polygon of a shadow-casting object casts under each light:
+    /// nothing under a light it is turned away from (on a closed surface)
+    /// or whose bit `in_body` sets (its body casts in its place), else its
+    /// own volumes and internal discontinuities (given its surroundings).
+    fn polygon_units(
+        &self,
+        polygon: &ConvexPolygon,
+        flags: PieceFlags,
+        in_body: u32,
+        around: Option<&Surroundings>,
+        sources: &[AreaSource],
+    ) -> Vec<UnitPlanes> {
+        sources
+            .iter()
+            .enumerate()
+            .map(|(l, light)| {
+                let turned_away = flags.closed_surface
+                    && matches!(
+                        light.side_of(polygon.support()),
+                        SourceSide::Back | SourceSide::In
+                    );
+                if turned_away || in_body & (1 << l) != 0 {
+                    return UnitPlanes::default();
+                }
+                let volumes = volume_planes(polygon, light);
+                let internal = match around {
+                    Some(around) => internal_planes(polygon, light, &volumes, around),
+                    None => Vec::new(),
+                };
+                UnitPlanes { volumes, internal }
+            })
+            .collect()
     }
 
     /// Creates the occluder of a body of the object's polygons.
