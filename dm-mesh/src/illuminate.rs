@@ -309,14 +309,7 @@ pub(crate) fn illuminate_receiver(
             return None;
         }
         let (irradiance, comparisons) = evaluate(
-            lights,
-            pieces,
-            dm,
-            &position,
-            normal,
-            sided,
-            &covers,
-            scratch,
+            lights, pieces, dm, &position, normal, sided, &covers, scratch,
         );
         Some((v, VertexValue { covers, irradiance }, comparisons))
     };

@@ -197,7 +197,9 @@ impl DmScene {
                 let support = polygon.support();
                 let inside = members
                     .iter()
-                    .flat_map(|(other, _)| (0..other.len()).filter_map(|k| other.vertex_grid_point(k)))
+                    .flat_map(|(other, _)| {
+                        (0..other.len()).filter_map(|k| other.vertex_grid_point(k))
+                    })
                     .map(|p| side_of_point(support, p))
                     .find(|side| *side != Side::On);
                 if inside == Some(Side::Front) {

@@ -94,7 +94,12 @@ proptest! {
 fn a_two_sided_face_of_a_body_sees_nothing_through_it() {
     use crate::common::{cuboid, gp};
     let square = bsp_core::ConvexPolygon::from_grid_points(
-        &[gp(25, 90, 10), gp(35, 90, 10), gp(35, 90, 30), gp(25, 90, 30)],
+        &[
+            gp(25, 90, 10),
+            gp(35, 90, 10),
+            gp(35, 90, 30),
+            gp(25, 90, 30),
+        ],
         0,
     )
     .unwrap();

@@ -14,7 +14,10 @@ fn check_against_area_shadow(t: &TestScene) -> Result<(), TestCaseError> {
     check_against_area_shadow_with(t, DmOptions::default())
 }
 
-pub fn check_against_area_shadow_with(t: &TestScene, options: DmOptions) -> Result<(), TestCaseError> {
+pub fn check_against_area_shadow_with(
+    t: &TestScene,
+    options: DmOptions,
+) -> Result<(), TestCaseError> {
     let (scene, ids) = t.build_with(options);
     scene.check_invariants().map_err(TestCaseError::fail)?;
     let polygons = t.polygons();
