@@ -54,7 +54,7 @@ impl<'a> Arbitrary<'a> for DmCase {
     fn arbitrary(u: &mut Unstructured<'a>) -> arbitrary::Result<Self> {
         let n = u.int_in_range(1_usize..=4)?;
         let mut objects = Vec::with_capacity(n);
-        let mut point = |u: &mut Unstructured<'a>| -> arbitrary::Result<[i64; 3]> {
+        let point = |u: &mut Unstructured<'a>| -> arbitrary::Result<[i64; 3]> {
             Ok([
                 coordinate(u, -8, 8)?,
                 coordinate(u, 1, 14)?,
