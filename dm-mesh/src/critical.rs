@@ -181,9 +181,14 @@ fn critical_planes(
             return;
         }
         if let Some(wedge) = wedge(&plane) {
-            let critical = Critical { plane, wedge };
-            if !out[..start].contains(&critical) {
-                out.push(critical);
+            // (From the two members along an edge, the plane comes
+            // oriented either way, the wedge's planes in either order.)
+            let same = |d: &Critical| {
+                d.plane.is_coincident(&plane)
+                    && (d.wedge == wedge || d.wedge == [wedge[1], wedge[0]])
+            };
+            if !out[..start].iter().any(same) {
+                out.push(Critical { plane, wedge });
             }
         }
     };
