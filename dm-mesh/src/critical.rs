@@ -17,10 +17,11 @@
 //! family; the others are the internal ones. Each comes with two planes
 //! through its wedge's bounding lines (each through three grid points),
 //! oriented with the wedge behind, so a cell is cut only where the wedge
-//! crosses it. Only an occluder wholly in front of the light, with the
-//! light wholly on one side of it, gets internal discontinuities here, and
-//! none through an edge or vertex its object's surface hides on both sides
-//! ([`crate::surface`]). A VE wedge is cast only from the part of the light
+//! crosses it. Only a polygon wholly in front of the light, with the
+//! light wholly on one side of it, gets internal discontinuities here (a
+//! convex body casting one unit gets those of all its polygons the light
+//! reaches, [`body_internal_planes`]), and none through an edge or vertex
+//! its object's surface hides on both sides ([`crate::surface`]). A VE wedge is cast only from the part of the light
 //! edge that can see its vertex on the silhouette: where the stretch of
 //! the edge that sees it hidden ends, the plane of the face it leaves holds
 //! the vertex and bounds the wedge in place of the plane through the
