@@ -132,3 +132,87 @@ fn a_two_sided_face_of_a_body_sees_nothing_through_it() {
     assert!(units_of(&scene, side, ids[2]).len() == 1 && dm.cells().count() > 2);
     check_vertices(&t, &mut scene).unwrap();
 }
+
+/// Per receiver and light, the lit, penumbra and umbra areas.
+fn areas_per_light(scene: &DmScene, pieces: &[PieceId], lights: usize) -> Vec<[f64; 3]> {
+    let mut out = Vec::new();
+    for &piece in pieces {
+        let dm = scene.receiver(piece).unwrap();
+        for light in 0..lights {
+            let mut a = [0.0; 3];
+            for (f, cell) in dm.cells() {
+                let area = dm.mesh().face_polygon(f, 0).unwrap().area();
+                a[dm.class(cell, light) as usize] += area;
+            }
+            out.push(a);
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// Two lights, one of whose planes may cut the box (the box then casts
+    /// one unit under the other light only): per light the same classes
+    /// as each polygon casting its own unit, and the same irradiance
+    /// where both meshes have a vertex.
+    #[test]
+    fn a_body_under_two_lights_agrees_with_its_polygons(
+        lo in prop::array::uniform3(-60_i64..40),
+        size in prop::array::uniform3(6_i64..60),
+        cuts in any::<u32>(),
+        high in (-120_i64..60, -120_i64..60, 20_i64..100, 20_i64..100, 180_i64..260),
+        low in (-120_i64..60, -120_i64..60, 20_i64..100, 20_i64..100, 40_i64..120),
+    ) {
+        use dm_mesh::DmLight;
+        let lo = [lo[0], 20 + lo[1].rem_euclid(40), lo[2]];
+        let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
+        let closed = PieceFlags { closed_surface: true, ..PieceFlags::default() };
+        let objects = vec![
+            (vec![floor(500)], PieceFlags::default()),
+            (triangulated_cuboid(lo, hi, cuts), closed),
+        ];
+        let lights: Vec<DmLight> = [high, low]
+            .into_iter()
+            .map(|(x, z, w, d, h)| DmLight::new(crate::common::light(x, z, w, d, h, 0), 1.0).unwrap())
+            .collect();
+        let build = |convex_bodies| {
+            let options = DmOptions { convex_bodies, ..DmOptions::default() };
+            let (mut scene, ids) = DmScene::build_with(lights.clone(), objects.clone(), options).unwrap();
+            scene.check_invariants().unwrap();
+            scene.illuminate();
+            let pieces: Vec<PieceId> =
+                ids.iter().flat_map(|id| scene.object_pieces(*id).unwrap().to_vec()).collect();
+            (scene, pieces)
+        };
+        let ((one, pa), (each, pb)) = (build(true), build(false));
+        let (a, b) = (areas_per_light(&one, &pa, 2), areas_per_light(&each, &pb, 2));
+        for (k, (x, y)) in a.iter().zip(&b).enumerate() {
+            let scale = one.piece_polygon(pa[k / 2]).unwrap().area();
+            for c in 0..3 {
+                prop_assert!(
+                    (x[c] - y[c]).abs() <= 1e-9 * scale,
+                    "receiver {} light {} class {c}: one unit {} vs per polygon {}", k / 2, k % 2, x[c], y[c]
+                );
+            }
+        }
+        for (&ra, &rb) in pa.iter().zip(&pb) {
+            let (da, db) = (one.receiver(ra).unwrap(), each.receiver(rb).unwrap());
+            let mut at = std::collections::HashMap::new();
+            for (v, vertex) in db.mesh().vertices() {
+                at.insert(vertex.position.to_f64().map(f64::to_bits), each.vertex_irradiance(rb, v).unwrap());
+            }
+            for (v, vertex) in da.mesh().vertices() {
+                let p = vertex.position.to_f64();
+                let got = one.vertex_irradiance(ra, v).unwrap();
+                if let Some(&want) = at.get(&p.map(f64::to_bits)) {
+                    prop_assert!(
+                        (got - want).abs() <= 1e-9 * got.abs().max(want.abs()) + 1e-12,
+                        "vertex {p:?}: one unit {got} vs per polygon {want}"
+                    );
+                }
+            }
+        }
+    }
+}
