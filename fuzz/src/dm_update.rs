@@ -399,6 +399,35 @@ mod tests {
         }
     }
 
+    /// Two tetrahedra (convex bodies, each casting one unit while wholly
+    /// in front of the light) and a triangle, moved into each other and up
+    /// through the light's plane, removed and added back, both ways of
+    /// deleting.
+    #[test]
+    fn tetrahedra_move_through_each_other_and_the_light() {
+        let tetra = |[a, b, c, d]: [[i64; 3]; 4]| vec![[a, b, c], [a, c, d], [a, d, b], [b, d, c]];
+        for deletion in [Deletion::Local, Deletion::Collapse] {
+            let case = DmCase {
+                objects: vec![
+                    tetra([[-4, 3, -3], [3, 4, -2], [0, 6, 4], [-1, 8, 0]]),
+                    tetra([[2, 2, 1], [6, 3, 2], [4, 5, -3], [3, 7, 2]]),
+                    vec![[[-6, 1, 6], [6, 1, 6], [0, 2, -7]]],
+                ],
+                light: ([-3, 11, -3], [4, 5], 1),
+                ops: vec![
+                    Op::Move(0, [2, 0, 1]),
+                    Op::Move(1, [-3, 2, 0]),
+                    Op::Move(0, [0, 2, 0]),
+                    Op::Remove(2),
+                    Op::Move(0, [1, 2, -1]),
+                    Op::ReAdd(2),
+                ],
+                deletion,
+            };
+            check_dm_update(&case).unwrap();
+        }
+    }
+
     /// Found by libFuzzer: a cell split after it culled a unit keeps the
     /// unit in both parts, one of which no longer meets its penumbra; a
     /// removal must still find it (it floods from the cells it reaches).
