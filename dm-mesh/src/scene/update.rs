@@ -22,9 +22,7 @@ use crate::illuminate::{IllumStats, ReceiverIllum, illuminate_receiver};
 use crate::order::unit_order;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
-use area_shadow::{
-    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, volume_planes,
-};
+use area_shadow::{AreaSource, SourceSide, VolumePlanes, convex_groups, volume_planes};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, Plane};
 use illum::VisiblePart;
@@ -70,25 +68,28 @@ impl DmScene {
         } else {
             Vec::new()
         };
-        // Per body and light, its penumbra volume where it casts in place
-        // of its polygons; per polygon, the lights its body casts for it.
-        let penumbras: Vec<Vec<Option<Vec<Plane>>>> = bodies
+        // Per body and light, its umbra volume, and its penumbra volume
+        // where it casts in place of its polygons (never without an umbra:
+        // cells where it hides all of the light must be umbra); per
+        // polygon, the lights its body casts for it.
+        let volumes: Vec<Vec<BodyVolumes>> = bodies
             .iter()
             .map(|body| {
                 sources
                     .iter()
                     .map(|light| {
-                        self.options
-                            .convex_bodies
+                        let umbra = body.umbra_planes(light);
+                        let penumbra = (self.options.convex_bodies && umbra.is_some())
                             .then(|| body.penumbra_planes(light))
-                            .flatten()
+                            .flatten();
+                        (penumbra, umbra)
                     })
                     .collect()
             })
             .collect();
         let mut in_body = vec![0_u32; polygons.len()];
-        for (body, penumbra) in bodies.iter().zip(&penumbras) {
-            let whole = light_mask(penumbra.iter().map(Option::is_some));
+        for (body, volumes) in bodies.iter().zip(&volumes) {
+            let whole = light_mask(volumes.iter().map(|(penumbra, _)| penumbra.is_some()));
             for &k in &body.pieces {
                 in_body[k as usize] |= whole;
             }
@@ -120,18 +121,17 @@ impl DmScene {
         self.objects[id].pieces.extend(&added);
         let made: Vec<PieceId> = bodies
             .iter()
-            .zip(penumbras)
-            .map(|(body, penumbra)| {
+            .zip(volumes)
+            .map(|(body, volumes)| {
                 let members: Vec<(&ConvexPolygon, Option<&Surroundings>)> = body
                     .pieces
                     .iter()
                     .map(|&k| (&polygons[k as usize], surface.get(k as usize)))
                     .collect();
                 let cast = BodyCast {
-                    body,
                     members: &members,
                     keys: body.pieces.iter().map(|&k| added[k as usize]).collect(),
-                    penumbra,
+                    volumes,
                 };
                 self.attach_body(id, flags, cast, &sources)
             })
@@ -184,10 +184,9 @@ impl DmScene {
         sources: &[AreaSource],
     ) -> PieceId {
         let BodyCast {
-            body,
             members,
             keys,
-            penumbra,
+            volumes: body_volumes,
         } = cast;
         // Each member's plane facing out of the body (the surface may face
         // in), and the lights with some area in front of it.
@@ -217,38 +216,36 @@ impl DmScene {
                 }))
             })
             .collect();
+        let whole = light_mask(body_volumes.iter().map(|(penumbra, _)| penumbra.is_some()));
         let volumes = sources
             .iter()
-            .zip(&penumbra)
+            .zip(body_volumes)
             .enumerate()
-            .map(|(l, (light, penumbra))| {
-                let umbra = body.umbra_planes(light);
-                match (penumbra, umbra) {
-                    (Some(penumbra), umbra @ Some(_)) => {
-                        let volumes = VolumePlanes {
-                            penumbra: [penumbra.clone()].into_iter().collect(),
-                            umbra,
-                        };
-                        let lit: Vec<(&ConvexPolygon, &Surroundings)> = members
-                            .iter()
-                            .zip(&facing)
-                            .filter(|(_, f)| *f & (1 << l) != 0)
-                            .filter_map(|((polygon, around), _)| Some((*polygon, (*around)?)))
-                            .collect();
-                        let internal = body_internal_planes(&lit, light, &volumes);
-                        UnitPlanes { volumes, internal }
-                    }
-                    // All of the region is umbra: penumbra and umbra planes
-                    // alike.
-                    (_, Some(planes)) => UnitPlanes {
-                        volumes: VolumePlanes {
-                            penumbra: [planes.clone()].into_iter().collect(),
-                            umbra: Some(planes),
-                        },
-                        internal: Vec::new(),
-                    },
-                    (_, None) => UnitPlanes::default(),
+            .map(|(l, (light, found))| match found {
+                (Some(penumbra), umbra @ Some(_)) => {
+                    let volumes = VolumePlanes {
+                        penumbra: [penumbra].into_iter().collect(),
+                        umbra,
+                    };
+                    let lit: Vec<(&ConvexPolygon, &Surroundings)> = members
+                        .iter()
+                        .zip(&facing)
+                        .filter(|(_, f)| *f & (1 << l) != 0)
+                        .filter_map(|((polygon, around), _)| Some((*polygon, (*around)?)))
+                        .collect();
+                    let internal = body_internal_planes(&lit, light, &volumes);
+                    UnitPlanes { volumes, internal }
                 }
+                // All of the region is umbra: penumbra and umbra planes
+                // alike.
+                (_, Some(planes)) => UnitPlanes {
+                    volumes: VolumePlanes {
+                        penumbra: [planes.clone()].into_iter().collect(),
+                        umbra: Some(planes),
+                    },
+                    internal: Vec::new(),
+                },
+                (_, None) => UnitPlanes::default(),
             })
             .collect();
         let piece = Piece {
@@ -271,7 +268,7 @@ impl DmScene {
                     facing,
                 })
                 .collect(),
-            whole: light_mask(penumbra.iter().map(Option::is_some)),
+            whole,
         };
         let key = self.pieces.insert(piece);
         self.overlap.insert(key, &self.pieces[key], false);
@@ -492,17 +489,20 @@ impl DmScene {
     }
 }
 
+/// A body's penumbra volume under a light if it casts in place of its
+/// polygons, and its umbra volume if it has one.
+type BodyVolumes = (Option<Vec<Plane>>, Option<Vec<Plane>>);
+
 /// A convex body of an object's polygons, as [`DmScene::attach_body`]
 /// makes its occluder from it.
 struct BodyCast<'a> {
-    body: &'a ConvexGroup,
     /// Its polygons, with their surroundings when internal discontinuities
     /// are made.
     members: &'a [(&'a ConvexPolygon, Option<&'a Surroundings>)],
     /// Their pieces.
     keys: Vec<PieceId>,
-    /// Per light, its penumbra volume if it casts in place of its polygons.
-    penumbra: Vec<Option<Vec<Plane>>>,
+    /// Per light, its volumes.
+    volumes: Vec<BodyVolumes>,
 }
 
 /// One bit per light, set where `set` holds.
