@@ -21,8 +21,9 @@
 //! light wholly on one side of it, gets internal discontinuities here (a
 //! convex body casting one unit gets those of all its polygons the light
 //! reaches, [`body_internal_planes`]), and none through an edge or vertex
-//! its object's surface hides on both sides ([`crate::surface`]). A VE wedge is cast only from the part of the light
-//! edge that can see its vertex on the silhouette: where the stretch of
+//! its object's surface hides on both sides ([`crate::surface`]). A VE
+//! wedge is cast only from the part of the light edge that can see its
+//! vertex on the silhouette: where the stretch of
 //! the edge that sees it hidden ends, the plane of the face it leaves holds
 //! the vertex and bounds the wedge in place of the plane through the
 //! edge's end.
@@ -90,7 +91,7 @@ pub(crate) fn internal_planes(
 ) -> Vec<Critical> {
     let mut out = Vec::new();
     if volumes.umbra.is_some() {
-        critical_planes(occluder, light, &[volumes], around, None, &mut out);
+        critical_planes(occluder, light, volumes, around, None, &mut out);
     }
     out
 }
@@ -123,20 +124,20 @@ pub(crate) fn body_internal_planes(
     others.extend(vertices);
     let mut out = Vec::new();
     for (member, around) in members {
-        critical_planes(member, light, &[volumes], around, Some(&others), &mut out);
+        critical_planes(member, light, volumes, around, Some(&others), &mut out);
     }
     out
 }
 
 /// Appends to `out` the EV and VE surfaces of `occluder` (if all of its
 /// vertices are strictly in front of the light) that are neither planes
-/// of `known` volumes, nor the occluder's plane, nor already in `out`.
+/// of the `known` volumes, nor the occluder's plane, nor already in `out`.
 /// Wedges are bounded by planes through the light's vertices and `others`
 /// (by default the occluder's vertices).
 fn critical_planes(
     occluder: &ConvexPolygon,
     light: &AreaSource,
-    known: &[&VolumePlanes],
+    known: &VolumePlanes,
     around: &Surroundings,
     others: Option<&[GridPoint]>,
     out: &mut Vec<Critical>,
@@ -161,20 +162,18 @@ fn critical_planes(
     };
     let known = |plane: &Plane| {
         plane.is_coincident(occluder.support())
-            || known.iter().any(|volumes| {
-                volumes
-                    .penumbra
-                    .iter()
-                    .flatten()
-                    .chain(volumes.umbra.iter().flatten())
-                    .any(|q| q.is_coincident(plane))
-            })
+            || known
+                .penumbra
+                .iter()
+                .flatten()
+                .chain(known.umbra.iter().flatten())
+                .any(|q| q.is_coincident(plane))
     };
-    // A plane already known (a volume's, or found before) is skipped before
-    // its wedge is made.
-    // Surfaces of other members (earlier in `out`) with the same plane
-    // may hold other wedges (two triangles of a face along one line): only
-    // the same wedge is left out.
+    // A plane already known (a volume's, or found before for this
+    // occluder) is skipped before its wedge is made. Surfaces of other
+    // members of a body (earlier in `out`) with the same plane may hold
+    // other wedges (two triangles of a face along one line): only the same
+    // wedge is left out.
     let start = out.len();
     let mut push = |plane: Option<Plane>, wedge: &dyn Fn(&Plane) -> Option<[Plane; 2]>| {
         let Some(plane) = plane else { return };

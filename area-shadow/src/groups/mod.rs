@@ -91,6 +91,16 @@ impl ConvexGroup {
         }
     }
 
+    /// The support plane `support` of one of the group's pieces, turned to
+    /// face out of the body (a closed surface may face in); a flat group's
+    /// as it is.
+    pub fn outward(&self, support: &Plane) -> Plane {
+        match &self.shape {
+            Shape::Flat(_) => *support,
+            Shape::Solid(solid) => solid.outward(support),
+        }
+    }
+
     /// The planes of a solid group's penumbra volume under `light`, each
     /// with the volume behind it: the points from which the body hides
     /// part or all of the light, for any receiver (the volume is convex:

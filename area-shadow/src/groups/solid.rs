@@ -37,6 +37,8 @@ pub(super) struct Solid {
     edges: Vec<(GridPoint, GridPoint, u32, u32)>,
     /// Whether the body is the surface's own solid (not moved in).
     exact: bool,
+    /// Whether the surface's pieces face into the body.
+    faces_in: bool,
 }
 
 impl Solid {
@@ -73,15 +75,27 @@ impl Solid {
             return None;
         }
         let count = |flags: &[bool]| flags.iter().filter(|f| **f).count();
-        let (faces, out): (Vec<Plane>, Vec<bool>) = if count(&ahead) <= count(&behind) {
-            (supports.to_vec(), ahead)
-        } else {
+        let faces_in = count(&ahead) > count(&behind);
+        let (faces, out): (Vec<Plane>, Vec<bool>) = if faces_in {
             (supports.iter().map(Plane::flipped).collect(), behind)
+        } else {
+            (supports.to_vec(), ahead)
         };
-        if !out.contains(&true) {
-            return Self::with_faces(outlines, faces, vertices, true);
+        let solid = if out.contains(&true) {
+            Self::moved_in(&faces, &vertices, &out)
+        } else {
+            Self::with_faces(outlines, faces, vertices, true)
+        };
+        solid.map(|solid| Self { faces_in, ..solid })
+    }
+
+    /// A piece's support plane turned to face out of the body.
+    pub(super) fn outward(&self, support: &Plane) -> Plane {
+        if self.faces_in {
+            support.flipped()
+        } else {
+            *support
         }
-        Self::moved_in(&faces, &vertices, &out)
     }
 
     /// The hull of the surface's vertices, those marked `out` (in front of
@@ -150,6 +164,7 @@ impl Solid {
             faces,
             edges: solid_edges,
             exact,
+            faces_in: false,
         })
     }
 

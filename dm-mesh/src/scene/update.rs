@@ -22,8 +22,9 @@ use crate::illuminate::{IllumStats, ReceiverIllum, illuminate_receiver};
 use crate::order::unit_order;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
-use area_shadow::{AreaSource, SourceSide, VolumePlanes, convex_groups, volume_planes};
-use bsp_core::predicates::{Side, side_of_point};
+use area_shadow::{
+    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, volume_planes,
+};
 use bsp_core::{ConvexPolygon, Plane};
 use illum::VisiblePart;
 use rayon::prelude::*;
@@ -129,6 +130,7 @@ impl DmScene {
                     .map(|&k| (&polygons[k as usize], surface.get(k as usize)))
                     .collect();
                 let cast = BodyCast {
+                    body,
                     members: &members,
                     keys: body.pieces.iter().map(|&k| added[k as usize]).collect(),
                     volumes,
@@ -184,29 +186,16 @@ impl DmScene {
         sources: &[AreaSource],
     ) -> PieceId {
         let BodyCast {
+            body,
             members,
             keys,
             volumes: body_volumes,
         } = cast;
-        // Each member's plane facing out of the body (the surface may face
-        // in), and the lights with some area in front of it.
+        // Each member's plane facing out of the body, and the lights with
+        // some area in front of it.
         let outward: Vec<Plane> = members
             .iter()
-            .map(|(polygon, _)| {
-                let support = polygon.support();
-                let inside = members
-                    .iter()
-                    .flat_map(|(other, _)| {
-                        (0..other.len()).filter_map(|k| other.vertex_grid_point(k))
-                    })
-                    .map(|p| side_of_point(support, p))
-                    .find(|side| *side != Side::On);
-                if inside == Some(Side::Front) {
-                    support.flipped()
-                } else {
-                    *support
-                }
-            })
+            .map(|(polygon, _)| body.outward(polygon.support()))
             .collect();
         let facing: Vec<u32> = outward
             .iter()
@@ -496,6 +485,7 @@ type BodyVolumes = (Option<Vec<Plane>>, Option<Vec<Plane>>);
 /// A convex body of an object's polygons, as [`DmScene::attach_body`]
 /// makes its occluder from it.
 struct BodyCast<'a> {
+    body: &'a ConvexGroup,
     /// Its polygons, with their surroundings when internal discontinuities
     /// are made.
     members: &'a [(&'a ConvexPolygon, Option<&'a Surroundings>)],

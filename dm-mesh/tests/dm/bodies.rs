@@ -3,7 +3,7 @@
 //! and against each polygon casting its own unit.
 
 use crate::classes::check_against_area_shadow_with;
-use crate::common::{TestScene, class_areas, floor, triangulated_cuboid};
+use crate::common::{TestScene, class_areas, floor, light_class_areas, triangulated_cuboid};
 use crate::illumination::check_vertices;
 use dm_mesh::{DmOptions, DmScene, ObjectId, PieceId};
 use proptest::prelude::*;
@@ -135,19 +135,10 @@ fn a_two_sided_face_of_a_body_sees_nothing_through_it() {
 
 /// Per receiver and light, the lit, penumbra and umbra areas.
 fn areas_per_light(scene: &DmScene, pieces: &[PieceId], lights: usize) -> Vec<[f64; 3]> {
-    let mut out = Vec::new();
-    for &piece in pieces {
-        let dm = scene.receiver(piece).unwrap();
-        for light in 0..lights {
-            let mut a = [0.0; 3];
-            for (f, cell) in dm.cells() {
-                let area = dm.mesh().face_polygon(f, 0).unwrap().area();
-                a[dm.class(cell, light) as usize] += area;
-            }
-            out.push(a);
-        }
-    }
-    out
+    pieces
+        .iter()
+        .flat_map(|&piece| (0..lights).map(move |light| light_class_areas(scene, piece, light)))
+        .collect()
 }
 
 proptest! {

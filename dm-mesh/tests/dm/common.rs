@@ -227,11 +227,16 @@ pub fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
 
 /// Area of each class (lit, penumbra, umbra) on a receiver for light 0.
 pub fn class_areas(scene: &DmScene, piece: PieceId) -> [f64; 3] {
+    light_class_areas(scene, piece, 0)
+}
+
+/// The lit, penumbra and umbra areas of a receiver under light `light`.
+pub fn light_class_areas(scene: &DmScene, piece: PieceId, light: usize) -> [f64; 3] {
     let dm = scene.receiver(piece).unwrap();
     let mut out = [0.0; 3];
     for (f, cell) in dm.cells() {
         let area = dm.mesh().face_polygon(f, 0).unwrap().area();
-        out[match dm.class(cell, 0) {
+        out[match dm.class(cell, light) {
             CellClass::Lit => 0,
             CellClass::Penumbra => 1,
             CellClass::Umbra => 2,
