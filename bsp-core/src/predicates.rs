@@ -499,18 +499,28 @@ impl Pencil {
         })
     }
 
-    /// Whether `q` holds the line, exactly.
-    pub fn holds(&self, q: &Plane) -> bool {
+    /// `false` when no plane with normal `normal` (a plane's normal
+    /// converted to `f64`, which is exact) can hold the line: its normal
+    /// is certainly not orthogonal to the line. The first test of
+    /// [`Self::holds`], for callers that keep normals apart from their
+    /// planes to scan many quickly.
+    #[inline]
+    pub fn may_hold(&self, normal: [f64; 3]) -> bool {
         // The filter of `dot_sign`, the direction rounded once: most
         // planes do not hold the line, and are told so here.
-        let normal = q.normal().map(|c| c as f64);
         let (mut estimate, mut permanent) = (0.0_f64, 0.0_f64);
         for (&n, &d) in normal.iter().zip(&self.rounded) {
             let term = n * d;
             estimate += term;
             permanent += term.abs();
         }
-        if estimate.abs() > 8.0 * U * permanent {
+        estimate.abs() <= 8.0 * U * permanent
+    }
+
+    /// Whether `q` holds the line, exactly.
+    pub fn holds(&self, q: &Plane) -> bool {
+        let normal = q.normal().map(|c| c as f64);
+        if !self.may_hold(normal) {
             return false;
         }
         // Past the filter `|nq . direction| < 2^110` (see `dot_sign`): the

@@ -30,17 +30,87 @@
 
 use crate::surface::Surroundings;
 use area_shadow::{AreaSource, VolumePlanes};
-use bsp_core::predicates::{self, Side};
+use bsp_core::predicates::{self, Pencil, Side};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 
 /// What one occluder merges into a receiver under one light: its volume
-/// planes and its internal discontinuities.
+/// planes and its internal discontinuities. Made by [`UnitPlanes::new`]
+/// (the planes are not to change after).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(crate) struct UnitPlanes {
     /// Penumbra and umbra volume planes.
     pub(crate) volumes: VolumePlanes,
     /// Internal EV / VE planes with their wedges.
     pub(crate) internal: Vec<Critical>,
+    /// The normal of every plane above, internal, penumbra and umbra in
+    /// that order, converted to `f64` (exactly: components below 2^51),
+    /// side by side: [`Self::has_plane_on`] scans them all where a node
+    /// of a DM-tree may go, and most are told apart by the normal alone.
+    normals: Vec<[f64; 3]>,
+}
+
+impl UnitPlanes {
+    pub(crate) fn new(volumes: VolumePlanes, internal: Vec<Critical>) -> Self {
+        let normals = internal
+            .iter()
+            .map(|c| &c.plane)
+            .chain(volumes.penumbra.iter().flatten())
+            .chain(volumes.umbra.iter().flatten())
+            .map(|p| p.normal().map(|c| c as f64))
+            .collect();
+        Self {
+            volumes,
+            internal,
+            normals,
+        }
+    }
+
+    /// Whether one of the unit's discontinuity planes is `line` (either
+    /// orientation) or, given `trace` (where `line` meets the receiver),
+    /// holds that trace; the penumbra planes looked at only with
+    /// `penumbra`, the umbra planes only with `umbra`.
+    pub(crate) fn has_plane_on(
+        &self,
+        line: &Plane,
+        trace: Option<&Pencil>,
+        penumbra: bool,
+        umbra: bool,
+    ) -> bool {
+        let line_normal = line.normal().map(|c| c as f64);
+        // A plane coincident with `line` holds its trace too; without a
+        // trace, only a normal equal or opposite to `line`'s is possible.
+        let on = |normal: &[f64; 3], plane: &Plane| match trace {
+            Some(t) => t.may_hold(*normal) && (plane.is_coincident(line) || t.holds(plane)),
+            None => {
+                (*normal == line_normal || *normal == line_normal.map(|c| -c))
+                    && plane.is_coincident(line)
+            }
+        };
+        let (internal, rest) = self.normals.split_at(self.internal.len());
+        if internal
+            .iter()
+            .zip(&self.internal)
+            .any(|(n, c)| on(n, &c.plane))
+        {
+            return true;
+        }
+        let penumbra_planes = self.volumes.penumbra.iter().flatten();
+        let (penumbra_normals, umbra_normals) = rest.split_at(penumbra_planes.clone().count());
+        let mut penumbra_on = penumbra_normals.iter().zip(penumbra_planes);
+        let mut umbra_on = umbra_normals
+            .iter()
+            .zip(self.volumes.umbra.iter().flatten());
+        debug_assert!(
+            penumbra || !penumbra_on.clone().any(|(n, p)| on(n, p)),
+            "a single penumbra part's plane between cells that both list its unit"
+        );
+        debug_assert!(
+            umbra || !umbra_on.clone().any(|(n, p)| on(n, p)),
+            "an umbra plane between cells in that umbra"
+        );
+        (penumbra && penumbra_on.any(|(n, p)| on(n, p)))
+            || (umbra && umbra_on.any(|(n, p)| on(n, p)))
+    }
 }
 
 /// An internal critical plane and its wedge.

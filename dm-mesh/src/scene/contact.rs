@@ -20,7 +20,7 @@
 use super::{Piece, PieceId, PieceKind};
 use crate::critical::UnitPlanes;
 use crate::hash::KeyMap;
-use area_shadow::{AreaSource, SourceSide};
+use area_shadow::{AreaSource, SourceSide, VolumePlanes};
 use bsp_core::Plane;
 
 /// Body units whose planes a receiver sees adapted.
@@ -115,13 +115,13 @@ fn seen_from(receiver: &Piece, light: &AreaSource, planes: &UnitPlanes) -> Optio
         }
         Some(out)
     };
-    let mut seen = UnitPlanes::default();
-    match planes.volumes.penumbra.iter().map(|l| adapt(l)).collect() {
-        Some(parts) => seen.volumes.penumbra = parts,
+    let Some(penumbra) = planes.volumes.penumbra.iter().map(|l| adapt(l)).collect() else {
         // No region here: no volume (an empty unit merges nothing).
-        None => return Some(seen),
-    }
-    seen.volumes.umbra = planes.volumes.umbra.as_deref().and_then(adapt);
-    seen.internal.clone_from(&planes.internal);
-    Some(seen)
+        return Some(UnitPlanes::default());
+    };
+    let volumes = VolumePlanes {
+        penumbra,
+        umbra: planes.volumes.umbra.as_deref().and_then(adapt),
+    };
+    Some(UnitPlanes::new(volumes, planes.internal.clone()))
 }

@@ -172,7 +172,7 @@ impl DmScene {
                     Some(around) => internal_planes(polygon, light, &volumes, around),
                     None => Vec::new(),
                 };
-                UnitPlanes { volumes, internal }
+                UnitPlanes::new(volumes, internal)
             })
             .collect()
     }
@@ -223,17 +223,17 @@ impl DmScene {
                         .filter_map(|((polygon, around), _)| Some((*polygon, (*around)?)))
                         .collect();
                     let internal = body_internal_planes(&lit, light, &volumes);
-                    UnitPlanes { volumes, internal }
+                    UnitPlanes::new(volumes, internal)
                 }
                 // All of the region is umbra: penumbra and umbra planes
                 // alike.
-                (_, Some(planes)) => UnitPlanes {
-                    volumes: VolumePlanes {
+                (_, Some(planes)) => UnitPlanes::new(
+                    VolumePlanes {
                         penumbra: [planes.clone()].into_iter().collect(),
                         umbra: Some(planes),
                     },
-                    internal: Vec::new(),
-                },
+                    Vec::new(),
+                ),
                 (_, None) => UnitPlanes::default(),
             })
             .collect();

@@ -93,7 +93,7 @@ pub(crate) fn occluders(rng: &mut Pcg64, n: usize) -> Vec<UnitPlanes> {
             continue;
         }
         let internal = internal_planes(&polygon, &light, &volumes, &Surroundings::default());
-        out.push(UnitPlanes { volumes, internal });
+        out.push(UnitPlanes::new(volumes, internal));
     }
     out
 }

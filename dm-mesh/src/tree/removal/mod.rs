@@ -372,28 +372,16 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 let Some((key, light)) = self.unit(e.unit) else {
                     continue;
                 };
-                let p = planes(key, light);
-                let on_line =
-                    |q: &Plane| q.is_coincident(line) || trace.as_ref().is_some_and(|t| t.holds(q));
                 // Cells that may merge list the same units, umbra or not,
                 // on both sides of the line; both then lie inside each
                 // convex part of a unit's region they list it in, so the
                 // line cannot be the trace of a plane bounding that part:
                 // only the planes between penumbra parts, and umbra planes
                 // where the cells lie outside the umbra, are looked at.
+                let p = planes(key, light);
                 let penumbra = !on_receiver || p.volumes.penumbra.len() > 1;
                 let umbra = !on_receiver || !e.umbra;
-                let holds = p.internal.iter().any(|c| on_line(&c.plane))
-                    || (penumbra && p.volumes.penumbra.iter().flatten().any(on_line))
-                    || (umbra && p.volumes.umbra.iter().flatten().any(on_line));
-                debug_assert!(
-                    penumbra || !p.volumes.penumbra.iter().flatten().any(on_line),
-                    "a single penumbra part's plane between cells that both list its unit"
-                );
-                debug_assert!(
-                    umbra || !p.volumes.umbra.iter().flatten().any(on_line),
-                    "an umbra plane between cells in that umbra"
-                );
+                let holds = p.has_plane_on(line, trace.as_ref(), penumbra, umbra);
                 if holds {
                     owner = Some(e.unit);
                 }
