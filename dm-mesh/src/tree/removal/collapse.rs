@@ -44,7 +44,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             if let Some(region) = &region {
                 kept.retain(|e| {
                     let whole = self.unit(e.unit).is_none_or(|(key, light)| {
-                        let parts = &planes(key, light).volumes.penumbra;
+                        let parts = &planes.get(key, light).volumes.penumbra;
                         parts.len() == 1 || parts.iter().any(|part| inside(region, part))
                     });
                     if !whole {
@@ -65,7 +65,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             for entry in kept.iter().filter(|e| !e.umbra) {
                 if let Some((key, light)) = self.unit(entry.unit) {
                     let internal: SmallVec<[&Critical; 32]> =
-                        planes(key, light).internal.iter().collect();
+                        planes.get(key, light).internal.iter().collect();
                     if !internal.is_empty() {
                         self.grow_internal(n, &internal, entry.unit);
                     }
@@ -73,7 +73,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             }
             for unit in redo {
                 if let Some((key, light)) = self.unit(unit) {
-                    self.merge_unit(n, Some(&region), unit, light, planes(key, light));
+                    self.merge_unit(n, Some(&region), unit, light, planes.get(key, light));
                 }
             }
         }

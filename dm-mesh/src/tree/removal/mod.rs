@@ -34,6 +34,7 @@ use crate::hash::KeySet;
 use bsp_core::predicates::Pencil;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, VertexKey};
 use smallvec::SmallVec;
+use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
 
 mod collapse;
@@ -62,8 +63,67 @@ pub enum Deletion {
     Collapse,
 }
 
-/// A unit's volume planes, given its occluder key and light.
-pub(super) type Planes<'a, 'p, K> = dyn Fn(K, u8) -> &'p UnitPlanes + 'a;
+/// The units' volume planes during a removal, looked up by occluder key
+/// and light ([`Self::get`]), with the answers of the tests for a line
+/// last asked about: a removal asks along one line again and again (for
+/// each cell along a deleted node's edge), of cells listing mostly the
+/// same units (about half of the tests on the 3k hall are repeats).
+pub(super) struct Planes<'a, 'p, K> {
+    lookup: &'a dyn Fn(K, u8) -> &'p UnitPlanes,
+    along: RefCell<LineAnswers>,
+}
+
+/// [`UnitPlanes::has_plane_on`]'s answers for one line, by unit and the
+/// planes looked at. They hold for the whole removal: a unit's planes,
+/// the line and the receiver do not change in it.
+#[derive(Default)]
+struct LineAnswers {
+    /// The line, and whether its trace on the receiver counted.
+    line: Option<(Plane, bool)>,
+    /// `(unit, penumbra planes looked at, umbra planes looked at, holds)`.
+    answers: Vec<(u32, bool, bool, bool)>,
+}
+
+impl<'a, 'p, K> Planes<'a, 'p, K> {
+    fn new(lookup: &'a dyn Fn(K, u8) -> &'p UnitPlanes) -> Self {
+        Self {
+            lookup,
+            along: RefCell::default(),
+        }
+    }
+
+    /// The planes of the unit of occluder `key` under `light`.
+    pub(super) fn get(&self, key: K, light: u8) -> &'p UnitPlanes {
+        (self.lookup)(key, light)
+    }
+
+    /// [`UnitPlanes::has_plane_on`] for `unit` (whose planes are `planes`),
+    /// remembered for the line.
+    #[allow(clippy::too_many_arguments)] // (the question, and what it is remembered by)
+    fn has_plane_on(
+        &self,
+        unit: u32,
+        planes: &UnitPlanes,
+        line: &Plane,
+        on_receiver: bool,
+        trace: Option<&Pencil>,
+        penumbra: bool,
+        umbra: bool,
+    ) -> bool {
+        let mut along = self.along.borrow_mut();
+        if along.line != Some((*line, on_receiver)) {
+            along.line = Some((*line, on_receiver));
+            along.answers.clear();
+        }
+        let asked = (unit, penumbra, umbra);
+        if let Some(&(.., holds)) = along.answers.iter().find(|a| (a.0, a.1, a.2) == asked) {
+            return holds;
+        }
+        let holds = planes.has_plane_on(line, trace, penumbra, umbra);
+        along.answers.push((unit, penumbra, umbra, holds));
+        holds
+    }
+}
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Removes the units in `gone` by `how`; `planes(key, light)` gives a
@@ -75,9 +135,10 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         planes: impl Fn(K, u8) -> &'p UnitPlanes,
         how: Deletion,
     ) {
+        let planes = Planes::new(&planes);
         let removed: Vec<(u32, u8, &UnitPlanes)> = gone
             .iter()
-            .filter_map(|&u| self.unit(u).map(|(k, l)| (u, l, planes(k, l))))
+            .filter_map(|&u| self.unit(u).map(|(k, l)| (u, l, planes.get(k, l))))
             .collect();
         if removed.is_empty() {
             return;
@@ -98,7 +159,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             let Some((key, light)) = self.unit(unit) else {
                 continue;
             };
-            let own = planes(key, light);
+            let own = planes.get(key, light);
             for &(u, _, removed_planes) in &removed {
                 if !by.contains(&u) {
                     continue;
@@ -378,10 +439,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 // line cannot be the trace of a plane bounding that part:
                 // only the planes between penumbra parts, and umbra planes
                 // where the cells lie outside the umbra, are looked at.
-                let p = planes(key, light);
+                let p = planes.get(key, light);
                 let penumbra = !on_receiver || p.volumes.penumbra.len() > 1;
                 let umbra = !on_receiver || !e.umbra;
-                let holds = p.has_plane_on(line, trace.as_ref(), penumbra, umbra);
+                let holds = planes.has_plane_on(
+                    e.unit,
+                    p,
+                    line,
+                    on_receiver,
+                    trace.as_ref(),
+                    penumbra,
+                    umbra,
+                );
                 if holds {
                     owner = Some(e.unit);
                 }
