@@ -297,7 +297,16 @@ impl DmRun {
 
     fn figures(&self, build: f64, illum_seconds: f64, illum: &IllumStats, total: f64) -> DmStats {
         let lights = self.dm.lights();
-        let mut light_stats = vec![LightStats::default(); lights.len()];
+        let mut light_stats: Vec<LightStats> = self
+            .dm
+            .light_node_counts()
+            .into_iter()
+            .map(|(penumbra, umbra)| LightStats {
+                penumbra_nodes: Some(penumbra as u64),
+                umbra_nodes: Some(umbra as u64),
+                ..LightStats::default()
+            })
+            .collect();
         let (mut nodes, mut cells, mut receivers) = (0, 0, 0);
         for (_, dm) in self.dm.receivers() {
             receivers += 1;

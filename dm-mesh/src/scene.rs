@@ -412,6 +412,31 @@ impl DmScene {
         figures
     }
 
+    /// Per light, the DM-tree nodes its occluders cast over every
+    /// receiver: on their penumbra volumes' planes or internal
+    /// discontinuities (the first count), or on their umbra volumes'
+    /// planes (the second; a plane of both counts there). Light planes,
+    /// tiles and construction nodes are no occluder's, and not counted.
+    pub fn light_node_counts(&self) -> Vec<(usize, usize)> {
+        let mut counts = vec![(0, 0); self.lights.len()];
+        for (_, dm) in self.receivers() {
+            for (unit, line) in dm.unit_lines() {
+                let Some((key, light)) = dm.unit(unit) else {
+                    continue;
+                };
+                let planes = &self.pieces[key].volumes[usize::from(light)];
+                let umbra = planes.volumes.umbra.iter().flatten();
+                let count = &mut counts[usize::from(light)];
+                if umbra.into_iter().any(|p| p.is_coincident(line)) {
+                    count.1 += 1;
+                } else {
+                    count.0 += 1;
+                }
+            }
+        }
+        counts
+    }
+
     /// The flags a piece was added with.
     pub fn piece_flags(&self, piece: PieceId) -> Option<PieceFlags> {
         self.pieces.get(piece).map(|p| p.flags)

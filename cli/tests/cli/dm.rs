@@ -107,6 +107,25 @@ fn dm_cells_have_the_exact_shadow_areas_and_stats() {
     }
     assert_eq!(json["output_fragments"], json["dm"]["cells"]);
     assert!(json["dm"]["tree_nodes"].as_u64().unwrap() >= 8);
+    // Per light, the contract's fields for an area light: the floor's
+    // umbra is the square's four umbra planes, its penumbra at least the
+    // four outer ones.
+    let light = &json["lights"][0];
+    for key in [
+        "front_facing_polygons",
+        "front_facing_edges",
+        "penumbra_nodes",
+        "umbra_nodes",
+        "lit",
+        "penumbra",
+        "umbra",
+    ] {
+        assert!(light.get(key).is_some(), "lights[0].{key}");
+    }
+    assert_eq!(light["umbra_nodes"].as_u64(), Some(4));
+    let penumbra_nodes = light["penumbra_nodes"].as_u64().unwrap();
+    assert!(penumbra_nodes >= 4, "{penumbra_nodes}");
+    assert!(penumbra_nodes + 4 <= json["dm"]["tree_nodes"].as_u64().unwrap());
     // One occluder: every cell vertex lies on the penumbra's outer
     // boundary (unoccluded) or in the umbra's closure (dark), so no vertex
     // needs a visibility computation.

@@ -254,6 +254,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             .count()
     }
 
+    /// The lines of the nodes cast by units, each with its unit (not the
+    /// light planes', tiles' or construction nodes).
+    pub(crate) fn unit_lines(&self) -> impl Iterator<Item = (u32, &Plane)> + '_ {
+        self.nodes.iter().filter_map(|n| match n {
+            Node::Split { line, unit, .. } if tracked(*unit) => Some((*unit, line)),
+            _ => None,
+        })
+    }
+
     /// Number of cells.
     pub fn cell_count(&self) -> usize {
         self.mesh.counts().2
