@@ -1,6 +1,7 @@
 //! Generators and independent oracles shared by the kernel's tests.
 
-use bsp_core::{ConvexPolygon, GridPoint, Plane};
+use bsp_core::{ConvexPolygon, GridPoint, Plane, Viewpoint};
+use ethnum::I256;
 use proptest::prelude::*;
 
 pub fn gp(x: i64, y: i64, z: i64) -> GridPoint {
@@ -126,9 +127,86 @@ pub fn segment_crosses_triangle(
     (s1 > 0.0 && s2 > 0.0 && s3 > 0.0) || (s1 < 0.0 && s2 < 0.0 && s3 < 0.0)
 }
 
-/// Whether the segment `pq` crosses the interior of a convex polygon (given
-/// by its vertices), exactly on the `f64` inputs, fan by fan. A crossing
-/// through a fan diagonal is missed, which only weakens the oracle.
-pub fn segment_crosses_polygon(p: [f64; 3], q: [f64; 3], poly: &[[f64; 3]]) -> bool {
-    (1..poly.len() - 1).any(|i| segment_crosses_triangle(p, q, poly[0], poly[i], poly[i + 1]))
+/// Bits kept after the binary point of a sample point's coordinates.
+const SAMPLE_BITS: u32 = 40;
+
+/// A point with rational coordinates `num / den` (`den > 0`), exact.
+#[derive(Debug, Clone, Copy)]
+pub struct RationalPoint {
+    num: [i128; 3],
+    den: i128,
+}
+
+impl RationalPoint {
+    /// The point of `polygon`'s plane at `q` seen along the plane's
+    /// dominant axis, the other two coordinates rounded to multiples of
+    /// `2^-SAMPLE_BITS`; `None` unless it lies strictly inside `polygon`.
+    /// Exact, so a sight line to it cannot graze the polygon's own edges or
+    /// leave its plane by rounding. Within `i128` for any grid: the rounded
+    /// coordinates are below `2^64`, normals `2^51`, offsets `2^77`.
+    pub fn in_polygon(polygon: &ConvexPolygon, q: [f64; 3]) -> Option<Self> {
+        let support = polygon.support();
+        let n = support.normal().map(i128::from);
+        let a = support.dominant_axis();
+        let one = 1_i128 << SAMPLE_BITS;
+        let mut num = [0_i128; 3];
+        // n . num + offset den = 0 with den = |n_a| 2^SAMPLE_BITS.
+        let mut rest = support.offset() * one;
+        for k in (0..3).filter(|&k| k != a) {
+            let c = (q[k] * one as f64).round() as i128;
+            num[k] = c * n[a].abs();
+            rest += n[k] * c;
+        }
+        num[a] = -n[a].signum() * rest;
+        let p = Self {
+            num,
+            den: n[a].abs() * one,
+        };
+        debug_assert_eq!(p.value(support), I256::ZERO);
+        polygon
+            .edges()
+            .all(|e| p.value(e) < I256::ZERO)
+            .then_some(p)
+    }
+
+    /// `den` times `plane`'s expression at the point (so of the same sign).
+    fn value(&self, plane: &Plane) -> I256 {
+        let n = plane.normal();
+        (0..3).fold(
+            I256::from(plane.offset()) * I256::from(self.den),
+            |acc, k| acc + I256::from(n[k]) * I256::from(self.num[k]),
+        )
+    }
+}
+
+/// `plane`'s expression at the viewer as a homogeneous point: `(p, 1)` for
+/// a point, `(d, 0)` (the point at infinity) for a direction.
+fn viewer_value(plane: &Plane, view: Viewpoint) -> I256 {
+    let (p, w) = match view {
+        Viewpoint::Point(g) => (g.to_i64(), 1),
+        Viewpoint::Direction(d) => (d.map(i64::from), 0),
+    };
+    let n = plane.normal();
+    (0..3).fold(I256::from(plane.offset() * w), |acc, k| {
+        acc + I256::from(n[k]) * I256::from(p[k])
+    })
+}
+
+/// Whether the sight line from `s` to `view` (the open segment to a point
+/// viewer, the open ray toward one at infinity) crosses the interior of
+/// `polygon`, exactly, from its planes: touching its boundary or running in
+/// its plane is no crossing. `I256` holds every product (below `2^250`).
+pub fn sight_line_crosses(view: Viewpoint, s: &RationalPoint, polygon: &ConvexPolygon) -> bool {
+    let support = polygon.support();
+    let (ve, vs) = (viewer_value(support, view), s.value(support));
+    if ve == I256::ZERO || vs == I256::ZERO || (ve > I256::ZERO) == (vs > I256::ZERO) {
+        return false;
+    }
+    // The crossing is (ve s - vs view) / (ve - vs) homogeneously; an edge
+    // plane's expression there is (ve e(s) - vs e(view)) / (ve - vs), and
+    // ve - vs has the sign of ve. Inside is strictly behind every edge.
+    polygon.edges().all(|e| {
+        let at = ve * s.value(e) - vs * viewer_value(e, view);
+        at != I256::ZERO && (at < I256::ZERO) == (ve > I256::ZERO)
+    })
 }

@@ -1,61 +1,37 @@
 //! The scene BSP: its polygons tile the input, its order is a visibility
 //! order (checked with exact segment tests), and builds are deterministic.
 
-use crate::common::{convex_polygon, grid_point, segment_crosses_polygon};
+use crate::common::{RationalPoint, convex_polygon, gp, grid_point, sight_line_crosses};
+use bsp_core::predicates::side_of_point;
 use bsp_core::{
     BuildOptions, ConvexPolygon, GridPoint, Location, SceneBsp, SceneChild, Side, Viewpoint,
 };
 use proptest::prelude::*;
 
-/// Interior sample points of a polygon: the centroid, and each vertex moved
-/// a tenth of the way to it.
-fn samples(polygon: &ConvexPolygon) -> Vec<[f64; 3]> {
+/// Exact interior sample points of a polygon: near the centroid, and near
+/// each vertex moved a tenth of the way to it.
+fn samples(polygon: &ConvexPolygon) -> Vec<RationalPoint> {
     let c = polygon.centroid();
-    let mut out = vec![c];
-    for v in polygon.vertices_f64() {
-        out.push([
-            0.9 * v[0] + 0.1 * c[0],
-            0.9 * v[1] + 0.1 * c[1],
-            0.9 * v[2] + 0.1 * c[2],
-        ]);
-    }
-    out
-}
-
-/// Where the viewer is, for the oracle.
-#[derive(Clone, Copy)]
-enum Eye {
-    At([f64; 3]),
-    /// Infinitely far in this direction: sight lines are parallel.
-    Toward([f64; 3]),
+    std::iter::once(c)
+        .chain(
+            polygon
+                .vertices_f64()
+                .into_iter()
+                .map(|v| std::array::from_fn(|k| 0.9 * v[k] + 0.1 * c[k])),
+        )
+        .filter_map(|q| RationalPoint::in_polygon(polygon, q))
+        .collect()
 }
 
 /// Fails unless no polygon of `order` hides a point of one before it from
-/// `eye`.
-fn check_visibility_order(order: &[&ConvexPolygon], eye: Eye) -> Result<(), TestCaseError> {
-    // Later polygons shrink by a relative 1e-9 toward their centroids: sample
-    // points are rounded to f64, and a sight line that only grazes a
-    // polygon's edge within rounding (viewer parallel to a plane, say) is no
-    // occlusion.
-    let outlines: Vec<Vec<[f64; 3]>> = order
-        .iter()
-        .map(|p| {
-            let c = p.centroid();
-            let shrink = |v: [f64; 3]| std::array::from_fn(|k| c[k] + (v[k] - c[k]) * (1.0 - 1e-9));
-            p.vertices_f64().into_iter().map(shrink).collect()
-        })
-        .collect();
+/// `view`. Exact: a sight line that grazes an edge, or runs in a polygon's
+/// plane (a viewer in that plane), is no occlusion.
+fn check_visibility_order(order: &[&ConvexPolygon], view: Viewpoint) -> Result<(), TestCaseError> {
     for (i, near) in order.iter().enumerate() {
         for s in samples(near) {
-            let viewer = match eye {
-                Eye::At(p) => p,
-                // Far beyond the scene (coordinates below 1e4) along the
-                // parallel sight line through `s`.
-                Eye::Toward(d) => [s[0] + d[0] * 1e7, s[1] + d[1] * 1e7, s[2] + d[2] * 1e7],
-            };
-            for (j, far) in outlines.iter().enumerate().skip(i + 1) {
+            for (j, far) in order.iter().enumerate().skip(i + 1) {
                 prop_assert!(
-                    !segment_crosses_polygon(viewer, s, far),
+                    !sight_line_crosses(view, &s, far),
                     "polygon {j} (later) hides polygon {i} from the eye"
                 );
             }
@@ -81,11 +57,11 @@ proptest! {
         let bsp = SceneBsp::build(polygons, &BuildOptions::default());
         let order: Vec<&ConvexPolygon> = bsp.front_to_back(Viewpoint::Point(eye)).map(|(_, p)| p).collect();
         prop_assert_eq!(order.len(), bsp.polygons().len());
-        check_visibility_order(&order, Eye::At(eye.to_f64()))?;
+        check_visibility_order(&order, Viewpoint::Point(eye))?;
         let mut reversed: Vec<&ConvexPolygon> = bsp.back_to_front(Viewpoint::Point(eye)).map(|(_, p)| p).collect();
         reversed.reverse();
         // Back-to-front is a visibility order read backwards.
-        check_visibility_order(&reversed, Eye::At(eye.to_f64()))?;
+        check_visibility_order(&reversed, Viewpoint::Point(eye))?;
     }
 
     #[test]
@@ -93,7 +69,7 @@ proptest! {
         prop_assume!(dir != [0, 0, 0]);
         let bsp = SceneBsp::build(polygons, &BuildOptions::default());
         let order: Vec<&ConvexPolygon> = bsp.front_to_back(Viewpoint::Direction(dir)).map(|(_, p)| p).collect();
-        check_visibility_order(&order, Eye::Toward(dir.map(f64::from)))?;
+        check_visibility_order(&order, Viewpoint::Direction(dir))?;
     }
 
     #[test]
@@ -199,4 +175,79 @@ fn a_long_chain_builds_and_traverses_without_recursion() {
         .unwrap()
         .join()
         .unwrap();
+}
+
+#[test]
+fn a_polygon_the_eye_stands_on_hides_nothing() {
+    // Found by `front_to_back_is_a_visibility_order`. The eye lies inside
+    // polygon 4 (in its plane, behind its three edges), which a node's plane
+    // cuts: from the eye, sight lines leave that polygon's plane at once, so
+    // it hides nothing, wherever it comes in the order.
+    let eye = gp(624, -579, -63);
+    let polygons: Vec<ConvexPolygon> = [
+        &[[31, -45, -137], [-339, 28, -653], [-199, 0, -457]][..],
+        &[
+            [-24, -16, -36],
+            [-494, 487, -1137],
+            [-1023, 524, -632],
+            [-889, 420, -448],
+            [-492, 155, -45],
+        ],
+        &[
+            [105, -322, -237],
+            [121, -457, -201],
+            [177, -429, -361],
+            [269, -297, -673],
+            [303, 285, -1093],
+            [245, 154, -869],
+        ],
+        &[
+            [-312, -94, 17],
+            [-530, -488, -459],
+            [-544, -382, -785],
+            [-170, 356, -108],
+        ],
+        &[[109, -259, 52], [95, 253, -574], [827, -875, 104]],
+        &[
+            [-80, 180, -34],
+            [-505, -44, 332],
+            [-388, -116, 506],
+            [-3, -34, 423],
+            [40, 30, 301],
+        ],
+    ]
+    .iter()
+    .enumerate()
+    .map(|(i, pts)| {
+        let pts: Vec<GridPoint> = pts.iter().map(|&[x, y, z]| gp(x, y, z)).collect();
+        ConvexPolygon::from_grid_points(&pts, i as u32).unwrap()
+    })
+    .collect();
+    let under = &polygons[4];
+    assert_eq!(side_of_point(under.support(), eye), Side::On);
+    assert!(under.edges().all(|e| side_of_point(e, eye) == Side::Back));
+    let bsp = SceneBsp::build(polygons, &BuildOptions::default());
+    let order: Vec<&ConvexPolygon> = bsp
+        .front_to_back(Viewpoint::Point(eye))
+        .map(|(_, p)| p)
+        .collect();
+    check_visibility_order(&order, Viewpoint::Point(eye)).unwrap();
+}
+
+#[test]
+fn the_oracle_sees_a_polygon_hidden_by_a_later_one() {
+    // Two stacked squares seen from below and from far below: the upper
+    // one first is a wrong order, and the exact oracle must say so.
+    let square = |z: i64| {
+        let pts = [gp(0, 0, z), gp(4, 0, z), gp(4, 4, z), gp(0, 4, z)];
+        ConvexPolygon::from_grid_points(&pts, z as u32).unwrap()
+    };
+    let (low, high) = (square(0), square(2));
+    for view in [
+        Viewpoint::Point(gp(1, 1, -5)),
+        Viewpoint::Direction([1, 0, -20]),
+    ] {
+        assert!(check_visibility_order(&[&low, &high], view).is_ok());
+        assert!(check_visibility_order(&[&high, &low], view).is_err());
+    }
 }
