@@ -2,7 +2,9 @@
 //! then renamed over it, so that a failed run leaves no partial file.
 
 use std::io::{BufWriter, Write};
-use std::path::Path;
+use std::path::{Path, PathBuf};
+
+use tempfile::NamedTempFile;
 
 use crate::error::{Error, Result};
 
@@ -14,25 +16,59 @@ pub fn write_atomic(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
 ) -> Result<()> {
-    let fail = |source| Error::Write {
-        path: path.to_path_buf(),
-        source,
-    };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let temp = tempfile::Builder::new()
-        .prefix(".umbra-")
-        .suffix(".part")
-        .tempfile_in(dir)
-        .map_err(fail)?;
-    let mut out = BufWriter::new(temp);
-    write(&mut out).map_err(fail)?;
-    let temp = out.into_inner().map_err(|e| fail(e.into_error()))?;
-    temp.as_file().sync_all().map_err(fail)?;
-    temp.persist(path).map_err(|e| fail(e.error))?;
-    Ok(())
+    let mut outputs = Outputs::default();
+    outputs.stage(path, write)?;
+    outputs.commit()
+}
+
+/// Output files of one run, written together: each goes to a temporary
+/// file beside its target as it is staged, and all of them replace their
+/// targets only at [`Outputs::commit`]. A run that fails on any file (the
+/// statistics' folder missing, say) leaves none of them written; dropped
+/// uncommitted, the temporary files are removed.
+#[derive(Default)]
+pub struct Outputs {
+    staged: Vec<(PathBuf, NamedTempFile)>,
+}
+
+impl Outputs {
+    /// Writes `path`'s future bytes through `write` to a temporary file.
+    pub fn stage(
+        &mut self,
+        path: &Path,
+        write: impl FnOnce(&mut dyn Write) -> std::io::Result<()>,
+    ) -> Result<()> {
+        let fail = |source| Error::Write {
+            path: path.to_path_buf(),
+            source,
+        };
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d,
+            _ => Path::new("."),
+        };
+        let temp = tempfile::Builder::new()
+            .prefix(".umbra-")
+            .suffix(".part")
+            .tempfile_in(dir)
+            .map_err(fail)?;
+        let mut out = BufWriter::new(temp);
+        write(&mut out).map_err(fail)?;
+        let temp = out.into_inner().map_err(|e| fail(e.into_error()))?;
+        temp.as_file().sync_all().map_err(fail)?;
+        self.staged.push((path.to_path_buf(), temp));
+        Ok(())
+    }
+
+    /// Puts every staged file in place (renames within their folders).
+    pub fn commit(self) -> Result<()> {
+        for (path, temp) in self.staged {
+            temp.persist(&path).map_err(|e| Error::Write {
+                path,
+                source: e.error,
+            })?;
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
@@ -52,5 +88,26 @@ mod tests {
         write_atomic(&target, |w| w.write_all(b"whole")).unwrap();
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "whole");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[test]
+    fn outputs_land_together_or_not_at_all() {
+        let dir = tempfile::tempdir().unwrap();
+        let (first, second) = (dir.path().join("a.txt"), dir.path().join("b.txt"));
+        // The second file's folder is missing: the first is not written.
+        let mut outputs = Outputs::default();
+        outputs.stage(&first, |w| w.write_all(b"a")).unwrap();
+        let missing = dir.path().join("no").join("b.txt");
+        assert!(outputs.stage(&missing, |w| w.write_all(b"b")).is_err());
+        drop(outputs);
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 0);
+        let mut outputs = Outputs::default();
+        outputs.stage(&first, |w| w.write_all(b"a")).unwrap();
+        outputs.stage(&second, |w| w.write_all(b"b")).unwrap();
+        assert!(!first.exists() && !second.exists());
+        outputs.commit().unwrap();
+        assert_eq!(std::fs::read_to_string(&first).unwrap(), "a");
+        assert_eq!(std::fs::read_to_string(&second).unwrap(), "b");
+        assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
     }
 }

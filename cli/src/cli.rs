@@ -8,9 +8,9 @@ use std::path::PathBuf;
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    Deletion, DemoFiles, DmOptions, Error, ObjMesh, OverlapKind, Pieces, PlyEncoding, Result,
-    Scene, ShadowOptions, csg, dm_scene_with, render_scene_with, save_csg_obj, save_obj, save_ply,
-    shadow_scene, shadow_scene_with,
+    Deletion, DemoFiles, DmOptions, Error, ObjMesh, Outputs, OverlapKind, Pieces, PlyEncoding,
+    Result, Scene, ShadowOptions, csg, dm_scene_with, render_scene_with, save_csg_obj,
+    shadow_scene, shadow_scene_with, stage_obj, stage_ply,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -344,13 +344,15 @@ fn run_shadow(args: &ShadowArgs) -> Result<()> {
     } else {
         PlyEncoding::BinaryLittleEndian
     };
-    save_ply(&output, &result.mesh, encoding)?;
+    let mut outputs = Outputs::default();
+    stage_ply(&mut outputs, &output, &result.mesh, encoding)?;
     if let Some(obj) = &args.obj {
-        save_obj(obj, &result.mesh)?;
+        stage_obj(&mut outputs, obj, &result.mesh)?;
     }
     if let Some(stats) = &args.stats {
-        result.stats.save(stats)?;
+        result.stats.stage(&mut outputs, stats)?;
     }
+    outputs.commit()?;
     progress.finish();
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
@@ -438,10 +440,17 @@ fn run_dm(args: &DmArgs) -> Result<()> {
     let options = dm_options(args.outer_only, DeletionArg::Local, args.overlap);
     let run = dm_scene_with(&scene, options)?;
     progress.say("writing");
-    save_ply(&args.output, &run.mesh(), encoding(args.ascii))?;
+    let mut outputs = Outputs::default();
+    stage_ply(
+        &mut outputs,
+        &args.output,
+        &run.mesh(),
+        encoding(args.ascii),
+    )?;
     if let Some(stats) = &args.stats {
-        run.stats.save(stats)?;
+        run.stats.stage(&mut outputs, stats)?;
     }
+    outputs.commit()?;
     progress.finish();
     let s = &run.stats;
     let mut out = std::io::stdout().lock();
@@ -491,10 +500,17 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
     run.refresh_figures();
     run.stats.update = Some(figures);
     progress.say("writing");
-    save_ply(&args.output, &run.mesh(), encoding(args.ascii))?;
+    let mut outputs = Outputs::default();
+    stage_ply(
+        &mut outputs,
+        &args.output,
+        &run.mesh(),
+        encoding(args.ascii),
+    )?;
     if let Some(stats) = &args.stats {
-        run.stats.save(stats)?;
+        run.stats.stage(&mut outputs, stats)?;
     }
+    outputs.commit()?;
     progress.finish();
     let mut out = std::io::stdout().lock();
     for line in lines {

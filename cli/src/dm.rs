@@ -13,6 +13,7 @@ use serde::Serialize;
 use slotmap::SecondaryMap;
 use svbsp::PieceFlags;
 
+use crate::atomic::Outputs;
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh};
@@ -77,11 +78,16 @@ pub struct DmStats {
 impl DmStats {
     /// Writes the JSON to `path`, atomically.
     pub fn save(&self, path: &std::path::Path) -> Result<()> {
+        let mut outputs = Outputs::default();
+        self.stage(&mut outputs, path)?;
+        outputs.commit()
+    }
+
+    /// [`Self::save`] as one of a run's [`Outputs`], written when they are.
+    pub fn stage(&self, outputs: &mut Outputs, path: &std::path::Path) -> Result<()> {
+        // Serialising plain numbers and structs cannot fail.
         let json = serde_json::to_string_pretty(self).unwrap_or_default();
-        crate::atomic::write_atomic(path, |w| {
-            w.write_all(json.as_bytes())?;
-            w.write_all(b"\n")
-        })
+        crate::stats::stage_json(outputs, path, &json)
     }
 }
 

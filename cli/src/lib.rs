@@ -65,7 +65,7 @@ mod svg;
 mod transform;
 mod vec3;
 
-pub use atomic::write_atomic;
+pub use atomic::{Outputs, write_atomic};
 pub use bsp_core;
 pub use csg::{csg, save_csg_obj};
 pub use decompose::{
@@ -77,8 +77,8 @@ pub use dm_mesh::{Deletion, DmOptions, OverlapKind};
 pub use error::{Error, Result};
 pub use mesh::{OutputFace, OutputMesh};
 pub use obj::{ObjFace, ObjMesh};
-pub use obj_out::{save_obj, write_obj};
-pub use ply::{PlyEncoding, load_ply, read_ply, save_ply, write_ply};
+pub use obj_out::{save_obj, stage_obj, write_obj};
+pub use ply::{PlyEncoding, load_ply, read_ply, save_ply, stage_ply, write_ply};
 pub use render::{
     ALBEDO, FragmentClass, Image, MAX_IMAGE_SIDE, Method, Order, Projection, RenderOptions,
     SAMPLES_PER_SIDE, View, exposure, linear_to_srgb8, render, render_scene, render_scene_with,

@@ -9,7 +9,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::atomic::write_atomic;
+use crate::atomic::Outputs;
 use crate::error::{Error, Result};
 use crate::mesh::OutputMesh;
 
@@ -44,11 +44,18 @@ pub fn write_obj(mesh: &OutputMesh, w: &mut dyn Write) -> std::io::Result<()> {
 
 /// Writes `mesh` as OBJ to `path`, atomically.
 pub fn save_obj(path: &Path, mesh: &OutputMesh) -> Result<()> {
+    let mut outputs = Outputs::default();
+    stage_obj(&mut outputs, path, mesh)?;
+    outputs.commit()
+}
+
+/// [`save_obj`] as one of a run's [`Outputs`], written when they are.
+pub fn stage_obj(outputs: &mut Outputs, path: &Path, mesh: &OutputMesh) -> Result<()> {
     mesh.check().map_err(|message| Error::Output {
         path: path.to_path_buf(),
         message,
     })?;
-    write_atomic(path, |w| write_obj(mesh, w))
+    outputs.stage(path, |w| write_obj(mesh, w))
 }
 
 #[cfg(test)]

@@ -22,7 +22,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use crate::atomic::write_atomic;
+use crate::atomic::Outputs;
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh};
 
@@ -105,11 +105,23 @@ pub fn write_ply(
 /// Writes `mesh` as PLY to `path`, atomically (see
 /// [`write_atomic`](crate::write_atomic)).
 pub fn save_ply(path: &Path, mesh: &OutputMesh, encoding: PlyEncoding) -> Result<()> {
+    let mut outputs = Outputs::default();
+    stage_ply(&mut outputs, path, mesh, encoding)?;
+    outputs.commit()
+}
+
+/// [`save_ply`] as one of a run's [`Outputs`], written when they are.
+pub fn stage_ply(
+    outputs: &mut Outputs,
+    path: &Path,
+    mesh: &OutputMesh,
+    encoding: PlyEncoding,
+) -> Result<()> {
     mesh.check().map_err(|message| Error::Output {
         path: path.to_path_buf(),
         message,
     })?;
-    write_atomic(path, |w| write_ply(mesh, encoding, w))
+    outputs.stage(path, |w| write_ply(mesh, encoding, w))
 }
 
 /// Reads a PLY file written in umbra's layout (either encoding, or big

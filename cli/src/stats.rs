@@ -4,7 +4,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::atomic::write_atomic;
+use crate::atomic::Outputs;
 use crate::error::Result;
 
 /// One run's statistics, written by `--stats FILE.json`.
@@ -82,12 +82,23 @@ impl Stats {
 
     /// Writes the JSON to `path`, atomically.
     pub fn save(&self, path: &Path) -> Result<()> {
-        let json = self.to_json();
-        write_atomic(path, |w| {
-            w.write_all(json.as_bytes())?;
-            w.write_all(b"\n")
-        })
+        let mut outputs = Outputs::default();
+        self.stage(&mut outputs, path)?;
+        outputs.commit()
     }
+
+    /// [`Self::save`] as one of a run's [`Outputs`], written when they are.
+    pub fn stage(&self, outputs: &mut Outputs, path: &Path) -> Result<()> {
+        stage_json(outputs, path, &self.to_json())
+    }
+}
+
+/// Stages `json` and a newline as `path`.
+pub(crate) fn stage_json(outputs: &mut Outputs, path: &Path, json: &str) -> Result<()> {
+    outputs.stage(path, |w| {
+        w.write_all(json.as_bytes())?;
+        w.write_all(b"\n")
+    })
 }
 
 #[cfg(test)]

@@ -194,3 +194,39 @@ fn usage_errors_exit_2() {
     let run = umbra(dir.path(), &["frobnicate"]);
     assert_eq!(run.code, 2);
 }
+
+#[test]
+fn an_output_that_cannot_be_written_leaves_no_other() {
+    let scene = format!(
+        "{TRIANGLE}\n[[light]]\ntype = \"area\"\nvertices = [[0, 0, 5], [0, 1, 5], [1, 0, 5]]\n"
+    );
+    let dir = folder(&[("scene.toml", scene.as_str())]);
+    // The statistics' folder is missing: the PLY written before them must
+    // not stay behind, whichever command.
+    for args in [
+        &[
+            "shadow",
+            "scene.toml",
+            "-o",
+            "out.ply",
+            "--stats",
+            "no/s.json",
+        ][..],
+        &["shadow", "scene.toml", "-o", "out.ply", "--obj", "no/o.obj"],
+        &["dm", "scene.toml", "-o", "out.ply", "--stats", "no/s.json"],
+        &["update", "scene.toml", "--move", "t", "--by", "0,1,0"]
+            .iter()
+            .chain(&["-o", "out.ply", "--stats", "no/s.json"])
+            .copied()
+            .collect::<Vec<_>>(),
+    ] {
+        let run = umbra(dir.path(), args);
+        assert_eq!(run.code, 2, "{args:?}: {}", run.stderr);
+        assert!(run.stderr.contains("no/"), "{}", run.stderr);
+        let names: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        assert_eq!(names, ["scene.toml"], "{args:?}");
+    }
+}
