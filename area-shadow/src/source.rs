@@ -78,8 +78,63 @@ impl AreaSource {
         bsp_core::predicates::side_of_point(self.support(), p)
     }
 
+    /// Whether the light lies clear of every solid whose surface has its
+    /// vertices among `points`: all of them strictly in front of the
+    /// light's plane, or their bounding box apart from the light's (a gap
+    /// along some axis). A closed surface's faces turned away from a light
+    /// clear of it hide nothing its faces towards the light do not; a
+    /// light on the surface, or inside the solid, shines into it, and
+    /// there they do.
+    pub fn clear_of(&self, points: &[GridPoint]) -> bool {
+        let support = self.support();
+        if points
+            .iter()
+            .all(|&p| bsp_core::predicates::side_of_point(support, p) == Side::Front)
+        {
+            return true;
+        }
+        let light: Vec<GridPoint> = (0..self.polygon.len())
+            .filter_map(|k| self.polygon.vertex_grid_point(k))
+            .collect();
+        match (GridBox::around(points), GridBox::around(&light)) {
+            (Some(a), Some(b)) => a.apart_from(&b),
+            _ => true,
+        }
+    }
+
     /// The centroid of the light, in grid coordinates.
     pub fn centroid(&self) -> [f64; 3] {
         self.polygon.centroid()
+    }
+}
+
+/// The bounding box of grid points.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct GridBox {
+    low: [i32; 3],
+    high: [i32; 3],
+}
+
+impl GridBox {
+    /// The box of `points`; `None` without any.
+    pub(crate) fn around(points: &[GridPoint]) -> Option<Self> {
+        let first = points.first()?;
+        let mut b = Self {
+            low: [first.x, first.y, first.z],
+            high: [first.x, first.y, first.z],
+        };
+        for p in points {
+            for (k, c) in [p.x, p.y, p.z].into_iter().enumerate() {
+                b.low[k] = b.low[k].min(c);
+                b.high[k] = b.high[k].max(c);
+            }
+        }
+        Some(b)
+    }
+
+    /// Whether a gap separates the boxes along some axis (boxes that
+    /// touch are not apart).
+    pub(crate) fn apart_from(&self, other: &Self) -> bool {
+        (0..3).any(|k| self.high[k] < other.low[k] || other.high[k] < self.low[k])
     }
 }

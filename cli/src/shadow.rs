@@ -274,6 +274,22 @@ pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
             open[object] = true;
         }
     }
+    // A closed surface a light may shine into (the light on it or inside
+    // it) is taken as open: there its faces turned away from the light
+    // hide what its faces towards the light do not.
+    let mut points: Vec<Vec<GridPoint>> = vec![Vec::new(); scene.objects.len()];
+    for (k, piece) in pieces.polygons.iter().enumerate() {
+        points[object_of(k)].extend((0..piece.len()).filter_map(|i| piece.vertex_grid_point(i)));
+    }
+    for (object, points) in points.iter().enumerate() {
+        if !pieces
+            .lights
+            .iter()
+            .all(|light| light_clear_of(light, points))
+        {
+            open[object] = true;
+        }
+    }
     (0..pieces.polygons.len())
         .map(|k| PieceFlags {
             casts_shadows: pieces.casts_shadows[k],
@@ -281,6 +297,25 @@ pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
             closed_surface: !open[object_of(k)],
         })
         .collect()
+}
+
+/// Whether `light` lies clear of every solid whose surface has its
+/// vertices among `points` (see [`AreaSource::clear_of`]): a point light
+/// outside their bounding box; a directional light always (it comes from
+/// infinity).
+fn light_clear_of(light: &SnappedLight, points: &[GridPoint]) -> bool {
+    match light {
+        SnappedLight::Point(p) => {
+            let outside = |c: fn(&GridPoint) -> i32| {
+                points.iter().all(|q| c(q) < c(p)) || points.iter().all(|q| c(q) > c(p))
+            };
+            outside(|g| g.x) || outside(|g| g.y) || outside(|g| g.z)
+        }
+        SnappedLight::Directional(_) => true,
+        SnappedLight::Area(polygon) => {
+            AreaSource::new(polygon.clone()).is_ok_and(|light| light.clear_of(points))
+        }
+    }
 }
 
 fn grid_edges(piece: &ConvexPolygon) -> impl Iterator<Item = (GridPoint, GridPoint)> + '_ {

@@ -402,3 +402,84 @@ fn contains_xz(v: &[[f64; 3]], p: [f64; 2]) -> bool {
     };
     (0..n).all(|i| side(i) > 0.0) || (0..n).all(|i| side(i) < 0.0)
 }
+
+/// Floor 20 x 20 at y = 0, the light of [`SQUARE_UNDER_LIGHT`], and a
+/// closed box [0.5, 1.5] x [9, 10] x [-0.5, 0.5] whose top face lies in
+/// the light's plane over part of the light: that part shines into the
+/// box, and no ray from it gets out.
+const BOX_IN_THE_LIGHT: &str = r#"
+[[object]]
+name = "floor"
+polygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]
+
+[[object]]
+name = "box"
+polygons = [
+  [[0.5, 9, -0.5], [1.5, 9, -0.5], [1.5, 9, 0.5], [0.5, 9, 0.5]],
+  [[0.5, 10, -0.5], [0.5, 10, 0.5], [1.5, 10, 0.5], [1.5, 10, -0.5]],
+  [[0.5, 9, -0.5], [0.5, 9, 0.5], [0.5, 10, 0.5], [0.5, 10, -0.5]],
+  [[1.5, 9, -0.5], [1.5, 10, -0.5], [1.5, 10, 0.5], [1.5, 9, 0.5]],
+  [[0.5, 9, -0.5], [0.5, 10, -0.5], [1.5, 10, -0.5], [1.5, 9, -0.5]],
+  [[0.5, 9, 0.5], [1.5, 9, 0.5], [1.5, 10, 0.5], [0.5, 10, 0.5]],
+]
+
+[[light]]
+type = "area"
+vertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]
+intensity = 2.0
+"#;
+
+/// Irradiance at floor point `p` from the light of [`BOX_IN_THE_LIGHT`]
+/// by midpoint quadrature, each sample blocked when its ray runs through
+/// the box (slab test).
+fn quadrature_past_the_box(p: [f64; 3]) -> f64 {
+    let (lo, hi) = ([0.5, 9.0, -0.5], [1.5, 10.0, 0.5]);
+    let n = 400;
+    let h = 2.0 / f64::from(n);
+    let mut e = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let x = [
+                -1.0 + (f64::from(i) + 0.5) * h,
+                10.0,
+                -1.0 + (f64::from(j) + 0.5) * h,
+            ];
+            let d = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
+            let (mut enter, mut exit) = (0.0_f64, 1.0_f64);
+            for k in 0..3 {
+                let (a, b) = ((lo[k] - p[k]) / d[k], (hi[k] - p[k]) / d[k]);
+                enter = enter.max(a.min(b));
+                exit = exit.min(a.max(b));
+            }
+            if enter < exit {
+                continue;
+            }
+            let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            e += 2.0 * (d[1] * d[1] / r2) / r2 * h * h;
+        }
+    }
+    e
+}
+
+#[test]
+fn a_box_the_light_shines_into_hides_that_light() {
+    let dir = folder(&[("scene.toml", BOX_IN_THE_LIGHT)]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let mut checked = 0;
+        for face in mesh.faces.iter().filter(|f| f.source == 0) {
+            for &v in &face.vertices {
+                let (p, e) = mesh.vertices[v as usize];
+                let truth = quadrature_past_the_box(p);
+                assert!(
+                    (f64::from(e) - truth).abs() <= 2e-3 * truth + 1e-6,
+                    "{command}: vertex {p:?}: {e} vs {truth}"
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 4, "{command}: {checked}");
+    }
+}

@@ -25,7 +25,7 @@ use crate::tree::ReceiverDm;
 use area_shadow::{
     AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, volume_planes,
 };
-use bsp_core::{ConvexPolygon, Plane};
+use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use illum::VisiblePart;
 use rayon::prelude::*;
 use slotmap::SlotMap;
@@ -88,6 +88,15 @@ impl DmScene {
                     .collect()
             })
             .collect();
+        // The lights clear of the object (none on its surface or inside
+        // it): only under those may a closed surface's faces turned away
+        // from the light cast nothing. Decided as the object is added, so
+        // a move into a light decides again.
+        let points: Vec<GridPoint> = polygons
+            .iter()
+            .flat_map(|p| (0..p.len()).filter_map(|i| p.vertex_grid_point(i)))
+            .collect();
+        let clear = light_mask(sources.iter().map(|light| light.clear_of(&points)));
         let mut in_body = vec![0_u32; polygons.len()];
         for (body, volumes) in bodies.iter().zip(&volumes) {
             let whole = light_mask(volumes.iter().map(|(penumbra, _)| penumbra.is_some()));
@@ -97,7 +106,7 @@ impl DmScene {
         }
         for (i, polygon) in polygons.iter().enumerate() {
             let volumes = if flags.casts_shadows {
-                self.polygon_units(polygon, flags, in_body[i], surface.get(i), &sources)
+                self.polygon_units(polygon, flags, clear, in_body[i], surface.get(i), &sources)
             } else {
                 vec![UnitPlanes::default(); sources.len()]
             };
@@ -144,13 +153,15 @@ impl DmScene {
     }
 
     /// What a polygon of a shadow-casting object casts under each light:
-    /// nothing under a light it is turned away from (on a closed surface)
-    /// or whose bit `in_body` sets (its body casts in its place), else its
-    /// own volumes and internal discontinuities (given its surroundings).
+    /// nothing under a light it is turned away from (on a closed surface,
+    /// the light one of those `clear` of it sets) or whose bit `in_body`
+    /// sets (its body casts in its place), else its own volumes and
+    /// internal discontinuities (given its surroundings).
     fn polygon_units(
         &self,
         polygon: &ConvexPolygon,
         flags: PieceFlags,
+        clear: u32,
         in_body: u32,
         around: Option<&Surroundings>,
         sources: &[AreaSource],
@@ -160,6 +171,7 @@ impl DmScene {
             .enumerate()
             .map(|(l, light)| {
                 let turned_away = flags.closed_surface
+                    && clear & (1 << l) != 0
                     && matches!(
                         light.side_of(polygon.support()),
                         SourceSide::Back | SourceSide::In

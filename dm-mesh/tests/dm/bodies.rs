@@ -207,3 +207,42 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// A closed box that meets the light: up through the light's plane, or
+    /// with its top face in it, over some of the light. The light shines
+    /// into it there, so its faces turned away from the light hide light
+    /// too (the closed surface's shortcut, casting only the faces towards
+    /// the light, would let that light through).
+    #[test]
+    fn a_closed_box_the_light_shines_into(
+        lo in prop::array::uniform3(-60_i64..40),
+        size in prop::array::uniform3(10_i64..60),
+        top_in_plane in any::<bool>(),
+        cuts in any::<u32>(),
+    ) {
+        let h = 200;
+        let lo = [lo[0], h - 10 - lo[1].rem_euclid(40), lo[2]];
+        let hi = [
+            lo[0] + size[0],
+            if top_in_plane { h } else { h + 1 + size[1] },
+            lo[2] + size[2],
+        ];
+        let light = crate::common::light(-40, -40, 80, 80, h, 0);
+        // The box meets the light's rectangle.
+        prop_assume!(lo[0] < 40 && hi[0] > -40 && lo[2] < 40 && hi[2] > -40);
+        let flags = PieceFlags { closed_surface: true, ..PieceFlags::default() };
+        let t = TestScene {
+            objects: vec![
+                (vec![floor(400)], PieceFlags::default()),
+                (triangulated_cuboid(lo, hi, cuts), flags),
+            ],
+            light,
+        };
+        let (mut scene, _) = t.build();
+        scene.check_invariants().map_err(TestCaseError::fail)?;
+        check_vertices(&t, &mut scene)?;
+    }
+}
