@@ -59,7 +59,7 @@ pub use bsp_core;
 pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
-pub use groups::{ConvexGroup, MAX_SOLID_WORK, convex_groups};
+pub use groups::{ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, flat_unions};
 pub use merge_pieces::{merge_pair, merge_same_class};
 pub use pass::{
     AreaLightStats, AreaTrees, Class, ShadowGroups, classify_fragments, shadow_area_light,

@@ -30,12 +30,15 @@
 //! in umbra already is filtered down it too. A fragment lying in a plane of
 //! a body's volume (a face in contact with the body) is taken for the
 //! points just off it on the side it receives on, which is what it sees
-//! light from: in contact, the body covers it. Where separate bodies
+//! light from: in contact, the body covers it. The pieces of a flat
+//! polygon that is not convex add the convex parts of the umbra they make
+//! together ([`crate::FlatUnion::umbra_parts`]) to that tree too. Where
+//! separate bodies
 //! together hide the whole light (a boundary of quadric EEE surfaces in
 //! general), fragments stay penumbra and their vertices' visible part of
 //! the light comes out empty.
 
-use crate::groups::{ConvexGroup, convex_groups};
+use crate::groups::{ConvexGroup, FlatUnion, convex_groups, flat_unions};
 use crate::merge_pieces::merge_same_class;
 use crate::tree::VolumeTree;
 use crate::volumes::cast_volumes_within;
@@ -112,10 +115,16 @@ impl Class {
     }
 }
 
-/// The convex bodies that several shadow-casting pieces form (module
-/// `groups`), found once for every light.
+/// The convex bodies and the flat unions that are no convex polygon that
+/// several shadow-casting pieces form (module `groups`), found once for
+/// every light.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct ShadowGroups(pub Vec<ConvexGroup>);
+pub struct ShadowGroups {
+    /// Convex bodies (and flat convex polygons) of several pieces.
+    pub bodies: Vec<ConvexGroup>,
+    /// Flat unions of pieces that are no convex polygon.
+    pub flat_unions: Vec<FlatUnion>,
+}
 
 impl ShadowGroups {
     /// The bodies of edge-connected shadow-casting pieces, whatever object
@@ -139,7 +148,10 @@ impl ShadowGroups {
         let casting: Vec<Option<u32>> = (0..pieces.len())
             .map(|k| flags[k].casts_shadows.then_some(objects[k]))
             .collect();
-        Self(convex_groups(pieces, &casting))
+        Self {
+            bodies: convex_groups(pieces, &casting),
+            flat_unions: flat_unions(pieces, &casting),
+        }
     }
 }
 
@@ -237,12 +249,23 @@ impl AreaTrees {
                 trees.umbra.insert(volume);
             }
         }
-        for group in &groups.0 {
+        for group in &groups.bodies {
             let volume = group
                 .umbra_planes(light)
                 .and_then(|planes| region.clone().cut_by(&planes));
             if let Some(volume) = volume {
                 trees.groups += 1;
+                trees.bodies.insert(volume);
+            }
+        }
+        for union in &groups.flat_unions {
+            let parts = union.umbra_parts(light);
+            let volumes: Vec<_> = parts
+                .iter()
+                .filter_map(|planes| region.clone().cut_by(planes))
+                .collect();
+            trees.groups += usize::from(!volumes.is_empty());
+            for volume in volumes {
                 trees.bodies.insert(volume);
             }
         }

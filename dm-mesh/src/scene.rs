@@ -76,7 +76,11 @@ pub(crate) enum PieceKind {
     /// ([`area_shadow::ConvexGroup::penumbra_planes`]) it casts in place of
     /// its polygons (one unit with the body's penumbra, umbra and internal
     /// discontinuities); under the others its one volume is its umbra (its
-    /// polygons may hide the whole light only together).
+    /// polygons may hide the whole light only together). The pieces of a
+    /// flat union that is no convex polygon
+    /// ([`area_shadow::flat_unions`]) make bodies of this kind too, one
+    /// per convex part of the umbra they make together, with only that
+    /// umbra.
     Body,
 }
 

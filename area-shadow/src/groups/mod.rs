@@ -40,9 +40,14 @@
 //!   few units from convex stands for a convex body inside it (module
 //!   `solid`), whose umbra is part of the surface's.
 //!
-//! Anything else (T-junctions, concave or open bodies, a face shared by
-//! two bodies) forms no group, and its umbra stays the union of its
-//! pieces' umbrae.
+//! - **flat union** ([`FlatUnion`], module `flat_union`): pieces as for a
+//!   flat group whose cycle is a simple polygon that is not convex (a
+//!   concave input polygon cut into convex pieces). Its umbra is its
+//!   convex hull's with the pockets' penumbrae taken out, in convex parts.
+//!
+//! Anything else (T-junctions, holes, concave or open bodies, a face
+//! shared by two bodies) forms no group, and its umbra stays the union of
+//! its pieces' umbrae.
 
 use crate::AreaSource;
 use crate::volumes::volume_planes;
@@ -50,8 +55,11 @@ use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use solid::Solid;
 use std::collections::HashMap;
 
+mod flat_union;
 mod hull;
 mod solid;
+
+pub use flat_union::FlatUnion;
 
 /// The most side tests (pieces times vertices) spent checking that one
 /// closed surface is convex; bigger surfaces form no group. About a
@@ -126,6 +134,71 @@ impl ConvexGroup {
 ///
 /// If `objects` is shorter than `pieces`.
 pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<ConvexGroup> {
+    let (outlines, groups) = edge_connected(pieces, objects);
+    groups
+        .into_iter()
+        .filter_map(|members| {
+            let outlines: Vec<&[GridPoint]> = members
+                .iter()
+                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
+                .collect();
+            let supports: Vec<Plane> = members
+                .iter()
+                .map(|&k| *pieces[k as usize].support())
+                .collect();
+            let shape = if supports.iter().all(|s| *s == supports[0]) {
+                flat_shape(&outlines, &supports[0]).map(Shape::Flat)
+            } else {
+                Solid::of_surface(&outlines, &supports).map(Shape::Solid)
+            }?;
+            Some(ConvexGroup {
+                pieces: members,
+                shape,
+            })
+        })
+        .collect()
+}
+
+/// The flat unions among `pieces` that are no convex polygon (those are
+/// [`convex_groups`]): pieces of one object (`objects` as there) in one
+/// plane, facing one way, edge-connected, each interior edge matched once,
+/// whose unmatched edges close into one simple cycle that is not convex.
+/// As for a flat convex group, the pieces then cover the polygon of that
+/// cycle once and nothing else. In order of first piece.
+///
+/// # Panics
+///
+/// If `objects` is shorter than `pieces`.
+pub fn flat_unions(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<FlatUnion> {
+    let (outlines, groups) = edge_connected(pieces, objects);
+    groups
+        .into_iter()
+        .filter_map(|members| {
+            let support = *pieces[members[0] as usize].support();
+            if members
+                .iter()
+                .any(|&k| *pieces[k as usize].support() != support)
+            {
+                return None;
+            }
+            let outlines: Vec<&[GridPoint]> = members
+                .iter()
+                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
+                .collect();
+            let cycle = boundary_cycle(&outlines)?;
+            FlatUnion::new(members, cycle, support)
+        })
+        .collect()
+}
+
+/// The grid outlines of the pieces (of those that join groups), and the
+/// sets of at least two pieces of one object connected by directed edges
+/// matched by their reverses, each ascending, in order of first piece.
+#[allow(clippy::type_complexity)] // (the two results, named where used)
+fn edge_connected(
+    pieces: &[ConvexPolygon],
+    objects: &[Option<u32>],
+) -> (Vec<Option<Vec<GridPoint>>>, Vec<Vec<u32>>) {
     let grid_vertices = |k: usize| -> Option<Vec<GridPoint>> {
         (0..pieces[k].len())
             .map(|i| pieces[k].vertex_grid_point(i))
@@ -162,28 +235,7 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
     }
     let mut groups: Vec<Vec<u32>> = members.into_values().filter(|m| m.len() > 1).collect();
     groups.sort_unstable_by_key(|m| m[0]);
-    groups
-        .into_iter()
-        .filter_map(|members| {
-            let outlines: Vec<&[GridPoint]> = members
-                .iter()
-                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
-                .collect();
-            let supports: Vec<Plane> = members
-                .iter()
-                .map(|&k| *pieces[k as usize].support())
-                .collect();
-            let shape = if supports.iter().all(|s| *s == supports[0]) {
-                flat_shape(&outlines, &supports[0]).map(Shape::Flat)
-            } else {
-                Solid::of_surface(&outlines, &supports).map(Shape::Solid)
-            }?;
-            Some(ConvexGroup {
-                pieces: members,
-                shape,
-            })
-        })
-        .collect()
+    (outlines, groups)
 }
 
 pub(super) fn directed_edges(
@@ -209,6 +261,15 @@ pub(super) fn edge_set(outlines: &[&[GridPoint]]) -> Option<HashMap<(GridPoint, 
 /// The convex polygon coplanar pieces (one orientation) cover once, if
 /// their unmatched edges close into one convex cycle.
 fn flat_shape(outlines: &[&[GridPoint]], support: &Plane) -> Option<ConvexPolygon> {
+    let cycle = boundary_cycle(outlines)?;
+    let polygon = ConvexPolygon::from_grid_points(&cycle, 0).ok()?;
+    (polygon.support() == support).then_some(polygon)
+}
+
+/// The one cycle the pieces' unmatched directed edges close into (each
+/// vertex left by at most one), from its least vertex; `None` if a
+/// directed edge repeats or they make no single cycle.
+fn boundary_cycle(outlines: &[&[GridPoint]]) -> Option<Vec<GridPoint>> {
     let edges = edge_set(outlines)?;
     let mut next: HashMap<GridPoint, GridPoint> = HashMap::new();
     for &(a, b) in edges.keys() {
@@ -226,11 +287,7 @@ fn flat_shape(outlines: &[&[GridPoint]], support: &Plane) -> Option<ConvexPolygo
         cycle.push(at);
         at = *next.get(&at)?;
     }
-    if cycle.len() != next.len() {
-        return None;
-    }
-    let polygon = ConvexPolygon::from_grid_points(&cycle, 0).ok()?;
-    (polygon.support() == support).then_some(polygon)
+    (cycle.len() == next.len()).then_some(cycle)
 }
 
 /// Union-find over piece indices.

@@ -2,6 +2,7 @@
 
 mod culled;
 mod figure4;
+mod flat_unions;
 mod groups;
 mod oracle;
 mod pieces;

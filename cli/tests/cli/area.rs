@@ -483,3 +483,43 @@ fn a_box_the_light_shines_into_hides_that_light() {
         assert!(checked >= 4, "{command}: {checked}");
     }
 }
+
+/// Floor 8 x 8 at y = 0, an L-shaped polygon at y = 1.5 (the bar
+/// x in [-1, -0.5], z in [-1, 1] and the bar z in [0.5, 1], x in
+/// [-0.5, 1]), a 1 x 1 light at y = 4 facing down.
+const CONCAVE_OCCLUDER: &str = r#"
+[[object]]
+name = "floor"
+polygons = [[[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]]
+
+[[object]]
+name = "ell"
+polygons = [[[-1, 1.5, -1], [-1, 1.5, 1], [1, 1.5, 1], [1, 1.5, 0.5], [-0.5, 1.5, 0.5], [-0.5, 1.5, -1]]]
+
+[[light]]
+type = "area"
+vertices = [[-0.5, 4, -0.5], [0.5, 4, -0.5], [0.5, 4, 0.5], [-0.5, 4, 0.5]]
+"#;
+
+#[test]
+fn a_concave_occluder_hides_the_light_where_its_pieces_do_together() {
+    // From floor point p the light seen through the L's plane is the
+    // square of half-side 0.1875 about 0.625 p; it lies in the L where it
+    // lies in one of the bars (an axis-aligned square cannot round the
+    // corner): centres in two 0.125-wide strips of length 1.625 that
+    // overlap in a 0.125 square, 0.390625 in all, which is 1.0 on the
+    // floor (scaled by 1 / 0.625^2). The convex pieces the L is cut into
+    // each hide all of the light from less.
+    let dir = folder(&[("scene.toml", CONCAVE_OCCLUDER)]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let classes = floor_classes(&mesh);
+        assert!((classes[2] - 1.0).abs() < 1e-9, "{command}: {classes:?}");
+        assert!(
+            (classes.iter().sum::<f64>() - 64.0).abs() < 1e-9,
+            "{command}: {classes:?}"
+        );
+    }
+}

@@ -23,7 +23,7 @@ use crate::order::unit_order;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
 use area_shadow::{
-    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, volume_planes,
+    AreaSource, SourceSide, VolumePlanes, convex_groups, flat_unions, volume_planes,
 };
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use illum::VisiblePart;
@@ -139,7 +139,10 @@ impl DmScene {
                     .map(|&k| (&polygons[k as usize], surface.get(k as usize)))
                     .collect();
                 let cast = BodyCast {
-                    body,
+                    outward: members
+                        .iter()
+                        .map(|(polygon, _)| body.outward(polygon.support()))
+                        .collect(),
                     members: &members,
                     keys: body.pieces.iter().map(|&k| added[k as usize]).collect(),
                     volumes,
@@ -148,6 +151,37 @@ impl DmScene {
             })
             .collect();
         self.objects[id].bodies.extend(&made);
+        // A flat union that is no convex polygon hides all of a light
+        // together where no one of its pieces does: each convex part of
+        // that umbra is a body of the union's pieces with only an umbra.
+        let unions = if flags.casts_shadows {
+            flat_unions(&polygons, &vec![Some(0); polygons.len()])
+        } else {
+            Vec::new()
+        };
+        for union in &unions {
+            let parts: Vec<Vec<Vec<Plane>>> = sources
+                .iter()
+                .map(|light| union.umbra_parts(light))
+                .collect();
+            let members: Vec<(&ConvexPolygon, Option<&Surroundings>)> = union
+                .pieces
+                .iter()
+                .map(|&k| (&polygons[k as usize], None))
+                .collect();
+            let count = parts.iter().map(Vec::len).max().unwrap_or(0);
+            for i in 0..count {
+                let cast = BodyCast {
+                    outward: members.iter().map(|(p, _)| *p.support()).collect(),
+                    members: &members,
+                    keys: union.pieces.iter().map(|&k| added[k as usize]).collect(),
+                    volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
+                };
+                let body = self.attach_body(id, flags, cast, &sources);
+                self.objects[id].bodies.push(body);
+                added.push(body);
+            }
+        }
         added.extend(made);
         Ok(added)
     }
@@ -198,17 +232,13 @@ impl DmScene {
         sources: &[AreaSource],
     ) -> PieceId {
         let BodyCast {
-            body,
+            outward,
             members,
             keys,
             volumes: body_volumes,
         } = cast;
-        // Each member's plane facing out of the body, and the lights with
-        // some area in front of it.
-        let outward: Vec<Plane> = members
-            .iter()
-            .map(|(polygon, _)| body.outward(polygon.support()))
-            .collect();
+        // The lights with some area in front of each member's outward
+        // plane.
         let facing: Vec<u32> = outward
             .iter()
             .map(|plane| {
@@ -494,10 +524,12 @@ impl DmScene {
 /// polygons, and its umbra volume if it has one.
 type BodyVolumes = (Option<Vec<Plane>>, Option<Vec<Plane>>);
 
-/// A convex body of an object's polygons, as [`DmScene::attach_body`]
-/// makes its occluder from it.
+/// A body of an object's polygons (convex, or a part of a flat union's
+/// umbra), as [`DmScene::attach_body`] makes its occluder from it.
 struct BodyCast<'a> {
-    body: &'a ConvexGroup,
+    /// Each polygon's plane, facing out of the body (a flat one's as it
+    /// is).
+    outward: Vec<Plane>,
     /// Its polygons, with their surroundings when internal discontinuities
     /// are made.
     members: &'a [(&'a ConvexPolygon, Option<&'a Surroundings>)],

@@ -3,6 +3,7 @@
 mod bodies;
 mod classes;
 mod common;
+mod flat_unions;
 mod illumination;
 mod oracle;
 mod threads;

@@ -1,0 +1,316 @@
+//! Coplanar pieces whose union is a polygon that is not convex (a concave
+//! input polygon cut into convex pieces, an L of two quads): they hide all
+//! of a light together from points where no one of them does, and that
+//! region is polyhedral too.
+//!
+//! Let `U` be the union, in plane `P`, wholly in front of a light `L`. A
+//! point `p` beyond `P` sees none of `L` exactly when `L_p`, the light
+//! projected through `p` onto `P`, lies in `U`. With `H` the convex hull of
+//! `U`, and its *pockets* `H \ U` cut into triangles `T_k` (their vertices
+//! are `U`'s and `H`'s, grid points), `L_p` lies in `U` exactly when it
+//! lies in `H` and meets no `T_k`'s interior: when `p` lies in `H`'s umbra
+//! volume and outside every `T_k`'s penumbra volume. That is a convex
+//! volume with convex volumes taken out: a union of convex parts, found by
+//! taking a volume `B` (behind planes `b_1..b_m`) out of each part `A` as
+//! the parts `A`, behind `b_1..b_{j-1}`, in front of `b_j` (`j = 1..m`),
+//! the empty ones dropped. Every plane is one of the volumes', through
+//! three grid points.
+
+use crate::AreaSource;
+use crate::volumes::volume_planes;
+use bsp_core::predicates::Side;
+use bsp_core::{ConvexPolygon, GridPoint, Plane};
+use std::cmp::Ordering;
+use svbsp::ConvexPolyhedron;
+
+/// The most vertices of a union's outline looked at (its simplicity is
+/// checked pair by pair); bigger unions form no group.
+const MAX_OUTLINE: usize = 256;
+
+/// The most convex parts one union's umbra is cut into; a union whose
+/// pockets would cut it into more keeps its pieces' umbrae only.
+const MAX_PARTS: usize = 64;
+
+/// Coplanar pieces, facing one way and edge-connected, covering once a
+/// simple polygon that is not convex.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlatUnion {
+    /// The pieces' indices, ascending.
+    pub pieces: Vec<u32>,
+    /// The polygon, counter-clockwise seen from the front of `support`.
+    outline: Vec<GridPoint>,
+    support: Plane,
+}
+
+impl FlatUnion {
+    /// The union of pieces `pieces` in plane `support` whose unmatched
+    /// edges form the cycle `outline` (counter-clockwise seen from the
+    /// front), if that cycle is a simple polygon that is not convex.
+    pub(super) fn new(pieces: Vec<u32>, outline: Vec<GridPoint>, support: Plane) -> Option<Self> {
+        if outline.len() < 4 || outline.len() > MAX_OUTLINE {
+            return None;
+        }
+        let union = Self {
+            pieces,
+            outline,
+            support,
+        };
+        let n = union.outline.len();
+        let convex = (0..n).all(|i| {
+            let [a, b, c] = [i, (i + 1) % n, (i + 2) % n].map(|k| union.outline[k]);
+            union.turn(a, b, c) != Ordering::Less
+        });
+        (!convex && union.is_simple()).then_some(union)
+    }
+
+    /// The convex parts of the union's umbra under `light`, each a list of
+    /// planes with the part behind all of them: the points from which the
+    /// pieces together hide all of the light. Empty when the union does not
+    /// lie strictly in front of the light, or would need too many parts.
+    pub fn umbra_parts(&self, light: &AreaSource) -> Vec<Vec<Plane>> {
+        if self
+            .outline
+            .iter()
+            .any(|&p| light.side_of_point(p) != Side::Front)
+        {
+            return Vec::new();
+        }
+        let Some(hull) = self.hull() else {
+            return Vec::new();
+        };
+        let Some(umbra) = volume_planes(&hull, light).umbra else {
+            return Vec::new();
+        };
+        let Some(pockets) = self.pocket_triangles() else {
+            return Vec::new();
+        };
+        let mut parts = vec![umbra];
+        for triangle in pockets {
+            for taken in volume_planes(&triangle, light).penumbra {
+                parts = parts
+                    .into_iter()
+                    .flat_map(|part| without(part, &taken))
+                    .collect();
+                if parts.len() > MAX_PARTS {
+                    return Vec::new();
+                }
+            }
+        }
+        parts
+    }
+
+    /// How `c` turns from the line `ab`, seen from the front of the plane:
+    /// `Greater` to the left (counter-clockwise), exactly.
+    fn turn(&self, a: GridPoint, b: GridPoint, c: GridPoint) -> Ordering {
+        let d = |p: GridPoint, q: GridPoint| {
+            [(q.x, p.x), (q.y, p.y), (q.z, p.z)].map(|(a, b)| i128::from(a) - i128::from(b))
+        };
+        let (u, v) = (d(a, b), d(a, c));
+        let cross = [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ];
+        let n = self.support.normal().map(i128::from);
+        // |cross| < 2^51 and |n| < 2^51: the sum is below 2^104.
+        (cross[0] * n[0] + cross[1] * n[1] + cross[2] * n[2]).cmp(&0)
+    }
+
+    /// Whether no two edges of the outline meet but at the vertex two
+    /// neighbours share.
+    fn is_simple(&self) -> bool {
+        let n = self.outline.len();
+        let edge = |i: usize| (self.outline[i], self.outline[(i + 1) % n]);
+        (0..n).all(|i| {
+            (i + 1..n).all(|j| {
+                let adjacent = j == i + 1 || (i == 0 && j == n - 1);
+                !self.segments_meet(edge(i), edge(j), adjacent)
+            })
+        })
+    }
+
+    /// Whether the closed segments meet; for `adjacent` ones (sharing an
+    /// end), whether they meet anywhere else.
+    fn segments_meet(
+        &self,
+        (a, b): (GridPoint, GridPoint),
+        (c, d): (GridPoint, GridPoint),
+        adjacent: bool,
+    ) -> bool {
+        let (c_side, d_side) = (self.turn(a, b, c), self.turn(a, b, d));
+        let (a_side, b_side) = (self.turn(c, d, a), self.turn(c, d, b));
+        if c_side == Ordering::Equal && d_side == Ordering::Equal {
+            // Collinear: they overlap beyond a shared end when one's end
+            // lies strictly inside the other.
+            let inside =
+                |p: GridPoint, (s, t): (GridPoint, GridPoint)| p != s && p != t && within(p, s, t);
+            return inside(c, (a, b))
+                || inside(d, (a, b))
+                || inside(a, (c, d))
+                || inside(b, (c, d))
+                || (!adjacent && (within(c, a, b) || within(d, a, b)));
+        }
+        if adjacent {
+            // Not collinear, one shared end: they meet only there.
+            return false;
+        }
+        c_side != d_side
+            && a_side != b_side
+            && (c_side != Ordering::Equal || within(c, a, b))
+            && (d_side != Ordering::Equal || within(d, a, b))
+            && (a_side != Ordering::Equal || within(a, c, d))
+            && (b_side != Ordering::Equal || within(b, c, d))
+    }
+
+    /// The convex hull, as a polygon in the union's plane facing its way
+    /// (Melkman's algorithm on the simple outline).
+    fn hull(&self) -> Option<ConvexPolygon> {
+        let left = |a, b, c| self.turn(a, b, c) == Ordering::Greater;
+        let points = &self.outline;
+        let mut deque: std::collections::VecDeque<GridPoint> = std::collections::VecDeque::new();
+        // Start from three points that turn.
+        let start = (0..points.len()).find(|&i| {
+            let n = points.len();
+            self.turn(points[i], points[(i + 1) % n], points[(i + 2) % n]) != Ordering::Equal
+        })?;
+        let n = points.len();
+        let (a, b, c) = (
+            points[start],
+            points[(start + 1) % n],
+            points[(start + 2) % n],
+        );
+        if left(a, b, c) {
+            deque.extend([c, a, b, c]);
+        } else {
+            deque.extend([c, b, a, c]);
+        }
+        for k in 3..n {
+            let p = points[(start + k) % n];
+            let len = deque.len();
+            if left(deque[len - 2], deque[len - 1], p) && left(p, deque[0], deque[1]) {
+                continue;
+            }
+            while deque.len() > 2 {
+                let len = deque.len();
+                if left(deque[len - 2], deque[len - 1], p) {
+                    break;
+                }
+                deque.pop_back();
+            }
+            deque.push_back(p);
+            while deque.len() > 2 {
+                if left(p, deque[0], deque[1]) {
+                    break;
+                }
+                deque.pop_front();
+            }
+            deque.push_front(p);
+        }
+        deque.pop_back();
+        let hull: Vec<GridPoint> = deque.into_iter().collect();
+        let polygon = ConvexPolygon::from_grid_points(&hull, 0).ok()?;
+        (polygon.support() == &self.support).then_some(polygon)
+    }
+
+    /// The pockets between the hull and the outline, cut into triangles
+    /// facing the union's way; `None` if one cannot be cut (not reached for
+    /// a simple outline).
+    fn pocket_triangles(&self) -> Option<Vec<ConvexPolygon>> {
+        let hull = self.hull()?;
+        // Outline vertices on the hull's boundary (its corners, and points
+        // of its edges) split the pockets: between two of them the outline
+        // leaves the hull and comes back.
+        let corners: Vec<GridPoint> = (0..hull.len())
+            .filter_map(|k| hull.vertex_grid_point(k))
+            .collect();
+        let h = corners.len();
+        let on_hull: Vec<bool> = self
+            .outline
+            .iter()
+            .map(|&p| {
+                (0..h).any(|k| {
+                    let (s, t) = (corners[k], corners[(k + 1) % h]);
+                    self.turn(s, t, p) == Ordering::Equal && within(p, s, t)
+                })
+            })
+            .collect();
+        let corners: Vec<usize> = (0..self.outline.len()).filter(|&i| on_hull[i]).collect();
+        let n = self.outline.len();
+        let mut triangles = Vec::new();
+        for (k, &from) in corners.iter().enumerate() {
+            let to = corners[(k + 1) % corners.len()];
+            let steps = (to + n - from) % n;
+            if steps <= 1 {
+                continue;
+            }
+            // The outline from one hull corner to the next, then back
+            // along the hull edge: the pocket, clockwise; reversed, it is
+            // counter-clockwise.
+            let mut pocket: Vec<GridPoint> =
+                (0..=steps).map(|s| self.outline[(from + s) % n]).collect();
+            pocket.reverse();
+            triangles.extend(self.ear_clip(pocket)?);
+        }
+        Some(triangles)
+    }
+
+    /// A simple counter-clockwise polygon cut into triangles by ear
+    /// clipping, exactly; straight vertices are dropped without a
+    /// triangle.
+    fn ear_clip(&self, mut polygon: Vec<GridPoint>) -> Option<Vec<ConvexPolygon>> {
+        let mut out = Vec::new();
+        while polygon.len() >= 3 {
+            let n = polygon.len();
+            let ear = (0..n).find_map(|i| {
+                let (a, b, c) = (polygon[(i + n - 1) % n], polygon[i], polygon[(i + 1) % n]);
+                match self.turn(a, b, c) {
+                    Ordering::Equal => Some((i, None)),
+                    Ordering::Less => None,
+                    Ordering::Greater => {
+                        let blocked = polygon.iter().any(|&p| {
+                            p != a
+                                && p != b
+                                && p != c
+                                && self.turn(a, b, p) != Ordering::Less
+                                && self.turn(b, c, p) != Ordering::Less
+                                && self.turn(c, a, p) != Ordering::Less
+                        });
+                        (!blocked).then_some((i, Some([a, b, c])))
+                    }
+                }
+            })?;
+            let (i, triangle) = ear;
+            if let Some(t) = triangle {
+                out.push(ConvexPolygon::from_grid_points(&t, 0).ok()?);
+            }
+            polygon.remove(i);
+        }
+        Some(out)
+    }
+}
+
+/// Whether grid point `p`, on the line `st`, lies on the closed segment.
+fn within(p: GridPoint, s: GridPoint, t: GridPoint) -> bool {
+    let between = |p: i32, s: i32, t: i32| s.min(t) <= p && p <= s.max(t);
+    between(p.x, s.x, t.x) && between(p.y, s.y, t.y) && between(p.z, s.z, t.z)
+}
+
+/// The convex parts of `part` outside the convex volume behind `taken`.
+fn without(part: Vec<Plane>, taken: &[Plane]) -> Vec<Vec<Plane>> {
+    let mut both = part.clone();
+    both.extend_from_slice(taken);
+    if ConvexPolyhedron::from_planes(&both).is_none() {
+        return vec![part];
+    }
+    let mut out = Vec::new();
+    let mut behind = part;
+    for plane in taken {
+        let mut outside = behind.clone();
+        outside.push(plane.flipped());
+        if ConvexPolyhedron::from_planes(&outside).is_some() {
+            out.push(outside);
+        }
+        behind.push(*plane);
+    }
+    out
+}
