@@ -161,8 +161,10 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
 
 /// The flat unions among `pieces` that are no convex polygon (those are
 /// [`convex_groups`]): pieces of one object (`objects` as there) in one
-/// plane, facing one way, edge-connected, each interior edge matched once,
-/// whose unmatched edges close into one simple cycle that is not convex.
+/// plane, facing one way, edge-connected (an edge running past another
+/// piece's corner, a T-junction, taken as cut there), each interior edge
+/// matched once, whose unmatched edges close into one simple cycle that
+/// is not convex.
 /// As for a flat convex group, the pieces then cover the polygon of that
 /// cycle once and nothing else. In order of first piece.
 ///
@@ -170,7 +172,8 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
 ///
 /// If `objects` is shorter than `pieces`.
 pub fn flat_unions(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<FlatUnion> {
-    let (outlines, groups) = edge_connected(pieces, objects);
+    let outlines = with_t_junctions(pieces, objects, grid_outlines(pieces, objects));
+    let groups = connected_sets(&outlines, objects);
     groups
         .into_iter()
         .filter_map(|members| {
@@ -199,14 +202,96 @@ fn edge_connected(
     pieces: &[ConvexPolygon],
     objects: &[Option<u32>],
 ) -> (Vec<Option<Vec<GridPoint>>>, Vec<Vec<u32>>) {
-    let grid_vertices = |k: usize| -> Option<Vec<GridPoint>> {
-        (0..pieces[k].len())
-            .map(|i| pieces[k].vertex_grid_point(i))
-            .collect()
+    let outlines = grid_outlines(pieces, objects);
+    let groups = connected_sets(&outlines, objects);
+    (outlines, groups)
+}
+
+/// Each piece's vertices, if all are grid points and it has an object.
+fn grid_outlines(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<Option<Vec<GridPoint>>> {
+    (0..pieces.len())
+        .map(|k| {
+            objects[k]?;
+            (0..pieces[k].len())
+                .map(|i| pieces[k].vertex_grid_point(i))
+                .collect()
+        })
+        .collect()
+}
+
+/// The most pieces of one object in one plane whose edges are searched
+/// for T-junctions.
+const MAX_T_JUNCTION_PIECES: usize = 64;
+
+/// `outlines` with, on each edge, the vertices of the other pieces of its
+/// object in its plane (same orientation) that lie strictly inside it: an
+/// L of two quads, one's edge running past the other's corner, then
+/// shares an edge like pieces cut from one polygon.
+fn with_t_junctions(
+    pieces: &[ConvexPolygon],
+    objects: &[Option<u32>],
+    mut outlines: Vec<Option<Vec<GridPoint>>>,
+) -> Vec<Option<Vec<GridPoint>>> {
+    let mut by_plane: HashMap<(u32, Plane), Vec<usize>> = HashMap::new();
+    for (k, outline) in outlines.iter().enumerate() {
+        if let (Some(_), Some(object)) = (outline, objects[k]) {
+            by_plane
+                .entry((object, *pieces[k].support()))
+                .or_default()
+                .push(k);
+        }
+    }
+    for ks in by_plane.into_values() {
+        if ks.len() < 2 || ks.len() > MAX_T_JUNCTION_PIECES {
+            continue;
+        }
+        let mut points: Vec<GridPoint> = ks
+            .iter()
+            .flat_map(|&k| outlines[k].iter().flatten().copied())
+            .collect();
+        points.sort_unstable();
+        points.dedup();
+        for &k in &ks {
+            let Some(outline) = outlines[k].take() else {
+                continue;
+            };
+            let mut refined = Vec::with_capacity(outline.len());
+            for (a, b) in directed_edges(&outline) {
+                refined.push(a);
+                let mut inside: Vec<(i128, GridPoint)> = points
+                    .iter()
+                    .filter_map(|&p| strictly_inside(p, a, b).map(|t| (t, p)))
+                    .collect();
+                inside.sort_unstable();
+                refined.extend(inside.into_iter().map(|(_, p)| p));
+            }
+            outlines[k] = Some(refined);
+        }
+    }
+    outlines
+}
+
+/// Where `p` lies on the open segment `ab`, if it does: its position along
+/// it (scaled by |b - a|^2), exactly.
+fn strictly_inside(p: GridPoint, a: GridPoint, b: GridPoint) -> Option<i128> {
+    let d = |p: GridPoint, q: GridPoint| {
+        [(q.x, p.x), (q.y, p.y), (q.z, p.z)].map(|(u, v)| i128::from(u) - i128::from(v))
     };
-    let outlines: Vec<Option<Vec<GridPoint>>> = (0..pieces.len())
-        .map(|k| objects[k].and_then(|_| grid_vertices(k)))
-        .collect();
+    let (u, v) = (d(a, b), d(a, p));
+    let cross = [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ];
+    let t = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    let length = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
+    (cross == [0; 3] && 0 < t && t < length).then_some(t)
+}
+
+/// The sets of at least two pieces of one object connected by directed
+/// edges of `outlines` matched by their reverses, each ascending, in
+/// order of first piece.
+fn connected_sets(outlines: &[Option<Vec<GridPoint>>], objects: &[Option<u32>]) -> Vec<Vec<u32>> {
     let mut by_edge: HashMap<(u32, GridPoint, GridPoint), Vec<u32>> = HashMap::new();
     for (k, outline) in outlines.iter().enumerate() {
         let (Some(outline), Some(object)) = (outline, objects[k]) else {
@@ -216,7 +301,7 @@ fn edge_connected(
             by_edge.entry((object, a, b)).or_default().push(k as u32);
         }
     }
-    let mut sets = DisjointSets::new(pieces.len());
+    let mut sets = DisjointSets::new(outlines.len());
     for (&(object, a, b), ks) in &by_edge {
         if let Some(others) = by_edge.get(&(object, b, a)) {
             for &k in ks.iter().chain(others) {
@@ -235,7 +320,7 @@ fn edge_connected(
     }
     let mut groups: Vec<Vec<u32>> = members.into_values().filter(|m| m.len() > 1).collect();
     groups.sort_unstable_by_key(|m| m[0]);
-    (outlines, groups)
+    groups
 }
 
 pub(super) fn directed_edges(

@@ -170,14 +170,35 @@ fn flat_unions_are_simple_polygons_that_are_not_convex() {
         .filter(|&c| c != (1, 1))
         .collect();
     assert!(flat_unions(&pieces(&ring), &all(8)).is_empty());
-    // Pieces facing opposite ways, or meeting in a T-junction, none.
+    // Pieces facing opposite ways, none.
     let mut turned = l.clone();
     turned[1] = turned[1].flipped();
     assert!(flat_unions(&turned, &all(3)).is_empty());
+    // An L of two rectangles, one's edge running past the other's corner
+    // (a T-junction): one, taken as cut at the corner.
     let long = ConvexPolygon::from_grid_points(
-        &[gp(0, 50, 10), gp(0, 50, 20), gp(20, 50, 20), gp(20, 50, 10)],
+        &[gp(0, 50, 0), gp(0, 50, 10), gp(20, 50, 10), gp(20, 50, 0)],
         0,
     )
     .unwrap();
-    assert!(flat_unions(&[l[0].clone(), long], &all(2)).is_empty());
+    let unions = flat_unions(&[long.clone(), l[2].clone()], &all(2));
+    assert_eq!(unions.len(), 1);
+    assert_eq!(unions[0].pieces, [0, 1]);
+    // Its umbra is the three-rectangle L's under a light above it.
+    let light = light(2, 2, 4, 4, 120);
+    let parts =
+        |pieces: &[ConvexPolygon]| flat_unions(pieces, &all(pieces.len()))[0].umbra_parts(&light);
+    let (two, three) = (parts(&[long, l[2].clone()]), parts(&l));
+    assert!(!two.is_empty());
+    for x in -40..60 {
+        for z in -40..60 {
+            let p = gp(x, -20, z);
+            let inside = |parts: &[Vec<bsp_core::Plane>]| {
+                parts
+                    .iter()
+                    .any(|part| part.iter().all(|q| side_of_point(q, p) == Side::Back))
+            };
+            assert_eq!(inside(&two), inside(&three), "{p:?}");
+        }
+    }
 }

@@ -510,16 +510,30 @@ fn a_concave_occluder_hides_the_light_where_its_pieces_do_together() {
     // overlap in a 0.125 square, 0.390625 in all, which is 1.0 on the
     // floor (scaled by 1 / 0.625^2). The convex pieces the L is cut into
     // each hide all of the light from less.
-    let dir = folder(&[("scene.toml", CONCAVE_OCCLUDER)]);
-    for command in ["shadow", "dm"] {
-        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
-        assert_eq!(run.code, 0, "{}", run.stderr);
-        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
-        let classes = floor_classes(&mesh);
-        assert!((classes[2] - 1.0).abs() < 1e-9, "{command}: {classes:?}");
-        assert!(
-            (classes.iter().sum::<f64>() - 64.0).abs() < 1e-9,
-            "{command}: {classes:?}"
-        );
+    // The same L as two quads, one's edge running past the other's
+    // corner (a T-junction).
+    let two_quads = CONCAVE_OCCLUDER.replace(
+        "polygons = [[[-1, 1.5, -1], [-1, 1.5, 1], [1, 1.5, 1], [1, 1.5, 0.5], [-0.5, 1.5, 0.5], [-0.5, 1.5, -1]]]",
+        "polygons = [[[-1, 1.5, -1], [-1, 1.5, 1], [-0.5, 1.5, 1], [-0.5, 1.5, -1]], \
+         [[-0.5, 1.5, 0.5], [-0.5, 1.5, 1], [1, 1.5, 1], [1, 1.5, 0.5]]]",
+    );
+    assert_ne!(two_quads, CONCAVE_OCCLUDER);
+    let dir = folder(&[
+        ("scene.toml", CONCAVE_OCCLUDER),
+        ("quads.toml", two_quads.as_str()),
+    ]);
+    for scene in ["scene.toml", "quads.toml"] {
+        for command in ["shadow", "dm"] {
+            let run = umbra(dir.path(), &[command, scene, "-o", "out.ply"]);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+            let classes = floor_classes(&mesh);
+            let all: f64 = classes.iter().sum();
+            assert!(
+                (classes[2] - 1.0).abs() < 1e-9,
+                "{command} {scene}: {classes:?}"
+            );
+            assert!((all - 64.0).abs() < 1e-9, "{command} {scene}: {classes:?}");
+        }
     }
 }
