@@ -3,13 +3,13 @@
 //! The only place besides `main.rs` that prints.
 
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    Deletion, DemoFiles, DmOptions, Error, ObjMesh, Outputs, OverlapKind, Pieces, PlyEncoding,
-    Result, Scene, ShadowOptions, csg, dm_scene_with, render_scene_with, save_csg_obj,
+    Deletion, DemoFiles, DmOptions, DmRun, Error, ObjMesh, Outputs, OverlapKind, Pieces,
+    PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene_with, render_scene_with, save_csg_obj,
     shadow_scene, shadow_scene_with, stage_obj, stage_ply,
 };
 
@@ -432,6 +432,16 @@ fn dm_options(outer_only: bool, deletion: DeletionArg, overlap: OverlapArg) -> D
     }
 }
 
+/// Writes a DM run's PLY and, if asked, its statistics, together.
+fn save_dm(run: &DmRun, output: &Path, ascii: bool, stats: Option<&Path>) -> Result<()> {
+    let mut outputs = Outputs::default();
+    stage_ply(&mut outputs, output, &run.mesh(), encoding(ascii))?;
+    if let Some(stats) = stats {
+        run.stats.stage(&mut outputs, stats)?;
+    }
+    outputs.commit()
+}
+
 /// `umbra dm`: outputs are written only once everything succeeded.
 fn run_dm(args: &DmArgs) -> Result<()> {
     let progress = Progress::start("loading the scene");
@@ -440,17 +450,7 @@ fn run_dm(args: &DmArgs) -> Result<()> {
     let options = dm_options(args.outer_only, DeletionArg::Local, args.overlap);
     let run = dm_scene_with(&scene, options)?;
     progress.say("writing");
-    let mut outputs = Outputs::default();
-    stage_ply(
-        &mut outputs,
-        &args.output,
-        &run.mesh(),
-        encoding(args.ascii),
-    )?;
-    if let Some(stats) = &args.stats {
-        run.stats.stage(&mut outputs, stats)?;
-    }
-    outputs.commit()?;
+    save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
     progress.finish();
     let s = &run.stats;
     let mut out = std::io::stdout().lock();
@@ -500,17 +500,7 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
     run.refresh_figures();
     run.stats.update = Some(figures);
     progress.say("writing");
-    let mut outputs = Outputs::default();
-    stage_ply(
-        &mut outputs,
-        &args.output,
-        &run.mesh(),
-        encoding(args.ascii),
-    )?;
-    if let Some(stats) = &args.stats {
-        run.stats.stage(&mut outputs, stats)?;
-    }
-    outputs.commit()?;
+    save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
     progress.finish();
     let mut out = std::io::stdout().lock();
     for line in lines {

@@ -16,6 +16,7 @@
 //! the empty ones dropped. Every plane is one of the volumes', through
 //! three grid points.
 
+use super::{cross, difference};
 use crate::AreaSource;
 use crate::volumes::volume_planes;
 use bsp_core::predicates::Side;
@@ -102,15 +103,7 @@ impl FlatUnion {
     /// How `c` turns from the line `ab`, seen from the front of the plane:
     /// `Greater` to the left (counter-clockwise), exactly.
     fn turn(&self, a: GridPoint, b: GridPoint, c: GridPoint) -> Ordering {
-        let d = |p: GridPoint, q: GridPoint| {
-            [(q.x, p.x), (q.y, p.y), (q.z, p.z)].map(|(a, b)| i128::from(a) - i128::from(b))
-        };
-        let (u, v) = (d(a, b), d(a, c));
-        let cross = [
-            u[1] * v[2] - u[2] * v[1],
-            u[2] * v[0] - u[0] * v[2],
-            u[0] * v[1] - u[1] * v[0],
-        ];
+        let cross = cross(difference(a, b), difference(a, c));
         let n = self.support.normal().map(i128::from);
         // |cross| < 2^51 and |n| < 2^51: the sum is below 2^104.
         (cross[0] * n[0] + cross[1] * n[1] + cross[2] * n[2]).cmp(&0)

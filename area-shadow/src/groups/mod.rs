@@ -274,18 +274,24 @@ fn with_t_junctions(
 /// Where `p` lies on the open segment `ab`, if it does: its position along
 /// it (scaled by |b - a|^2), exactly.
 fn strictly_inside(p: GridPoint, a: GridPoint, b: GridPoint) -> Option<i128> {
-    let d = |p: GridPoint, q: GridPoint| {
-        [(q.x, p.x), (q.y, p.y), (q.z, p.z)].map(|(u, v)| i128::from(u) - i128::from(v))
-    };
-    let (u, v) = (d(a, b), d(a, p));
-    let cross = [
+    let (u, v) = (difference(a, b), difference(a, p));
+    let dot = |x: [i128; 3], y: [i128; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    let t = dot(u, v);
+    (cross(u, v) == [0; 3] && 0 < t && t < dot(u, u)).then_some(t)
+}
+
+/// `q - p`, exactly.
+pub(super) fn difference(p: GridPoint, q: GridPoint) -> [i128; 3] {
+    [(q.x, p.x), (q.y, p.y), (q.z, p.z)].map(|(a, b)| i128::from(a) - i128::from(b))
+}
+
+/// `u x v`, exactly for differences of grid points (below 2^51).
+pub(super) fn cross(u: [i128; 3], v: [i128; 3]) -> [i128; 3] {
+    [
         u[1] * v[2] - u[2] * v[1],
         u[2] * v[0] - u[0] * v[2],
         u[0] * v[1] - u[1] * v[0],
-    ];
-    let t = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
-    let length = u[0] * u[0] + u[1] * u[1] + u[2] * u[2];
-    (cross == [0; 3] && 0 < t && t < length).then_some(t)
+    ]
 }
 
 /// The sets of at least two pieces of one object connected by directed

@@ -27,6 +27,19 @@ intensity = 2.0
 /// [`SQUARE_UNDER_LIGHT`] by midpoint quadrature over the light, each
 /// sample blocked when its ray crosses the square.
 fn quadrature(p: [f64; 3]) -> f64 {
+    light_quadrature(p, |p, d| {
+        // Where the ray crosses y = 5.
+        let t = (5.0 - p[1]) / d[1];
+        let c = [p[0] + t * d[0], p[2] + t * d[2]];
+        (0.0..1.0).contains(&t) && c[0].abs() < 2.0 && c[1].abs() < 2.0
+    })
+}
+
+/// Irradiance at floor point `p` (normal +y) from the 2 x 2 light of
+/// radiance 2 at y = 10 facing down, by midpoint quadrature over it: the
+/// samples whose ray (from `p`, along `d` to the sample) is `blocked`
+/// count nothing.
+fn light_quadrature(p: [f64; 3], blocked: impl Fn([f64; 3], [f64; 3]) -> bool) -> f64 {
     let n = 400;
     let h = 2.0 / f64::from(n);
     let mut e = 0.0;
@@ -38,10 +51,7 @@ fn quadrature(p: [f64; 3]) -> f64 {
                 -1.0 + (f64::from(j) + 0.5) * h,
             ];
             let d = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
-            // Where the ray crosses y = 5.
-            let t = (5.0 - p[1]) / d[1];
-            let c = [p[0] + t * d[0], p[2] + t * d[2]];
-            if (0.0..1.0).contains(&t) && c[0].abs() < 2.0 && c[1].abs() < 2.0 {
+            if blocked(p, d) {
                 continue;
             }
             let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -434,31 +444,15 @@ intensity = 2.0
 /// the box (slab test).
 fn quadrature_past_the_box(p: [f64; 3]) -> f64 {
     let (lo, hi) = ([0.5, 9.0, -0.5], [1.5, 10.0, 0.5]);
-    let n = 400;
-    let h = 2.0 / f64::from(n);
-    let mut e = 0.0;
-    for i in 0..n {
-        for j in 0..n {
-            let x = [
-                -1.0 + (f64::from(i) + 0.5) * h,
-                10.0,
-                -1.0 + (f64::from(j) + 0.5) * h,
-            ];
-            let d = [x[0] - p[0], x[1] - p[1], x[2] - p[2]];
-            let (mut enter, mut exit) = (0.0_f64, 1.0_f64);
-            for k in 0..3 {
-                let (a, b) = ((lo[k] - p[k]) / d[k], (hi[k] - p[k]) / d[k]);
-                enter = enter.max(a.min(b));
-                exit = exit.min(a.max(b));
-            }
-            if enter < exit {
-                continue;
-            }
-            let r2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-            e += 2.0 * (d[1] * d[1] / r2) / r2 * h * h;
+    light_quadrature(p, |p, d| {
+        let (mut enter, mut exit) = (0.0_f64, 1.0_f64);
+        for k in 0..3 {
+            let (a, b) = ((lo[k] - p[k]) / d[k], (hi[k] - p[k]) / d[k]);
+            enter = enter.max(a.min(b));
+            exit = exit.min(a.max(b));
         }
-    }
-    e
+        enter < exit
+    })
 }
 
 #[test]
