@@ -32,7 +32,9 @@
 //! points just off it on the side it receives on, which is what it sees
 //! light from: in contact, the body covers it. The pieces of a flat
 //! polygon that is not convex add the convex parts of the umbra they make
-//! together ([`crate::FlatUnion::umbra_parts`]) to that tree too. Where
+//! together ([`crate::FlatUnion::umbra_parts`]) to that tree too, and so
+//! does a body that holds the light in, all around it
+//! ([`ConvexGroup::enclosing_umbra`]). Where
 //! separate bodies
 //! together hide the whole light (a boundary of quadric EEE surfaces in
 //! general), fragments stay penumbra and their vertices' visible part of
@@ -258,8 +260,12 @@ impl AreaTrees {
                 trees.bodies.insert(volume);
             }
         }
-        for union in &groups.flat_unions {
-            let parts = union.umbra_parts(light);
+        let held_in = groups.bodies.iter().map(|body| body.enclosing_umbra(light));
+        let unions = groups
+            .flat_unions
+            .iter()
+            .map(|union| union.umbra_parts(light));
+        for parts in held_in.chain(unions) {
             let volumes: Vec<_> = parts
                 .iter()
                 .filter_map(|planes| region.clone().cut_by(planes))

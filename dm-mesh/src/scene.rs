@@ -78,9 +78,10 @@ pub(crate) enum PieceKind {
     /// discontinuities); under the others its one volume is its umbra (its
     /// polygons may hide the whole light only together). The pieces of a
     /// flat union that is no convex polygon
-    /// ([`area_shadow::flat_unions`]) make bodies of this kind too, one
-    /// per convex part of the umbra they make together, with only that
-    /// umbra.
+    /// ([`area_shadow::flat_unions`]), and those of a body that holds a
+    /// light in ([`area_shadow::ConvexGroup::enclosing_umbra`]), make
+    /// bodies of this kind too, one per convex part of the umbra they make
+    /// together, with only that umbra.
     Body,
 }
 

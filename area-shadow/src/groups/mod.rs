@@ -99,6 +99,21 @@ impl ConvexGroup {
         }
     }
 
+    /// The umbra of a solid group that holds `light` in: the light lies in
+    /// the body (every vertex on or behind every face; in a face's plane
+    /// only facing into the body), so no light leaves it and every point
+    /// outside sees none. In convex parts, each with the volume behind its
+    /// planes: in front of each face. Empty when the light is not held in
+    /// (the usual case, where [`Self::umbra_planes`] applies), for a flat
+    /// group, and for a nearly convex surface (a body moved in is not what
+    /// holds the light).
+    pub fn enclosing_umbra(&self, light: &AreaSource) -> Vec<Vec<Plane>> {
+        match &self.shape {
+            Shape::Flat(_) => Vec::new(),
+            Shape::Solid(solid) => solid.enclosing_umbra(light),
+        }
+    }
+
     /// The support plane `support` of one of the group's pieces, turned to
     /// face out of the body (a closed surface may face in); a flat group's
     /// as it is.

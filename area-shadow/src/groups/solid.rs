@@ -218,6 +218,27 @@ impl Solid {
         Some(planes)
     }
 
+    /// The umbra of a body that encloses `light` (see
+    /// [`super::ConvexGroup::enclosing_umbra`]).
+    pub(super) fn enclosing_umbra(&self, light: &AreaSource) -> Vec<Vec<Plane>> {
+        let support = light.support();
+        let inside = light.vertices().all(|v| {
+            self.faces
+                .iter()
+                .all(|f| side_of_point(f, v) != Side::Front)
+        });
+        // A body moved in is not the surface that holds the light in, and a
+        // light in a face's plane facing out shines out of the body.
+        if !self.exact || !inside || self.faces.contains(support) {
+            return Vec::new();
+        }
+        self.faces
+            .iter()
+            .filter(|f| **f != support.flipped())
+            .map(|f| vec![f.flipped()])
+            .collect()
+    }
+
     /// The planes of the body's umbra volume under `light` (see
     /// [`super::ConvexGroup::umbra_planes`]).
     pub(super) fn umbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {

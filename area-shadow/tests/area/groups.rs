@@ -520,3 +520,81 @@ fn open_or_concave_bodies_form_no_group() {
     let inward = box_faces(lo, hi, 0, true);
     assert_eq!(convex_groups(&inward, &[Some(0); 6]).len(), 1);
 }
+
+/// A light held in a closed box (strictly inside it, or in its top face's
+/// plane facing into it): every point outside sees none of it, and the
+/// box's inside, two-sided, receives it.
+#[test]
+fn a_box_that_holds_the_light_in_darkens_everything_outside() {
+    let floor = ConvexPolygon::from_grid_points(
+        &[
+            gp(-200, 0, -200),
+            gp(-200, 0, 200),
+            gp(200, 0, 200),
+            gp(200, 0, -200),
+        ],
+        0,
+    )
+    .unwrap();
+    for (height, cuts, inward) in [(80, 0, false), (100, 0, false), (100, 0x3f, true)] {
+        // The box [-20, 20] x [60, 100] x [-20, 20], its faces cut or not,
+        // facing out or in; the light facing down at `height`: inside it,
+        // or in its top face's plane.
+        let top = height;
+        let light = light(-10, -10, 20, 20, height, 0);
+        let faces = box_faces([-20, 60, -20], [20, 100, 20], cuts, inward);
+        let groups = convex_groups(&faces, &vec![Some(0); faces.len()]);
+        assert_eq!(groups.len(), 1);
+        let parts = groups[0].enclosing_umbra(&light);
+        assert!(!parts.is_empty(), "light at {top}");
+        let mut pieces = vec![floor.clone()];
+        pieces.extend(faces.iter().cloned());
+        let pieces: Vec<ConvexPolygon> = pieces
+            .into_iter()
+            .enumerate()
+            .map(|(k, p)| p.with_source(k as u32))
+            .collect();
+        let two_sided = PieceFlags {
+            two_sided: true,
+            ..PieceFlags::default()
+        };
+        let mut flags = vec![two_sided; pieces.len()];
+        flags[0] = PieceFlags::default();
+        let objects: Vec<u32> = (0..pieces.len()).map(|k| u32::from(k > 0)).collect();
+        let groups = ShadowGroups::of_objects(&pieces, &flags, &objects);
+        let out = compute_shadows_with_groups(
+            &pieces,
+            &flags,
+            &groups,
+            &[SceneLight::Area(light.clone())],
+            &BuildOptions::default(),
+        )
+        .unwrap();
+        let area = |source: u32, class: Class| -> f64 {
+            out.fragments
+                .iter()
+                .filter(|f| f.polygon.source() == source && Class::of(f, 0) == class)
+                .map(|f| f.polygon.area())
+                .sum()
+        };
+        assert!(
+            (area(0, Class::Umbra) - floor.area()).abs() < 1e-9,
+            "light at {top}"
+        );
+        // The bottom face, lit from inside on its two-sided back.
+        let bottom = 1 + faces
+            .iter()
+            .position(|f| (0..f.len()).all(|k| f.vertex_grid_point(k).unwrap().y == 60))
+            .unwrap() as u32;
+        assert!(area(bottom, Class::Umbra) < 1e-9, "light at {top}");
+    }
+    // Facing out of the top face, the light is not held in.
+    let out = light(-10, -10, 20, 20, 100, 0);
+    let flipped = AreaSource::new(out.polygon().flipped()).unwrap();
+    let faces = box_faces([-20, 60, -20], [20, 100, 20], 0, false);
+    let groups = convex_groups(&faces, &vec![Some(0); faces.len()]);
+    assert!(groups[0].enclosing_umbra(&flipped).is_empty());
+    // Nor is one partly outside the box.
+    let wide = light(-30, -10, 60, 20, 80, 0);
+    assert!(groups[0].enclosing_umbra(&wide).is_empty());
+}

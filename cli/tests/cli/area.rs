@@ -531,3 +531,31 @@ fn a_concave_occluder_hides_the_light_where_its_pieces_do_together() {
         }
     }
 }
+
+/// [`BOX_IN_THE_LIGHT`] with the box under all of the light: its top face
+/// is the light, which shines into it, and no light gets out.
+#[test]
+fn a_box_that_holds_the_light_in_leaves_the_floor_in_umbra() {
+    let scene = BOX_IN_THE_LIGHT
+        .replace("0.5, ", "-1, ")
+        .replace("1.5, ", "1, ")
+        .replace(", -0.5]", ", -1]")
+        .replace(", 0.5]", ", 1]");
+    assert!(
+        scene.contains("[[-1, 9, -1], [1, 9, -1], [1, 9, 1], [-1, 9, 1]]"),
+        "{scene}"
+    );
+    let dir = folder(&[("scene.toml", scene.as_str())]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let classes = floor_classes(&mesh);
+        assert!((classes[2] - 400.0).abs() < 1e-9, "{command}: {classes:?}");
+        for face in mesh.faces.iter().filter(|f| f.source == 0) {
+            for &v in &face.vertices {
+                assert_eq!(mesh.vertices[v as usize].1, 0.0, "{command}");
+            }
+        }
+    }
+}

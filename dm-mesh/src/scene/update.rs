@@ -151,30 +151,51 @@ impl DmScene {
             })
             .collect();
         self.objects[id].bodies.extend(&made);
-        // A flat union that is no convex polygon hides all of a light
-        // together where no one of its pieces does: each convex part of
-        // that umbra is a body of the union's pieces with only an umbra.
+        // Where polygons hide all of a light only together in a region
+        // that is no convex volume (a flat union that is no convex polygon,
+        // and a body holding the light in: all around it), each convex part
+        // of that umbra is a body of the polygons with only an umbra.
         let unions = if flags.casts_shadows {
             flat_unions(&polygons, &vec![Some(0); polygons.len()])
         } else {
             Vec::new()
         };
-        for union in &unions {
+        let held_in = bodies.iter().map(|body| {
+            let parts: Vec<Vec<Vec<Plane>>> = sources
+                .iter()
+                .map(|light| body.enclosing_umbra(light))
+                .collect();
+            let outward: Vec<Plane> = body
+                .pieces
+                .iter()
+                .map(|&k| body.outward(polygons[k as usize].support()))
+                .collect();
+            (&body.pieces, parts, outward)
+        });
+        let flat = unions.iter().map(|union| {
             let parts: Vec<Vec<Vec<Plane>>> = sources
                 .iter()
                 .map(|light| union.umbra_parts(light))
                 .collect();
-            let members: Vec<(&ConvexPolygon, Option<&Surroundings>)> = union
+            let outward: Vec<Plane> = union
                 .pieces
+                .iter()
+                .map(|&k| *polygons[k as usize].support())
+                .collect();
+            (&union.pieces, parts, outward)
+        });
+        let umbrae: Vec<_> = held_in.chain(flat).collect();
+        for (pieces, parts, outward) in umbrae {
+            let members: Vec<(&ConvexPolygon, Option<&Surroundings>)> = pieces
                 .iter()
                 .map(|&k| (&polygons[k as usize], None))
                 .collect();
             let count = parts.iter().map(Vec::len).max().unwrap_or(0);
             for i in 0..count {
                 let cast = BodyCast {
-                    outward: members.iter().map(|(p, _)| *p.support()).collect(),
+                    outward: outward.clone(),
                     members: &members,
-                    keys: union.pieces.iter().map(|&k| added[k as usize]).collect(),
+                    keys: pieces.iter().map(|&k| added[k as usize]).collect(),
                     volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
                 };
                 let body = self.attach_body(id, flags, cast, &sources);
