@@ -45,10 +45,16 @@ fn cuboid(s: &mut String, name: &str, centre: [f64; 3], size: [f64; 3], turn: [f
 
 /// The faces of the box `centre ± size / 2`, facing outward.
 fn box_faces(centre: [f64; 3], size: [f64; 3]) -> Vec<Vec<[f64; 3]>> {
-    let corner = |i: usize, j: usize, k: usize| -> [f64; 3] {
+    box_faces_by(|i, j, k| {
         let pick = |axis: usize, high: usize| centre[axis] + (high as f64 - 0.5) * size[axis];
         [pick(0, i), pick(1, j), pick(2, k)]
-    };
+    })
+}
+
+/// The faces of the parallelepiped with corners `corner(i, j, k)` (each
+/// index 0 or 1 along one edge direction, a right-handed frame), facing
+/// outward.
+fn box_faces_by(corner: impl Fn(usize, usize, usize) -> [f64; 3]) -> Vec<Vec<[f64; 3]>> {
     // Each face counter-clockwise seen from outside.
     vec![
         vec![
@@ -155,8 +161,62 @@ impl Lcg {
     }
 }
 
-/// The `cubes` scene text: 15 cubes of side 0.6, random positions and
-/// orientations (seed 1995), inside the room.
+/// A cube of side about `side` centred near `centre`, turned by the
+/// rotation of the integer quaternion `q`, as an object of inline
+/// polygons: its edges are the columns of the rotation's integer matrix
+/// (`n` times the rotation, `n = |q|^2`) scaled by a multiple of 1/1024,
+/// so every corner is a dyadic point that the scene's grid holds exactly
+/// and every face stays exactly planar. (Turned by `rotate_deg`, the
+/// corners would be rounded to the grid and the faces bent, and the cube
+/// would be no exactly convex body.)
+fn turned_cube(s: &mut String, name: &str, centre: [f64; 3], side: f64, q: [i64; 4]) {
+    let [a, b, c, d] = q;
+    let n = a * a + b * b + c * c + d * d;
+    let m = [
+        [
+            a * a + b * b - c * c - d * d,
+            2 * (b * c - a * d),
+            2 * (b * d + a * c),
+        ],
+        [
+            2 * (b * c + a * d),
+            a * a - b * b + c * c - d * d,
+            2 * (c * d - a * b),
+        ],
+        [
+            2 * (b * d - a * c),
+            2 * (c * d + a * b),
+            a * a - b * b - c * c + d * d,
+        ],
+    ];
+    let dyadic = |x: f64| (x * 1024.0).round() / 1024.0;
+    let step = dyadic(side / n as f64);
+    let centre = centre.map(dyadic);
+    let corner = |i: usize, j: usize, k: usize| -> [f64; 3] {
+        let half = |h: usize| h as f64 - 0.5;
+        std::array::from_fn(|axis| {
+            let e = |col: usize| m[axis][col] as f64 * step;
+            centre[axis] + half(i) * e(0) + half(j) * e(1) + half(k) * e(2)
+        })
+    };
+    let faces = box_faces_by(corner);
+    let polygon = |f: &Vec<[f64; 3]>| -> String {
+        let points: Vec<String> = f
+            .iter()
+            .map(|p| format!("[{}, {}, {}]", p[0], p[1], p[2]))
+            .collect();
+        format!("[{}]", points.join(", "))
+    };
+    let polygons: Vec<String> = faces.iter().map(polygon).collect();
+    let _ = writeln!(
+        s,
+        "[[object]]\nname = \"{name}\"\npolygons = [\n  {},\n]\n",
+        polygons.join(",\n  ")
+    );
+}
+
+/// The `cubes` scene text: 15 cubes of side about 0.6, random positions
+/// and orientations (seed 1995), inside the room.
 pub(crate) fn cubes_scene() -> String {
     let mut s = String::from(
         "# Fifteen randomly placed and turned cubes in a room under a square\n\
@@ -168,12 +228,14 @@ pub(crate) fn cubes_scene() -> String {
     let mut rng = Lcg(1995);
     for k in 1..=15 {
         let centre = [rng.next(-4.0, 4.0), rng.next(0.5, 3.0), rng.next(-4.0, 4.0)];
-        let turn = [
-            rng.next(0.0, 90.0),
-            rng.next(0.0, 90.0),
-            rng.next(0.0, 90.0),
-        ];
-        cuboid(&mut s, &format!("cube_{k}"), centre, [0.6; 3], turn);
+        // A turn: an integer quaternion with components in -3..=3, not 0.
+        let q = loop {
+            let q: [i64; 4] = std::array::from_fn(|_| rng.next(-3.0, 4.0).floor() as i64);
+            if q != [0; 4] {
+                break q;
+            }
+        };
+        turned_cube(&mut s, &format!("cube_{k}"), centre, 0.6, q);
     }
     s
 }

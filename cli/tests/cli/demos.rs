@@ -103,6 +103,30 @@ fn dm_demos_have_their_sizes_and_run_with_umbra_dm() {
     let cubes = Scene::load(write_demo("cubes", dir.path()).unwrap()).unwrap();
     let names: Vec<&str> = cubes.objects.iter().map(|o| o.name.as_str()).collect();
     assert_eq!(names.iter().filter(|n| n.starts_with("cube_")).count(), 15);
+    // Each cube: six quads with dyadic corners (the grid holds them
+    // exactly), each exactly planar, so the cube is an exactly convex body.
+    for (o, polygon) in cubes.input_polygons() {
+        if !cubes.objects[o].name.starts_with("cube_") {
+            continue;
+        }
+        let exact: Vec<[i128; 3]> = polygon
+            .vertices
+            .iter()
+            .map(|v| {
+                v.map(|c| {
+                    let scaled = c * 2048.0;
+                    assert_eq!(scaled.fract(), 0.0, "{c} is no multiple of 1/2048");
+                    scaled as i128
+                })
+            })
+            .collect();
+        assert_eq!(exact.len(), 4);
+        let d = |k: usize| std::array::from_fn::<i128, 3, _>(|a| exact[k][a] - exact[0][a]);
+        let (u, v, w) = (d(1), d(2), d(3));
+        let volume = u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
+            + u[2] * (v[0] * w[1] - v[1] * w[0]);
+        assert_eq!(volume, 0, "a face of {} bends", cubes.objects[o].name);
+    }
     // The same text every time (a fixed seed).
     let again = folder(&[]);
     let a = std::fs::read_to_string(write_demo("cubes", again.path()).unwrap()).unwrap();
