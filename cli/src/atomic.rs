@@ -54,13 +54,31 @@ impl Outputs {
         let mut out = BufWriter::new(temp);
         write(&mut out).map_err(fail)?;
         let temp = out.into_inner().map_err(|e| fail(e.into_error()))?;
+        // A temporary file is private; an output is not: read and
+        // written by its owner, read by the rest, like files made the
+        // usual way.
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            let permissions = std::fs::Permissions::from_mode(0o644);
+            std::fs::set_permissions(temp.path(), permissions).map_err(fail)?;
+        }
         temp.as_file().sync_all().map_err(fail)?;
         self.staged.push((path.to_path_buf(), temp));
         Ok(())
     }
 
     /// Puts every staged file in place (renames within their folders).
+    /// A target that is a folder fails before any file is put in place
+    /// (the renames cannot fail otherwise: each temporary file was made in
+    /// its target's folder).
     pub fn commit(self) -> Result<()> {
+        if let Some((path, _)) = self.staged.iter().find(|(path, _)| path.is_dir()) {
+            return Err(Error::Write {
+                path: path.clone(),
+                source: std::io::Error::new(std::io::ErrorKind::IsADirectory, "is a folder"),
+            });
+        }
         for (path, temp) in self.staged {
             temp.persist(&path).map_err(|e| Error::Write {
                 path,
@@ -105,6 +123,15 @@ mod tests {
         outputs.stage(&first, |w| w.write_all(b"a")).unwrap();
         outputs.stage(&second, |w| w.write_all(b"b")).unwrap();
         assert!(!first.exists() && !second.exists());
+        // A target that is a folder: none is written.
+        let mut blocked = Outputs::default();
+        blocked.stage(&first, |w| w.write_all(b"a")).unwrap();
+        std::fs::create_dir(dir.path().join("folder")).unwrap();
+        let folder = dir.path().join("folder");
+        blocked.stage(&folder, |w| w.write_all(b"b")).unwrap();
+        assert!(blocked.commit().is_err());
+        assert!(!first.exists());
+        std::fs::remove_dir(&folder).unwrap();
         outputs.commit().unwrap();
         assert_eq!(std::fs::read_to_string(&first).unwrap(), "a");
         assert_eq!(std::fs::read_to_string(&second).unwrap(), "b");

@@ -201,9 +201,12 @@ fn an_output_that_cannot_be_written_leaves_no_other() {
         "{TRIANGLE}\n[[light]]\ntype = \"area\"\nvertices = [[0, 0, 5], [0, 1, 5], [1, 0, 5]]\n"
     );
     let dir = folder(&[("scene.toml", scene.as_str())]);
-    // The statistics' folder is missing: the PLY written before them must
-    // not stay behind, whichever command.
+    std::fs::create_dir(dir.path().join("taken")).unwrap();
+    // The statistics' folder is missing, or their name a folder's: the PLY
+    // written before them must not stay behind, whichever command.
     for args in [
+        &["dm", "scene.toml", "-o", "out.ply", "--stats", "taken"][..],
+        &["shadow", "scene.toml", "-o", "out.ply", "--obj", "taken"],
         &[
             "shadow",
             "scene.toml",
@@ -222,11 +225,16 @@ fn an_output_that_cannot_be_written_leaves_no_other() {
     ] {
         let run = umbra(dir.path(), args);
         assert_eq!(run.code, 2, "{args:?}: {}", run.stderr);
-        assert!(run.stderr.contains("no/"), "{}", run.stderr);
-        let names: Vec<_> = std::fs::read_dir(dir.path())
+        assert!(
+            run.stderr.contains("no/") || run.stderr.contains("taken"),
+            "{}",
+            run.stderr
+        );
+        let mut names: Vec<_> = std::fs::read_dir(dir.path())
             .unwrap()
             .map(|e| e.unwrap().file_name().into_string().unwrap())
             .collect();
-        assert_eq!(names, ["scene.toml"], "{args:?}");
+        names.sort();
+        assert_eq!(names, ["scene.toml", "taken"], "{args:?}");
     }
 }
