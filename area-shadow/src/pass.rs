@@ -33,8 +33,8 @@
 //! light from: in contact, the body covers it. The pieces of a flat
 //! polygon that is not convex add the convex parts of the umbra they make
 //! together ([`crate::FlatUnion::umbra_parts`]) to that tree too, and so
-//! does a body that holds the light in, all around it
-//! ([`ConvexGroup::enclosing_umbra`]). Where
+//! do a body that holds the light in, all around it, and a body one face
+//! short, outside it ([`ConvexGroup::umbra_parts`]). Where
 //! separate bodies
 //! together hide the whole light (a boundary of quadric EEE surfaces in
 //! general), fragments stay penumbra and their vertices' visible part of
@@ -260,7 +260,7 @@ impl AreaTrees {
                 trees.bodies.insert(volume);
             }
         }
-        let held_in = groups.bodies.iter().map(|body| body.enclosing_umbra(light));
+        let held_in = groups.bodies.iter().map(|body| body.umbra_parts(light));
         let unions = groups
             .flat_unions
             .iter()

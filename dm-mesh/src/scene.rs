@@ -79,7 +79,8 @@ pub(crate) enum PieceKind {
     /// polygons may hide the whole light only together). The pieces of a
     /// flat union that is no convex polygon
     /// ([`area_shadow::flat_unions`]), and those of a body that holds a
-    /// light in ([`area_shadow::ConvexGroup::enclosing_umbra`]), make
+    /// light in or is one face short
+    /// ([`area_shadow::ConvexGroup::umbra_parts`]), make
     /// bodies of this kind too, one per convex part of the umbra they make
     /// together, with only that umbra.
     Body,

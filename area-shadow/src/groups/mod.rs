@@ -40,6 +40,13 @@
 //!   few units from convex stands for a convex body inside it (module
 //!   `solid`), whose umbra is part of the surface's.
 //!
+//! - **open solid**: a surface closed but for one face (its unmatched
+//!   edges close into one planar convex cycle) that, closed by that face,
+//!   is a solid as above. From outside it blocks light as the solid does
+//!   (a segment through the solid crosses its boundary twice, at most once
+//!   in the hole's plane), so its umbra is the solid's outside the solid,
+//!   in parts ([`ConvexGroup::umbra_parts`]); from inside, light comes in
+//!   through the hole.
 //! - **flat union** ([`FlatUnion`], module `flat_union`): pieces as for a
 //!   flat group whose cycle is a simple polygon that is not convex (a
 //!   concave input polygon cut into convex pieces). Its umbra is its
@@ -95,6 +102,8 @@ impl ConvexGroup {
     pub fn umbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
         match &self.shape {
             Shape::Flat(polygon) => volume_planes(polygon, light).umbra,
+            // An open surface's is given in parts (`umbra_parts`).
+            Shape::Solid(solid) if solid.is_capped() => None,
             Shape::Solid(solid) => solid.umbra_planes(light),
         }
     }
@@ -112,6 +121,33 @@ impl ConvexGroup {
             Shape::Flat(_) => Vec::new(),
             Shape::Solid(solid) => solid.enclosing_umbra(light),
         }
+    }
+
+    /// The group's umbra where it is no one convex volume, in convex parts
+    /// each with the volume behind its planes: of a body that holds the
+    /// light in ([`Self::enclosing_umbra`]), and of an open surface one
+    /// face short (module `solid`: closed by that face it blocks light as
+    /// the body does from outside, so its umbra is the body's outside the
+    /// body, a part in front of each face). Empty otherwise.
+    pub fn umbra_parts(&self, light: &AreaSource) -> Vec<Vec<Plane>> {
+        let Shape::Solid(solid) = &self.shape else {
+            return Vec::new();
+        };
+        if !solid.is_capped() {
+            return solid.enclosing_umbra(light);
+        }
+        let Some(umbra) = solid.umbra_planes(light) else {
+            return Vec::new();
+        };
+        solid
+            .faces()
+            .iter()
+            .map(|face| {
+                let mut part = umbra.clone();
+                part.push(face.flipped());
+                part
+            })
+            .collect()
     }
 
     /// The support plane `support` of one of the group's pieces, turned to
@@ -164,7 +200,9 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
             let shape = if supports.iter().all(|s| *s == supports[0]) {
                 flat_shape(&outlines, &supports[0]).map(Shape::Flat)
             } else {
-                Solid::of_surface(&outlines, &supports).map(Shape::Solid)
+                Solid::of_surface(&outlines, &supports)
+                    .or_else(|| Solid::of_open_surface(&outlines, &supports))
+                    .map(Shape::Solid)
             }?;
             Some(ConvexGroup {
                 pieces: members,
@@ -375,7 +413,7 @@ fn flat_shape(outlines: &[&[GridPoint]], support: &Plane) -> Option<ConvexPolygo
 /// The one cycle the pieces' unmatched directed edges close into (each
 /// vertex left by at most one), from its least vertex; `None` if a
 /// directed edge repeats or they make no single cycle.
-fn boundary_cycle(outlines: &[&[GridPoint]]) -> Option<Vec<GridPoint>> {
+pub(super) fn boundary_cycle(outlines: &[&[GridPoint]]) -> Option<Vec<GridPoint>> {
     let edges = edge_set(outlines)?;
     let mut next: HashMap<GridPoint, GridPoint> = HashMap::new();
     for &(a, b) in edges.keys() {

@@ -21,7 +21,7 @@ use super::hull::convex_hull;
 use super::{MAX_SOLID_WORK, edge_set};
 use crate::AreaSource;
 use bsp_core::predicates::{Side, side_of_point};
-use bsp_core::{GridPoint, Plane};
+use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use std::collections::HashSet;
 
 /// The farthest a vertex is moved towards the centre, in grid units.
@@ -39,6 +39,9 @@ pub(super) struct Solid {
     exact: bool,
     /// Whether the surface's pieces face into the body.
     faces_in: bool,
+    /// Whether the surface was open, one face short, and its last face
+    /// (the hole's polygon) was added to close it ([`Self::of_open_surface`]).
+    capped: bool,
 }
 
 impl Solid {
@@ -87,6 +90,38 @@ impl Solid {
             Self::with_faces(outlines, faces, vertices, true)
         };
         solid.map(|solid| Self { faces_in, ..solid })
+    }
+
+    /// The body of a surface closed but for one face: its unmatched edges
+    /// close into one cycle, a planar convex polygon, that capped with it
+    /// the surface is convex (or nearly, [`Self::of_surface`]). The open
+    /// surface blocks light as that body does from every point outside
+    /// it: a segment through the body crosses its boundary twice, and at
+    /// most once in the hole's plane. From inside (through the hole) it
+    /// does not, so the umbra is given in parts outside the body
+    /// ([`super::ConvexGroup::umbra_parts`]).
+    pub(super) fn of_open_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
+        let mut hole = super::boundary_cycle(outlines)?;
+        hole.reverse();
+        let cap = ConvexPolygon::from_grid_points(&hole, 0).ok()?;
+        let mut closed: Vec<&[GridPoint]> = outlines.to_vec();
+        closed.push(&hole);
+        let mut planes = supports.to_vec();
+        planes.push(*cap.support());
+        Self::of_surface(&closed, &planes).map(|solid| Self {
+            capped: true,
+            ..solid
+        })
+    }
+
+    /// Whether the body closes an open surface ([`Self::of_open_surface`]).
+    pub(super) fn is_capped(&self) -> bool {
+        self.capped
+    }
+
+    /// Each face's plane, the body behind it.
+    pub(super) fn faces(&self) -> &[Plane] {
+        &self.faces
     }
 
     /// A piece's support plane turned to face out of the body.
@@ -165,6 +200,7 @@ impl Solid {
             edges: solid_edges,
             exact,
             faces_in: false,
+            capped: false,
         })
     }
 
@@ -176,6 +212,7 @@ impl Solid {
     pub(super) fn penumbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
         let support = light.support();
         if !self.exact
+            || self.capped
             || self
                 .vertices
                 .iter()
@@ -229,7 +266,7 @@ impl Solid {
         });
         // A body moved in is not the surface that holds the light in, and a
         // light in a face's plane facing out shines out of the body.
-        if !self.exact || !inside || self.faces.contains(support) {
+        if !self.exact || self.capped || !inside || self.faces.contains(support) {
             return Vec::new();
         }
         self.faces

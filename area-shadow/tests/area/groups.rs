@@ -503,9 +503,16 @@ fn two_triangles_of_a_quad_form_one_flat_group() {
 }
 
 #[test]
-fn open_or_concave_bodies_form_no_group() {
+fn bodies_two_faces_short_or_shared_form_no_group() {
     let (lo, hi) = ([0, 100, 0], [10, 110, 10]);
-    let mut open = box_faces(lo, hi, 0x555, false);
+    // One face short (or half a face, a triangle), a box is a group
+    // (closed by that face); two faces short, none.
+    let mut half = box_faces(lo, hi, 0x555, false);
+    half.pop();
+    assert_eq!(convex_groups(&half, &vec![Some(0); half.len()]).len(), 1);
+    let mut open = box_faces(lo, hi, 0, false);
+    open.pop();
+    assert_eq!(convex_groups(&open, &vec![Some(0); open.len()]).len(), 1);
     open.pop();
     assert!(convex_groups(&open, &vec![Some(0); open.len()]).is_empty());
     // Two boxes stacked face to face: the shared square's edges are
@@ -597,4 +604,65 @@ fn a_box_that_holds_the_light_in_darkens_everything_outside() {
     // Nor is one partly outside the box.
     let wide = light(-30, -10, 60, 20, 80, 0);
     assert!(groups[0].enclosing_umbra(&wide).is_empty());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A box one face short (its other faces whole or cut into triangles,
+    /// facing out or in) hides from every point outside it what the closed
+    /// box does: strictly inside an umbra part no point of the light is
+    /// seen past its faces; outside every part and outside the box some
+    /// light vertex is.
+    #[test]
+    fn an_open_box_hides_what_the_closed_one_does_from_outside(
+        lo in prop::array::uniform3(-80_i64..40),
+        size in prop::array::uniform3(6_i64..60),
+        cuts in any::<u32>(),
+        missing in 0_usize..6,
+        inward in any::<bool>(),
+        light in light_strategy(),
+        points in prop::collection::vec(prop::array::uniform3(-150_i64..150), 200),
+    ) {
+        let lo = [lo[0], 40 + lo[1].rem_euclid(60), lo[2]];
+        let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
+        // The missing face whole; the pieces before it, one or two a face.
+        let cuts = cuts & !(3 << (2 * missing));
+        let pieces_of = |f: usize| if matches!((cuts >> (2 * f)) & 3, 1 | 2) { 2 } else { 1 };
+        let at: usize = (0..missing).map(pieces_of).sum();
+        let mut faces = box_faces(lo, hi, cuts, inward);
+        faces.remove(at);
+        let groups = convex_groups(&faces, &vec![Some(0); faces.len()]);
+        prop_assert_eq!(groups.len(), 1);
+        prop_assert!(groups[0].umbra_planes(&light).is_none());
+        prop_assert!(groups[0].penumbra_planes(&light).is_none());
+        let parts = groups[0].umbra_parts(&light);
+        if parts.is_empty() {
+            // Only when the box reaches the light's plane.
+            prop_assert!(reaches_light_plane(&faces, &light));
+            return Ok(());
+        }
+        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
+        let inside_light = light_samples(light.polygon());
+        for c in points {
+            let p = gp(c[0], c[1] + 40, c[2]);
+            let on_a_plane = faces.iter().any(|f| side_of_point(f.support(), p) == Side::On)
+                || parts.iter().flatten().any(|q| side_of_point(q, p) == Side::On);
+            if on_a_plane {
+                continue;
+            }
+            let q = p.to_f64();
+            let inside_box = (0..3).all(|a| (lo[a] as f64) < q[a] && q[a] < hi[a] as f64);
+            let in_part = parts
+                .iter()
+                .any(|part| part.iter().all(|plane| side_of_point(plane, p) == Side::Back));
+            prop_assert!(!(inside_box && in_part), "{q:?} inside the box in an umbra part");
+            if in_part {
+                prop_assert!(all_hidden(q, &inside_light, &casters), "{q:?} in the umbra sees the light");
+            } else if !inside_box {
+                prop_assert!(!all_hidden(q, &corners, &casters), "{q:?} outside the umbra sees no light vertex");
+            }
+        }
+    }
 }

@@ -559,3 +559,55 @@ fn a_box_that_holds_the_light_in_leaves_the_floor_in_umbra() {
         }
     }
 }
+
+/// A box one face short under a light off to its side, open towards the
+/// light or away from it: from the floor it hides what the closed box
+/// does, in both commands (open at the top, its bottom alone would leave
+/// a third of the umbra penumbra).
+#[test]
+fn an_open_box_shades_the_floor_as_the_closed_one() {
+    let faces = [
+        "[[-1, 4, -1], [1, 4, -1], [1, 4, 1], [-1, 4, 1]]",
+        "[[-1, 5, -1], [-1, 5, 1], [1, 5, 1], [1, 5, -1]]",
+        "[[-1, 4, -1], [-1, 4, 1], [-1, 5, 1], [-1, 5, -1]]",
+        "[[1, 4, -1], [1, 5, -1], [1, 5, 1], [1, 4, 1]]",
+        "[[-1, 4, -1], [-1, 5, -1], [1, 5, -1], [1, 4, -1]]",
+        "[[-1, 4, 1], [1, 4, 1], [1, 5, 1], [-1, 5, 1]]",
+    ];
+    let scene = |skip: Option<usize>| -> String {
+        let kept: Vec<&str> = (0..6)
+            .filter(|&k| Some(k) != skip)
+            .map(|k| faces[k])
+            .collect();
+        format!(
+            "[[object]]\nname = \"floor\"\npolygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]\n\n\
+             [[object]]\nname = \"box\"\npolygons = [{}]\n\n\
+             [[light]]\ntype = \"area\"\nvertices = [[2, 10, -1], [4, 10, -1], [4, 10, 1], [2, 10, 1]]\n",
+            kept.join(", ")
+        )
+    };
+    let (closed, top_open, side_open) = (scene(None), scene(Some(1)), scene(Some(5)));
+    let dir = folder(&[
+        ("closed.toml", closed.as_str()),
+        ("top.toml", top_open.as_str()),
+        ("side.toml", side_open.as_str()),
+    ]);
+    for command in ["shadow", "dm"] {
+        let classes = |name: &str| {
+            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
+        };
+        let want = classes("closed.toml");
+        assert!((want[2] - 6.0).abs() < 1e-9, "{command}: {want:?}");
+        for name in ["top.toml", "side.toml"] {
+            let got = classes(name);
+            for k in 0..3 {
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-9,
+                    "{command} {name}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+}

@@ -163,7 +163,7 @@ impl DmScene {
         let held_in = bodies.iter().map(|body| {
             let parts: Vec<Vec<Vec<Plane>>> = sources
                 .iter()
-                .map(|light| body.enclosing_umbra(light))
+                .map(|light| body.umbra_parts(light))
                 .collect();
             let outward: Vec<Plane> = body
                 .pieces
