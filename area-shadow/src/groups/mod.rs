@@ -46,7 +46,9 @@
 //!   (a segment through the solid crosses its boundary twice, at most once
 //!   in the hole's plane), so its umbra is the solid's outside the solid,
 //!   in parts ([`ConvexGroup::umbra_parts`]); from inside, light comes in
-//!   through the hole.
+//!   through the hole. A quad the grid bent, cut into two triangles,
+//!   closes likewise into a thin tetrahedron by the other two triangles,
+//!   under a light on one side of both (module `solid`).
 //! - **flat union** ([`FlatUnion`], module `flat_union`): pieces as for a
 //!   flat group whose cycle is a simple polygon that is not convex (a
 //!   concave input polygon cut into convex pieces). Its umbra is its
@@ -135,6 +137,9 @@ impl ConvexGroup {
         };
         if !solid.is_capped() {
             return solid.enclosing_umbra(light);
+        }
+        if solid.caps_let_through(light) {
+            return Vec::new();
         }
         let Some(umbra) = solid.umbra_planes(light) else {
             return Vec::new();

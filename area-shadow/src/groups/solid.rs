@@ -19,7 +19,7 @@
 
 use super::hull::convex_hull;
 use super::{MAX_SOLID_WORK, edge_set};
-use crate::AreaSource;
+use crate::{AreaSource, SourceSide};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use std::collections::HashSet;
@@ -39,9 +39,12 @@ pub(super) struct Solid {
     exact: bool,
     /// Whether the surface's pieces face into the body.
     faces_in: bool,
-    /// Whether the surface was open, one face short, and its last face
-    /// (the hole's polygon) was added to close it ([`Self::of_open_surface`]).
+    /// Whether the surface was open, and faces over its hole were added to
+    /// close it ([`Self::of_open_surface`]).
     capped: bool,
+    /// Those faces' planes, facing out, when more than one (then the
+    /// light must lie on one side of them all, see [`Self::umbra_parts`]).
+    caps: Vec<Plane>,
 }
 
 impl Solid {
@@ -100,18 +103,64 @@ impl Solid {
     /// most once in the hole's plane. From inside (through the hole) it
     /// does not, so the umbra is given in parts outside the body
     /// ([`super::ConvexGroup::umbra_parts`]).
+    ///
+    /// A hole of four corners not in one plane (a quad the grid bent,
+    /// given as two triangles) is closed by the two triangles of its other
+    /// diagonal: a thin tetrahedron. Two faces over the hole can both be
+    /// crossed by one segment, but not when the light lies on one side of
+    /// both: then a segment from the light leaves or enters the body by a
+    /// face of the surface (the light behind both, it leaves by a face the
+    /// light is in front of; in front of both, a point in the umbra lies
+    /// behind both, and the segment enters by a face the point is in front
+    /// of).
     pub(super) fn of_open_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
         let mut hole = super::boundary_cycle(outlines)?;
         hole.reverse();
-        let cap = ConvexPolygon::from_grid_points(&hole, 0).ok()?;
-        let mut closed: Vec<&[GridPoint]> = outlines.to_vec();
-        closed.push(&hole);
-        let mut planes = supports.to_vec();
-        planes.push(*cap.support());
-        Self::of_surface(&closed, &planes).map(|solid| Self {
-            capped: true,
-            ..solid
+        let bent = hole.len() == 4
+            && Plane::through(hole[0], hole[1], hole[2])
+                .is_some_and(|plane| side_of_point(&plane, hole[3]) != Side::On);
+        let caps: Vec<Vec<Vec<GridPoint>>> = if bent {
+            let [a, b, c, d] = [hole[0], hole[1], hole[2], hole[3]];
+            vec![
+                vec![vec![a, b, c], vec![a, c, d]],
+                vec![vec![b, c, d], vec![b, d, a]],
+            ]
+        } else {
+            vec![vec![hole]]
+        };
+        caps.into_iter().find_map(|cap| {
+            let polygons: Vec<ConvexPolygon> = cap
+                .iter()
+                .map(|outline| ConvexPolygon::from_grid_points(outline, 0).ok())
+                .collect::<Option<_>>()?;
+            let mut closed: Vec<&[GridPoint]> = outlines.to_vec();
+            closed.extend(cap.iter().map(Vec::as_slice));
+            let mut planes = supports.to_vec();
+            planes.extend(polygons.iter().map(|p| *p.support()));
+            let solid = Self::of_surface(&closed, &planes)?;
+            let caps = if polygons.len() > 1 {
+                polygons
+                    .iter()
+                    .map(|p| solid.outward(p.support()))
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            Some(Self {
+                capped: true,
+                caps,
+                ..solid
+            })
         })
+    }
+
+    /// Whether the body's umbra is the open surface's from outside (see
+    /// [`Self::of_open_surface`]): with one face over the hole always,
+    /// with more when `light` lies on one side of them all.
+    pub(super) fn caps_let_through(&self, light: &AreaSource) -> bool {
+        let sides: Vec<SourceSide> = self.caps.iter().map(|c| light.side_of(c)).collect();
+        !sides.iter().all(|s| *s == SourceSide::Back)
+            && !sides.iter().all(|s| *s == SourceSide::Front)
     }
 
     /// Whether the body closes an open surface ([`Self::of_open_surface`]).
@@ -201,6 +250,7 @@ impl Solid {
             exact,
             faces_in: false,
             capped: false,
+            caps: Vec::new(),
         })
     }
 

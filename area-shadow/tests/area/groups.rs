@@ -666,3 +666,71 @@ proptest! {
         }
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// A quad whose fourth corner the grid moved off the plane of the
+    /// other three, given as two triangles (along either diagonal): a
+    /// group, closed by the other diagonal's triangles into a thin
+    /// tetrahedron, whose umbra parts hold exactly the points the two
+    /// triangles hide all of the light from (outside them).
+    #[test]
+    fn a_bent_quad_hides_the_light_where_its_triangles_do_together(
+        corner in prop::array::uniform3(-60_i64..20),
+        u in (10_i64..80, -8_i64..8, -20_i64..20),
+        v in (-20_i64..20, -8_i64..8, 10_i64..80),
+        bend in prop_oneof![Just(-2_i64), Just(-1), Just(1), Just(2)],
+        other_diagonal in any::<bool>(),
+        light in light_strategy(),
+        points in prop::collection::vec(prop::array::uniform3(-150_i64..150), 200),
+    ) {
+        let c = [corner[0], 100 + corner[1] / 4, corner[2]];
+        let (u, v) = ([u.0, u.1, u.2], [v.0, v.1, v.2]);
+        let p = |s: i64, t: i64, dy: i64| gp(c[0] + s * u[0] + t * v[0], c[1] + s * u[1] + t * v[1] + dy, c[2] + s * u[2] + t * v[2]);
+        let (a, b, d, e) = (p(0, 0, 0), p(1, 0, 0), p(1, 1, bend), p(0, 1, 0));
+        let triangle = |x: GridPoint, y: GridPoint, z: GridPoint| ConvexPolygon::from_grid_points(&[x, y, z], 0).ok();
+        let pieces = if other_diagonal {
+            [triangle(a, b, d), triangle(a, d, e)]
+        } else {
+            [triangle(a, b, e), triangle(b, d, e)]
+        };
+        let [Some(t1), Some(t2)] = pieces else {
+            return Ok(());
+        };
+        let faces = vec![t1, t2];
+        // Not in one plane: no flat group.
+        prop_assume!(faces[0].support() != faces[1].support());
+        let groups = convex_groups(&faces, &[Some(0), Some(0)]);
+        prop_assert_eq!(groups.len(), 1);
+        let parts = groups[0].umbra_parts(&light);
+        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
+        let inside_light = light_samples(light.polygon());
+        let tetrahedron = [a, b, d, e];
+        for c in points {
+            let q = gp(c[0], c[1] - 60, c[2]);
+            let on_a_plane = parts.iter().flatten().any(|plane| side_of_point(plane, q) == Side::On)
+                || faces.iter().any(|f| side_of_point(f.support(), q) == Side::On);
+            // Inside the thin tetrahedron the parts claim nothing.
+            let inside = (0..4).all(|k| {
+                let [x, y, z] = [0, 1, 2].map(|i| tetrahedron[(k + 1 + i) % 4]);
+                let plane = bsp_core::Plane::through(x, y, z).unwrap();
+                let side = side_of_point(&plane, q);
+                side == Side::On || side == side_of_point(&plane, tetrahedron[k])
+            });
+            if on_a_plane || inside {
+                continue;
+            }
+            let x = q.to_f64();
+            let in_part = parts
+                .iter()
+                .any(|part| part.iter().all(|plane| side_of_point(plane, q) == Side::Back));
+            if in_part {
+                prop_assert!(all_hidden(x, &inside_light, &casters), "{x:?} in the umbra sees the light");
+            } else if !parts.is_empty() {
+                prop_assert!(!all_hidden(x, &corners, &casters), "{x:?} outside the umbra sees no light vertex");
+            }
+        }
+    }
+}
