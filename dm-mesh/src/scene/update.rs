@@ -23,7 +23,7 @@ use crate::order::unit_order;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
 use area_shadow::{
-    AreaSource, SourceSide, VolumePlanes, convex_groups, flat_unions, volume_planes,
+    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, flat_unions, volume_planes,
 };
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use illum::VisiblePart;
@@ -151,16 +151,34 @@ impl DmScene {
             })
             .collect();
         self.objects[id].bodies.extend(&made);
-        // Where polygons hide all of a light only together in a region
-        // that is no convex volume (a flat union that is no convex polygon,
-        // and a body holding the light in: all around it), each convex part
-        // of that umbra is a body of the polygons with only an umbra.
+        let parts = self.attach_umbra_parts(id, flags, &polygons, &bodies, &added, &sources);
+        self.objects[id].bodies.extend(&parts);
+        added.extend(parts);
+        added.extend(made);
+        Ok(added)
+    }
+
+    /// The bodies of the object's polygons for the umbrae they make only
+    /// together that are no convex volume: of a flat union that is no
+    /// convex polygon ([`flat_unions`]), of a body that holds a light in,
+    /// and of one a face short ([`ConvexGroup::umbra_parts`]). Each convex
+    /// part of such an umbra is a body of the polygons (pieces `added`,
+    /// in the order of `polygons`) with only that umbra.
+    fn attach_umbra_parts(
+        &mut self,
+        id: ObjectId,
+        flags: PieceFlags,
+        polygons: &[ConvexPolygon],
+        bodies: &[ConvexGroup],
+        added: &[PieceId],
+        sources: &[AreaSource],
+    ) -> Vec<PieceId> {
         let unions = if flags.casts_shadows {
-            flat_unions(&polygons, &vec![Some(0); polygons.len()])
+            flat_unions(polygons, &vec![Some(0); polygons.len()])
         } else {
             Vec::new()
         };
-        let held_in = bodies.iter().map(|body| {
+        let of_bodies = bodies.iter().map(|body| {
             let parts: Vec<Vec<Vec<Plane>>> = sources
                 .iter()
                 .map(|light| body.umbra_parts(light))
@@ -172,7 +190,7 @@ impl DmScene {
                 .collect();
             (&body.pieces, parts, outward)
         });
-        let flat = unions.iter().map(|union| {
+        let of_unions = unions.iter().map(|union| {
             let parts: Vec<Vec<Vec<Plane>>> = sources
                 .iter()
                 .map(|light| union.umbra_parts(light))
@@ -184,12 +202,14 @@ impl DmScene {
                 .collect();
             (&union.pieces, parts, outward)
         });
-        let umbrae: Vec<_> = held_in.chain(flat).collect();
+        let umbrae: Vec<_> = of_bodies.chain(of_unions).collect();
+        let mut made = Vec::new();
         for (pieces, parts, outward) in umbrae {
             let members: Vec<(&ConvexPolygon, Option<&Surroundings>)> = pieces
                 .iter()
                 .map(|&k| (&polygons[k as usize], None))
                 .collect();
+            // Per light its parts; body `i` takes each light's `i`-th.
             let count = parts.iter().map(Vec::len).max().unwrap_or(0);
             for i in 0..count {
                 let cast = BodyCast {
@@ -198,13 +218,10 @@ impl DmScene {
                     keys: pieces.iter().map(|&k| added[k as usize]).collect(),
                     volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
                 };
-                let body = self.attach_body(id, flags, cast, &sources);
-                self.objects[id].bodies.push(body);
-                added.push(body);
+                made.push(self.attach_body(id, flags, cast, sources));
             }
         }
-        added.extend(made);
-        Ok(added)
+        made
     }
 
     /// What a polygon of a shadow-casting object casts under each light:
