@@ -13,8 +13,13 @@
 //! ([`AreaTrees`], [`shadow_area_light`]). Pieces that form one convex
 //! body ([`convex_groups`]) add the body's umbra too, where they hide the
 //! whole light only together; an exactly convex body's penumbra volume is
-//! one convex volume too ([`ConvexGroup::penumbra_planes`]). [`compute_shadows`] runs point, directional
-//! and area lights together, one mask bit each.
+//! one convex volume too ([`ConvexGroup::penumbra_planes`]). Where pieces
+//! hide the light together in a region that is no convex volume (coplanar
+//! pieces covering a concave polygon, [`FlatUnion`]; a surface one face
+//! short of a convex body, a body holding the light in,
+//! [`ConvexGroup::umbra_parts`]) that region comes in convex parts.
+//! [`compute_shadows`] runs point, directional and area lights together,
+//! one mask bit each.
 //!
 //! Every plane is a plane through three grid points and every side
 //! decision is an exact predicate, so fragments partition their polygons
