@@ -33,35 +33,73 @@ const MAX_OUTLINE: usize = 256;
 const MAX_PARTS: usize = 64;
 
 /// Coplanar pieces, facing one way and edge-connected, covering once a
-/// simple polygon that is not convex.
+/// polygon that is not convex: a simple outline, with holes or not. (The
+/// holes are pockets of the hull too.)
 #[derive(Debug, Clone, PartialEq)]
 pub struct FlatUnion {
     /// The pieces' indices, ascending.
     pub pieces: Vec<u32>,
     /// The polygon, counter-clockwise seen from the front of `support`.
     outline: Vec<GridPoint>,
+    /// Its holes, each clockwise.
+    holes: Vec<Vec<GridPoint>>,
     support: Plane,
 }
 
 impl FlatUnion {
     /// The union of pieces `pieces` in plane `support` whose unmatched
-    /// edges form the cycle `outline` (counter-clockwise seen from the
-    /// front), if that cycle is a simple polygon that is not convex.
-    pub(super) fn new(pieces: Vec<u32>, outline: Vec<GridPoint>, support: Plane) -> Option<Self> {
-        if outline.len() < 4 || outline.len() > MAX_OUTLINE {
+    /// edges form the cycles `cycles`, if one of them runs
+    /// counter-clockwise seen from the front (the outline) and the others
+    /// clockwise (holes), no two edges meet but at a shared corner, and
+    /// the region is not convex (a hole, or a concave outline).
+    pub(super) fn new(
+        pieces: Vec<u32>,
+        cycles: Vec<Vec<GridPoint>>,
+        support: Plane,
+    ) -> Option<Self> {
+        let corners: usize = cycles.iter().map(Vec::len).sum();
+        if corners > MAX_OUTLINE || cycles.iter().any(|c| c.len() < 3) {
             return None;
         }
-        let union = Self {
+        let mut union = Self {
             pieces,
-            outline,
+            outline: Vec::new(),
+            holes: Vec::new(),
             support,
         };
+        for cycle in cycles {
+            match union.winding(&cycle) {
+                Ordering::Greater if union.outline.is_empty() => union.outline = cycle,
+                Ordering::Less => union.holes.push(cycle),
+                _ => return None,
+            }
+        }
         let n = union.outline.len();
+        if n == 0 {
+            return None;
+        }
         let convex = (0..n).all(|i| {
             let [a, b, c] = [i, (i + 1) % n, (i + 2) % n].map(|k| union.outline[k]);
             union.turn(a, b, c) != Ordering::Less
         });
-        (!convex && union.is_simple()).then_some(union)
+        ((!convex || !union.holes.is_empty()) && union.is_simple()).then_some(union)
+    }
+
+    /// The sign of a cycle's area seen from the front: `Greater` when it
+    /// runs counter-clockwise, exactly.
+    fn winding(&self, cycle: &[GridPoint]) -> Ordering {
+        let n = self.support.normal().map(i128::from);
+        // Each term below 2^103, at most MAX_OUTLINE of them.
+        let twice_area: i128 = (1..cycle.len().saturating_sub(1))
+            .map(|i| {
+                let c = cross(
+                    difference(cycle[0], cycle[i]),
+                    difference(cycle[0], cycle[i + 1]),
+                );
+                c[0] * n[0] + c[1] * n[1] + c[2] * n[2]
+            })
+            .sum();
+        twice_area.cmp(&0)
     }
 
     /// The convex parts of the union's umbra under `light`, each a list of
@@ -109,15 +147,24 @@ impl FlatUnion {
         (cross[0] * n[0] + cross[1] * n[1] + cross[2] * n[2]).cmp(&0)
     }
 
-    /// Whether no two edges of the outline meet but at the vertex two
-    /// neighbours share.
+    /// Whether no two edges of the outline and the holes meet but at the
+    /// corner two neighbours share.
     fn is_simple(&self) -> bool {
-        let n = self.outline.len();
-        let edge = |i: usize| (self.outline[i], self.outline[(i + 1) % n]);
-        (0..n).all(|i| {
-            (i + 1..n).all(|j| {
-                let adjacent = j == i + 1 || (i == 0 && j == n - 1);
-                !self.segments_meet(edge(i), edge(j), adjacent)
+        let cycles: Vec<&Vec<GridPoint>> =
+            std::iter::once(&self.outline).chain(&self.holes).collect();
+        let edges: Vec<(usize, usize, (GridPoint, GridPoint))> = cycles
+            .iter()
+            .enumerate()
+            .flat_map(|(c, cycle)| {
+                let n = cycle.len();
+                (0..n).map(move |i| (c, i, (cycle[i], cycle[(i + 1) % n])))
+            })
+            .collect();
+        edges.iter().enumerate().all(|(k, &(c, i, e))| {
+            edges[k + 1..].iter().all(|&(d, j, f)| {
+                let n = cycles[c].len();
+                let adjacent = c == d && (j == i + 1 || (i == 0 && j == n - 1));
+                !self.segments_meet(e, f, adjacent)
             })
         })
     }
@@ -205,9 +252,9 @@ impl FlatUnion {
         (polygon.support() == &self.support).then_some(polygon)
     }
 
-    /// The pockets between the hull and the outline, cut into triangles
-    /// facing the union's way; `None` if one cannot be cut (not reached for
-    /// a simple outline).
+    /// The pockets between the hull and the outline, and the holes, cut
+    /// into triangles facing the union's way; `None` if one cannot be cut
+    /// (not reached for simple cycles).
     fn pocket_triangles(&self) -> Option<Vec<ConvexPolygon>> {
         let hull = self.hull()?;
         // Outline vertices on the hull's boundary (its corners, and points
@@ -241,6 +288,12 @@ impl FlatUnion {
             // counter-clockwise.
             let mut pocket: Vec<GridPoint> =
                 (0..=steps).map(|s| self.outline[(from + s) % n]).collect();
+            pocket.reverse();
+            triangles.extend(self.ear_clip(pocket)?);
+        }
+        // Each hole, clockwise, is a pocket reversed.
+        for hole in &self.holes {
+            let mut pocket = hole.clone();
             pocket.reverse();
             triangles.extend(self.ear_clip(pocket)?);
         }

@@ -50,13 +50,15 @@
 //!   closes likewise into a thin tetrahedron by the other two triangles,
 //!   under a light on one side of both (module `solid`).
 //! - **flat union** ([`FlatUnion`], module `flat_union`): pieces as for a
-//!   flat group whose cycle is a simple polygon that is not convex (a
-//!   concave input polygon cut into convex pieces). Its umbra is its
-//!   convex hull's with the pockets' penumbrae taken out, in convex parts.
+//!   flat group whose cycles bound a region that is not convex: a simple
+//!   outline, concave or with holes (a concave input polygon cut into
+//!   convex pieces, a frame). Its umbra is its convex hull's with the
+//!   pockets' penumbrae taken out (the holes are pockets too), in convex
+//!   parts.
 //!
-//! Anything else (T-junctions, holes, concave or open bodies, a face
-//! shared by two bodies) forms no group, and its umbra stays the union of
-//! its pieces' umbrae.
+//! Anything else (concave or twice-open bodies, a face shared by two
+//! bodies) forms no group, and its umbra stays the union of its pieces'
+//! umbrae.
 
 use crate::AreaSource;
 use crate::volumes::volume_planes;
@@ -246,8 +248,8 @@ pub fn flat_unions(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<Fla
                 .iter()
                 .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
                 .collect();
-            let cycle = boundary_cycle(&outlines)?;
-            FlatUnion::new(members, cycle, support)
+            let cycles = boundary_cycles(&outlines)?;
+            FlatUnion::new(members, cycles, support)
         })
         .collect()
 }
@@ -419,6 +421,14 @@ fn flat_shape(outlines: &[&[GridPoint]], support: &Plane) -> Option<ConvexPolygo
 /// vertex left by at most one), from its least vertex; `None` if a
 /// directed edge repeats or they make no single cycle.
 pub(super) fn boundary_cycle(outlines: &[&[GridPoint]]) -> Option<Vec<GridPoint>> {
+    let mut cycles = boundary_cycles(outlines)?;
+    (cycles.len() == 1).then(|| cycles.pop()).flatten()
+}
+
+/// The cycles the pieces' unmatched directed edges close into (each
+/// vertex left by at most one), each from its least vertex, in order of
+/// those; `None` if a directed edge repeats or a vertex is left twice.
+fn boundary_cycles(outlines: &[&[GridPoint]]) -> Option<Vec<Vec<GridPoint>>> {
     let edges = edge_set(outlines)?;
     let mut next: HashMap<GridPoint, GridPoint> = HashMap::new();
     for &(a, b) in edges.keys() {
@@ -426,17 +436,27 @@ pub(super) fn boundary_cycle(outlines: &[&[GridPoint]]) -> Option<Vec<GridPoint>
             return None;
         }
     }
-    let start = *next.keys().min()?;
-    let mut cycle = vec![start];
-    let mut at = next[&start];
-    while at != start {
-        if cycle.len() > next.len() {
-            return None;
+    let mut starts: Vec<GridPoint> = next.keys().copied().collect();
+    starts.sort_unstable();
+    let mut seen: std::collections::HashSet<GridPoint> = std::collections::HashSet::new();
+    let mut cycles = Vec::new();
+    for start in starts {
+        if seen.contains(&start) {
+            continue;
         }
-        cycle.push(at);
-        at = *next.get(&at)?;
+        let mut cycle = vec![start];
+        seen.insert(start);
+        let mut at = *next.get(&start)?;
+        while at != start {
+            if !seen.insert(at) {
+                return None;
+            }
+            cycle.push(at);
+            at = *next.get(&at)?;
+        }
+        cycles.push(cycle);
     }
-    (cycle.len() == next.len()).then_some(cycle)
+    (!cycles.is_empty()).then_some(cycles)
 }
 
 /// Union-find over piece indices.

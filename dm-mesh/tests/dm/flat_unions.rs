@@ -1,8 +1,8 @@
-//! A flat occluder that is no convex polygon (an L, a T, a U or a Z of
-//! rectangles sharing whole edges): the umbra its pieces make together,
-//! as umbra-only bodies, against an exact oracle at floor points; vertex
-//! irradiance against the visible part of the light; a move against a
-//! fresh build.
+//! A flat occluder that is no convex polygon (an L, a T, a U, a Z or a
+//! ring of rectangles sharing whole edges): the umbra its pieces make
+//! together, as umbra-only bodies, against an exact oracle at floor
+//! points; vertex irradiance against the visible part of the light; a move
+//! against a fresh build.
 
 use crate::common::{TestScene, class_areas, floor, gp, light};
 use crate::illumination::check_vertices;
@@ -12,12 +12,23 @@ use dm_mesh::CellClass;
 use proptest::prelude::*;
 use svbsp::PieceFlags;
 
-/// Cells `(column, row)` of a 3 x 3 layout: an L, a T, a U and a Z.
-const SHAPES: [&[(usize, usize)]; 4] = [
+/// Cells `(column, row)` of a 3 x 3 layout: an L, a T, a U, a Z and a
+/// ring (a frame round a hole).
+const SHAPES: [&[(usize, usize)]; 5] = [
     &[(0, 0), (1, 0), (0, 1)],
     &[(0, 0), (1, 0), (2, 0), (1, 1)],
     &[(0, 0), (1, 0), (2, 0), (0, 1), (2, 1)],
     &[(0, 0), (1, 0), (1, 1), (2, 1)],
+    &[
+        (0, 0),
+        (1, 0),
+        (2, 0),
+        (0, 1),
+        (2, 1),
+        (0, 2),
+        (1, 2),
+        (2, 2),
+    ],
 ];
 
 /// Cell `(i, j)` of the layout with column bounds `xs` and row bounds
@@ -54,7 +65,7 @@ proptest! {
 
     #[test]
     fn a_flat_union_hides_the_light_where_its_pieces_do_together(
-        shape in 0_usize..4,
+        shape in 0_usize..5,
         origin in (-60_i64..0, -60_i64..0),
         widths in prop::array::uniform3(8_i64..50),
         depths in prop::array::uniform3(8_i64..50),
