@@ -134,8 +134,27 @@ fn inner_points(faces: &[ConvexPolygon]) -> Vec<[f64; 3]> {
         // Cubed, so that some points lie near each vertex.
         (0.01 + f64::from(state % 1000) / 1000.0).powi(3)
     };
-    (0..2000)
-        .map(|_| {
+    // First points along each segment between two vertices (the edges
+    // among them), pulled a fiftieth of the way to the centre: a ray
+    // through one reaches the part of the light that only a corner or an
+    // edge hides (from a far point, the penumbra's light can be a thin
+    // sliver past the silhouette).
+    let n = vertices.len() as f64;
+    let centre: [f64; 3] = std::array::from_fn(|a| vertices.iter().map(|v| v[a]).sum::<f64>() / n);
+    let mut near_edges: Vec<[f64; 3]> = Vec::new();
+    for (i, u) in vertices.iter().enumerate() {
+        for w in &vertices[i..] {
+            for k in 0..16 {
+                let t = f64::from(k) / 16.0;
+                near_edges.push(std::array::from_fn(|a| {
+                    0.98 * (u[a] + t * (w[a] - u[a])) + 0.02 * centre[a]
+                }));
+            }
+        }
+    }
+    near_edges
+        .into_iter()
+        .chain((0..2000).map(|_| {
             let weights: Vec<f64> = vertices.iter().map(|_| next()).collect();
             let total: f64 = weights.iter().sum();
             std::array::from_fn(|a| {
@@ -146,7 +165,7 @@ fn inner_points(faces: &[ConvexPolygon]) -> Vec<[f64; 3]> {
                     .sum::<f64>()
                     / total
             })
-        })
+        }))
         .collect()
 }
 
@@ -190,6 +209,20 @@ fn reaches_light_plane(faces: &[ConvexPolygon], light: &AreaSource) -> bool {
     })
 }
 
+/// What the oracle tests against: the faces as casters, the light's
+/// corners, and points spread inside the light.
+#[allow(clippy::type_complexity)] // (the three, named where used)
+fn oracle(
+    faces: &[ConvexPolygon],
+    light: &AreaSource,
+) -> (Vec<Caster>, Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    (
+        faces.iter().map(Caster::new).collect(),
+        light.vertices().map(GridPoint::to_f64).collect(),
+        light_samples(light.polygon()),
+    )
+}
+
 fn all_hidden(p: [f64; 3], targets: &[[f64; 3]], casters: &[Caster]) -> bool {
     // No receiver: `own` is a plane none of the body's faces lie in.
     let own =
@@ -217,9 +250,7 @@ proptest! {
             prop_assert!(reaches_light_plane(&faces, &light));
             return Ok(());
         };
-        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
-        let inside_light = light_samples(light.polygon());
+        let (casters, corners, inside_light) = oracle(&faces, &light);
         for c in points {
             let p = gp(c[0], c[1] + 40, c[2]);
             let on_a_face = faces.iter().any(|f| side_of_point(f.support(), p) == Side::On);
@@ -258,9 +289,7 @@ proptest! {
             prop_assert!(reaches_light_plane(&faces, &light));
             return Ok(());
         };
-        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
-        let inside_light = light_samples(light.polygon());
+        let (casters, corners, inside_light) = oracle(&faces, &light);
         let depth = |q: [f64; 3]| {
             planes
                 .iter()
@@ -399,9 +428,7 @@ proptest! {
         let Some(planes) = groups[0].umbra_planes(&light) else {
             return Ok(());
         };
-        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
-        let inside_light = light_samples(light.polygon());
+        let (casters, corners, inside_light) = oracle(&faces, &light);
         // The body fills most of the sphere: its centre is in the umbra.
         let middle = gp(centre[0].round() as i64, centre[1].round() as i64 + 110, centre[2].round() as i64);
         prop_assert!(planes.iter().all(|q| side_of_point(q, middle) == Side::Back));
@@ -642,9 +669,7 @@ proptest! {
             prop_assert!(reaches_light_plane(&faces, &light));
             return Ok(());
         }
-        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
-        let inside_light = light_samples(light.polygon());
+        let (casters, corners, inside_light) = oracle(&faces, &light);
         for c in points {
             let p = gp(c[0], c[1] + 40, c[2]);
             let on_a_plane = faces.iter().any(|f| side_of_point(f.support(), p) == Side::On)
@@ -704,9 +729,7 @@ proptest! {
         let groups = convex_groups(&faces, &[Some(0), Some(0)]);
         prop_assert_eq!(groups.len(), 1);
         let parts = groups[0].umbra_parts(&light);
-        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
-        let inside_light = light_samples(light.polygon());
+        let (casters, corners, inside_light) = oracle(&faces, &light);
         let tetrahedron = [a, b, d, e];
         for c in points {
             let q = gp(c[0], c[1] - 60, c[2]);
