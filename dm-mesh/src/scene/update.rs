@@ -178,30 +178,26 @@ impl DmScene {
         } else {
             Vec::new()
         };
+        // Per group: its pieces, per light its umbra's parts, and each
+        // piece's plane facing out (a flat union's as it is).
+        let umbra = |pieces: &'_ [u32],
+                     parts: &dyn Fn(&AreaSource) -> Vec<Vec<Plane>>,
+                     outward: &dyn Fn(&Plane) -> Plane| {
+            let parts: Vec<Vec<Vec<Plane>>> = sources.iter().map(parts).collect();
+            let outward: Vec<Plane> = pieces
+                .iter()
+                .map(|&k| outward(polygons[k as usize].support()))
+                .collect();
+            (pieces.to_vec(), parts, outward)
+        };
         let of_bodies = bodies.iter().map(|body| {
-            let parts: Vec<Vec<Vec<Plane>>> = sources
-                .iter()
-                .map(|light| body.umbra_parts(light))
-                .collect();
-            let outward: Vec<Plane> = body
-                .pieces
-                .iter()
-                .map(|&k| body.outward(polygons[k as usize].support()))
-                .collect();
-            (&body.pieces, parts, outward)
+            umbra(&body.pieces, &|light| body.umbra_parts(light), &|s| {
+                body.outward(s)
+            })
         });
-        let of_unions = unions.iter().map(|union| {
-            let parts: Vec<Vec<Vec<Plane>>> = sources
-                .iter()
-                .map(|light| union.umbra_parts(light))
-                .collect();
-            let outward: Vec<Plane> = union
-                .pieces
-                .iter()
-                .map(|&k| *polygons[k as usize].support())
-                .collect();
-            (&union.pieces, parts, outward)
-        });
+        let of_unions = unions
+            .iter()
+            .map(|union| umbra(&union.pieces, &|light| union.umbra_parts(light), &|s| *s));
         let umbrae: Vec<_> = of_bodies.chain(of_unions).collect();
         let mut made = Vec::new();
         for (pieces, parts, outward) in umbrae {
