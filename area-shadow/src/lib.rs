@@ -64,7 +64,9 @@ pub use bsp_core;
 pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
-pub use groups::{ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, flat_unions};
+pub use groups::{
+    ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, flat_unions,
+};
 pub use merge_pieces::{merge_pair, merge_same_class};
 pub use pass::{
     AreaLightStats, AreaTrees, Class, ShadowGroups, classify_fragments, shadow_area_light,

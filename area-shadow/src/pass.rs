@@ -40,7 +40,7 @@
 //! general), fragments stay penumbra and their vertices' visible part of
 //! the light comes out empty.
 
-use crate::groups::{ConvexGroup, FlatUnion, convex_groups, flat_unions};
+use crate::groups::{ConvexGroup, FlatUnion, convex_groups, convex_unions, flat_unions};
 use crate::merge_pieces::merge_same_class;
 use crate::tree::VolumeTree;
 use crate::volumes::cast_volumes_within;
@@ -126,6 +126,10 @@ pub struct ShadowGroups {
     pub bodies: Vec<ConvexGroup>,
     /// Flat unions of pieces that are no convex polygon.
     pub flat_unions: Vec<FlatUnion>,
+    /// Convex bodies that bodies of [`Self::bodies`] touching face to face
+    /// make together, whatever their objects ([`convex_unions`]): they
+    /// add their umbrae.
+    pub joint_bodies: Vec<ConvexGroup>,
 }
 
 impl ShadowGroups {
@@ -150,9 +154,15 @@ impl ShadowGroups {
         let casting: Vec<Option<u32>> = (0..pieces.len())
             .map(|k| flags[k].casts_shadows.then_some(objects[k]))
             .collect();
+        let bodies = convex_groups(pieces, &casting);
+        let joint_bodies = convex_unions(&bodies.iter().collect::<Vec<_>>())
+            .into_iter()
+            .map(|(_, union)| union)
+            .collect();
         Self {
-            bodies: convex_groups(pieces, &casting),
+            bodies,
             flat_unions: flat_unions(pieces, &casting),
+            joint_bodies,
         }
     }
 }
@@ -251,7 +261,7 @@ impl AreaTrees {
                 trees.umbra.insert(volume);
             }
         }
-        for group in &groups.bodies {
+        for group in groups.bodies.iter().chain(&groups.joint_bodies) {
             let volume = group
                 .umbra_planes(light)
                 .and_then(|planes| region.clone().cut_by(&planes));
@@ -260,7 +270,11 @@ impl AreaTrees {
                 trees.bodies.insert(volume);
             }
         }
-        let held_in = groups.bodies.iter().map(|body| body.umbra_parts(light));
+        let held_in = groups
+            .bodies
+            .iter()
+            .chain(&groups.joint_bodies)
+            .map(|body| body.umbra_parts(light));
         let unions = groups
             .flat_unions
             .iter()

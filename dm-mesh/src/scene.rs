@@ -3,17 +3,20 @@
 
 use crate::critical::UnitPlanes;
 use crate::error::Error;
+use crate::hash::KeyMap;
 use crate::illuminate::{IllumStats, ReceiverIllum};
 use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
 use crate::tree::{Deletion, ReceiverDm};
-use area_shadow::AreaSource;
+use area_shadow::{AreaSource, ConvexGroup};
 use bsp_core::{ConvexPolygon, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use smallvec::SmallVec;
+use std::collections::{BTreeSet, HashMap};
 use svbsp::PieceFlags;
 
 mod contact;
+mod joint;
 mod update;
 
 new_key_type! {
@@ -188,6 +191,12 @@ pub(crate) struct Object {
     /// The convex bodies its polygons form (pieces of kind
     /// [`PieceKind::Body`]).
     pub(crate) bodies: Vec<PieceId>,
+    /// The groups its polygons form, their pieces indices into
+    /// [`Self::pieces`]: the closed convex ones may join other objects'
+    /// (module `joint`).
+    pub(crate) solids: Vec<ConvexGroup>,
+    /// The joint bodies it is part of (module `joint`).
+    pub(crate) joints: Vec<PieceId>,
 }
 
 /// How the discontinuity meshes are built.
@@ -241,6 +250,11 @@ pub struct DmScene {
     /// and go).
     pub(crate) contacts: SecondaryMap<PieceId, ContactPlanes>,
     pub(crate) overlap: Overlap,
+    /// The objects with a closed convex body that has a face in each
+    /// plane (facing out), for finding the bodies that touch.
+    pub(crate) solid_faces: HashMap<Plane, BTreeSet<ObjectId>>,
+    /// Each joint body's members: (object, index into its solids).
+    pub(crate) joints: KeyMap<PieceId, Vec<(ObjectId, u32)>>,
     pub(crate) options: DmOptions,
     /// Whether [`illuminate`](Self::illuminate) has run: from then on a
     /// change illuminates each receiver it touched right after updating
@@ -272,6 +286,8 @@ impl DmScene {
             illum: SecondaryMap::new(),
             contacts: SecondaryMap::new(),
             overlap,
+            solid_faces: HashMap::new(),
+            joints: KeyMap::default(),
             options,
             lit: false,
             lit_since: IllumStats::default(),
@@ -301,6 +317,8 @@ impl DmScene {
             added.extend(scene.attach(id, polygons, flags)?);
             ids.push(id);
         }
+        let (joined, _) = scene.reconcile_joints(&ids.iter().copied().collect());
+        added.extend(joined);
         scene.cast(&added);
         Ok((scene, ids))
     }
@@ -325,15 +343,14 @@ impl DmScene {
     ) -> Result<ObjectId, Error> {
         Self::validate(&polygons)?;
         let id = self.objects.insert(Object::default());
-        let added = self.attach(id, polygons, flags)?;
-        self.cast(&added);
+        self.change(id, Some((polygons, flags)))?;
         Ok(id)
     }
 
     /// Removes an object: its receivers go, and its discontinuities leave
     /// every other receiver's tree.
     pub fn remove_object(&mut self, id: ObjectId) -> Result<(), Error> {
-        self.detach(id)?;
+        self.change(id, None)?;
         self.objects.remove(id);
         Ok(())
     }
@@ -347,7 +364,7 @@ impl DmScene {
             None if self.objects.contains_key(id) => PieceFlags::default(),
             None => return Err(Error::UnknownObject),
         };
-        self.replace(id, polygons, flags)
+        self.change(id, Some((polygons, flags)))
     }
 
     /// The pieces of an object, in the order given.

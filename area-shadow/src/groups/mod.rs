@@ -68,9 +68,11 @@ use std::collections::HashMap;
 
 mod flat_union;
 mod hull;
+mod joint;
 mod solid;
 
 pub use flat_union::FlatUnion;
+pub use joint::convex_unions;
 
 /// The most side tests (pieces times vertices) spent checking that one
 /// closed surface is convex; bigger surfaces form no group. About a
@@ -155,6 +157,15 @@ impl ConvexGroup {
                 part
             })
             .collect()
+    }
+
+    /// The planes of a solid group's faces, each with the body behind it
+    /// (planes may repeat); empty for a flat group.
+    pub fn faces(&self) -> &[Plane] {
+        match &self.shape {
+            Shape::Flat(_) => &[],
+            Shape::Solid(solid) => solid.faces(),
+        }
     }
 
     /// The support plane `support` of one of the group's pieces, turned to

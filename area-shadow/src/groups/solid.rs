@@ -173,6 +173,18 @@ impl Solid {
         &self.faces
     }
 
+    /// The body's corners (and, for a surface's own solid, the surface's
+    /// vertices).
+    pub(super) fn vertices(&self) -> &[GridPoint] {
+        &self.vertices
+    }
+
+    /// Whether the body is the closed surface's own solid: neither moved
+    /// in nor closed over a hole.
+    pub(super) fn is_closed_and_exact(&self) -> bool {
+        self.exact && !self.capped
+    }
+
     /// A piece's support plane turned to face out of the body.
     pub(super) fn outward(&self, support: &Plane) -> Plane {
         if self.faces_in {
@@ -217,13 +229,19 @@ impl Solid {
                 step *= 2.0;
             }
         }
-        let hull = convex_hull(&points)?;
+        Self::of_hull(&points, false)
+    }
+
+    /// The convex hull of `points` as a solid (`exact`: the body itself,
+    /// not one moved in); `None` when they span no volume.
+    pub(super) fn of_hull(points: &[GridPoint], exact: bool) -> Option<Self> {
+        let hull = convex_hull(points)?;
         let triangles: Vec<&[GridPoint]> = hull.iter().map(|(t, _)| &t[..]).collect();
         let planes: Vec<Plane> = hull.iter().map(|(_, plane)| *plane).collect();
         let mut corners: Vec<GridPoint> = hull.iter().flat_map(|(t, _)| *t).collect();
         corners.sort_unstable();
         corners.dedup();
-        Self::with_faces(&triangles, planes, corners, false)
+        Self::with_faces(&triangles, planes, corners, exact)
     }
 
     /// The solid of a closed convex surface, its faces' planes given;

@@ -13,7 +13,7 @@ use svbsp::PieceFlags;
 
 /// The faces of the box `lo..hi`, facing out (or in), each a quad or two
 /// triangles cut along either diagonal (bits of `cuts`, two per face).
-fn box_faces(lo: [i64; 3], hi: [i64; 3], cuts: u32, inward: bool) -> Vec<ConvexPolygon> {
+pub(crate) fn box_faces(lo: [i64; 3], hi: [i64; 3], cuts: u32, inward: bool) -> Vec<ConvexPolygon> {
     let c = |i: usize| {
         gp(
             if i & 1 == 0 { lo[0] } else { hi[0] },
@@ -107,7 +107,7 @@ fn body() -> impl Strategy<Value = Vec<ConvexPolygon>> {
     ]
 }
 
-fn light_strategy() -> impl Strategy<Value = AreaSource> {
+pub(crate) fn light_strategy() -> impl Strategy<Value = AreaSource> {
     (
         -80_i64..40,
         -80_i64..40,

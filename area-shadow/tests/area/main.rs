@@ -4,6 +4,7 @@ mod culled;
 mod figure4;
 mod flat_unions;
 mod groups;
+mod joint;
 mod oracle;
 mod pieces;
 mod random;

@@ -153,6 +153,7 @@ impl DmScene {
         self.objects[id].bodies.extend(&made);
         let parts = self.attach_umbra_parts(id, flags, &polygons, &bodies, &added, &sources);
         self.objects[id].bodies.extend(&parts);
+        self.list_faces(id, bodies);
         added.extend(parts);
         added.extend(made);
         Ok(added)
@@ -258,7 +259,7 @@ impl DmScene {
     }
 
     /// Creates the occluder of a body of the object's polygons.
-    fn attach_body(
+    pub(super) fn attach_body(
         &mut self,
         id: ObjectId,
         flags: PieceFlags,
@@ -347,43 +348,58 @@ impl DmScene {
         self.apply(Removals::default(), insertions, &KeyMap::default());
     }
 
-    /// Removes an object's pieces and their discontinuities.
-    pub(super) fn detach(&mut self, id: ObjectId) -> Result<(), Error> {
-        let (gone, removals) = self.removals(id)?;
-        let left = self.forget(gone);
-        self.apply(removals, Insertions::default(), &left);
-        Ok(())
-    }
-
-    /// Replaces an object's pieces by pieces of `polygons` (validated), in
-    /// one pass over the receivers.
-    pub(super) fn replace(
+    /// Changes an object, in one pass over the receivers: its pieces and
+    /// discontinuities leave, and (unless `polygons` is `None`) pieces of
+    /// `polygons` (validated) take their place and cast their shadows;
+    /// the joint bodies of the objects it touched and touches are brought
+    /// up to date ([`Self::reconcile_joints`]).
+    pub(super) fn change(
         &mut self,
         id: ObjectId,
-        polygons: Vec<ConvexPolygon>,
-        flags: PieceFlags,
+        polygons: Option<(Vec<ConvexPolygon>, PieceFlags)>,
     ) -> Result<(), Error> {
-        let (gone, removals) = self.removals(id)?;
+        let mut seeds = self.touching(id);
+        let mut gone = self.take(id)?;
+        let mut added = match polygons {
+            Some((polygons, flags)) => self.attach(id, polygons, flags)?,
+            None => Vec::new(),
+        };
+        seeds.insert(id);
+        let (joined, parted) = self.reconcile_joints(&seeds);
+        gone.extend(parted);
+        added.extend(joined);
+        let removals = self.removals(&gone);
         let left = self.forget(gone);
-        let added = self.attach(id, polygons, flags)?;
         let insertions = self.insertions(&added);
         self.apply(removals, insertions, &left);
         Ok(())
     }
 
-    /// Takes an object's pieces from it, and finds the units they make on
-    /// every other receiver.
-    fn removals(&mut self, id: ObjectId) -> Result<(Vec<PieceId>, Removals), Error> {
+    /// Takes an object's pieces from it (polygons, bodies and the joint
+    /// bodies it is part of), leaving them in the scene.
+    fn take(&mut self, id: ObjectId) -> Result<Vec<PieceId>, Error> {
         let object = self.objects.get_mut(id).ok_or(Error::UnknownObject)?;
-        let mut gone_pieces: Vec<PieceId> = std::mem::take(&mut object.pieces);
-        gone_pieces.append(&mut object.bodies);
+        let mut gone: Vec<PieceId> = std::mem::take(&mut object.pieces);
+        gone.append(&mut object.bodies);
+        let joints = std::mem::take(&mut object.joints);
+        let solids = std::mem::take(&mut object.solids);
+        self.forget_faces(id, &solids);
+        for joint in joints {
+            self.unlist_joint(joint);
+            gone.push(joint);
+        }
+        Ok(gone)
+    }
+
+    /// The units the pieces `gone` make on every other receiver.
+    fn removals(&mut self, gone_pieces: &[PieceId]) -> Removals {
         let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
         self.overlap.refresh(&self.pieces);
         let mut touched: BTreeSet<PieceId> = BTreeSet::new();
-        for &o in &gone_pieces {
+        for &o in gone_pieces {
             touched.extend(self.overlap.receivers_near(o, &self.pieces));
         }
-        let removals = touched
+        touched
             .into_iter()
             .filter(|r| !gone.contains(r))
             .filter_map(|r| {
@@ -396,8 +412,7 @@ impl DmScene {
                     .collect();
                 (!units.is_empty()).then_some((r, units))
             })
-            .collect();
-        Ok((gone_pieces, removals))
+            .collect()
     }
 
     /// Drops pieces from the scene (their receivers, illumination and
@@ -560,17 +575,17 @@ type BodyVolumes = (Option<Vec<Plane>>, Option<Vec<Plane>>);
 
 /// A body of an object's polygons (convex, or a part of a flat union's
 /// umbra), as [`DmScene::attach_body`] makes its occluder from it.
-struct BodyCast<'a> {
+pub(super) struct BodyCast<'a> {
     /// Each polygon's plane, facing out of the body (a flat one's as it
     /// is).
-    outward: Vec<Plane>,
+    pub(super) outward: Vec<Plane>,
     /// Its polygons, with their surroundings when internal discontinuities
     /// are made.
-    members: &'a [(&'a ConvexPolygon, Option<&'a Surroundings>)],
+    pub(super) members: &'a [(&'a ConvexPolygon, Option<&'a Surroundings>)],
     /// Their pieces.
-    keys: Vec<PieceId>,
+    pub(super) keys: Vec<PieceId>,
     /// Per light, its volumes.
-    volumes: Vec<BodyVolumes>,
+    pub(super) volumes: Vec<BodyVolumes>,
 }
 
 /// One bit per light, set where `set` holds.

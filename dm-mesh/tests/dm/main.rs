@@ -5,6 +5,7 @@ mod classes;
 mod common;
 mod flat_unions;
 mod illumination;
+mod joint;
 mod oracle;
 mod threads;
 mod updates;

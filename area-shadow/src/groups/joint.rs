@@ -1,0 +1,296 @@
+//! Convex bodies that touch face to face and together make one convex
+//! body: two cubes side by side, a row of them, a stack.
+//!
+//! Each body hides only part of the light from a point beside the seam,
+//! and together they hide all of it: the union's umbra is larger than the
+//! union of the bodies' umbrae, and exact (planar) when the union is
+//! convex, since it is then one convex body's (module docs of `groups`).
+//!
+//! Two convex bodies `A` and `B` make a convex union when `A` has a face
+//! in a plane `S` in which `B` has one facing the other way, every other
+//! face of `A` has all of `B` on or behind it, and every other face of `B`
+//! all of `A`. Then the intersection `P` of those other faces' half-spaces
+//! holds `A` and `B`, and its part on `A`'s side of `S` lies in `A` (which
+//! is that side cut by `A`'s other faces), its part on `B`'s side in `B`:
+//! `P` is `A` union `B`, and convex. Every test is a side of a grid point
+//! against a face's plane, exactly; the union's faces are its vertices'
+//! convex hull's.
+//!
+//! Unions of more bodies are found by joining unions two at a time, among
+//! the bodies that touch through such face planes (a connected set); only
+//! the largest are kept, as a smaller one's umbra lies in a larger's.
+
+use super::ConvexGroup;
+use super::Shape;
+use super::solid::Solid;
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{GridPoint, Plane};
+use std::collections::{BTreeSet, HashMap, HashSet};
+
+/// The most unions (single bodies included) tried among one connected set
+/// of touching bodies: a wall of many bricks finds some of its unions, not
+/// all (their umbrae are then smaller than they could be, never wrong).
+const MAX_UNIONS: usize = 256;
+
+/// The largest unions of two or more of `bodies` that are one convex body
+/// (module docs): per union, the indices of its bodies (ascending) and the
+/// union as a group, its pieces all of theirs (ascending). Only closed,
+/// exactly convex bodies join (not flat groups, bodies moved in or open
+/// surfaces). The result depends on the bodies' shapes only, not on their
+/// order in `bodies` or their indices; unions in order of first body.
+pub fn convex_unions(bodies: &[&ConvexGroup]) -> Vec<(Vec<usize>, ConvexGroup)> {
+    let solids: Vec<Option<&Solid>> = bodies
+        .iter()
+        .map(|body| match &body.shape {
+            Shape::Solid(solid) if solid.is_closed_and_exact() => Some(solid),
+            _ => None,
+        })
+        .collect();
+    let mut found: Vec<(Vec<usize>, ConvexGroup)> = touching_sets(&solids)
+        .into_iter()
+        .flat_map(|set| unions_of(&set, &solids))
+        .map(|(members, solid)| {
+            let mut pieces: Vec<u32> = members
+                .iter()
+                .flat_map(|&i| bodies[i].pieces.iter().copied())
+                .collect();
+            pieces.sort_unstable();
+            let group = ConvexGroup {
+                pieces,
+                shape: Shape::Solid(solid),
+            };
+            (members, group)
+        })
+        .collect();
+    found.sort_by(|a, b| a.0.cmp(&b.0));
+    found
+}
+
+/// The sets of two or more solids connected by touching faces (a face
+/// plane of one that another has facing the other way), each ascending,
+/// in order of first solid.
+fn touching_sets(solids: &[Option<&Solid>]) -> Vec<Vec<usize>> {
+    let mut by_face: HashMap<Plane, Vec<usize>> = HashMap::new();
+    for (i, solid) in solids.iter().enumerate() {
+        let Some(solid) = solid else { continue };
+        let faces: HashSet<Plane> = solid.faces().iter().copied().collect();
+        for face in faces {
+            by_face.entry(face).or_default().push(i);
+        }
+    }
+    let mut parent: Vec<usize> = (0..solids.len()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for (face, holders) in &by_face {
+        let Some(facing) = by_face.get(&face.flipped()) else {
+            continue;
+        };
+        for &i in holders {
+            for &j in facing {
+                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
+                parent[a.max(b)] = a.min(b);
+            }
+        }
+    }
+    let mut sets: Vec<Vec<usize>> = vec![Vec::new(); solids.len()];
+    for i in (0..solids.len()).filter(|&i| solids[i].is_some()) {
+        let r = root(&mut parent, i);
+        sets[r].push(i);
+    }
+    sets.retain(|set| set.len() > 1);
+    sets
+}
+
+/// The largest convex unions of two or more of the solids `set` (indices
+/// into `solids`, ascending), each with its members ascending.
+fn unions_of(set: &[usize], solids: &[Option<&Solid>]) -> Vec<(Vec<usize>, Solid)> {
+    // Joined in an order of the solids' shapes, so that which unions the
+    // limit leaves out does not depend on how the bodies were numbered.
+    let mut order: Vec<usize> = set.to_vec();
+    order.sort_by_key(|&i| solids[i].map(Solid::vertices));
+    let mut found: Vec<(BTreeSet<usize>, Solid)> = order
+        .iter()
+        .filter_map(|&i| Some((BTreeSet::from([i]), solids[i]?.clone())))
+        .collect();
+    let mut seen: HashSet<BTreeSet<usize>> = found.iter().map(|(m, _)| m.clone()).collect();
+    let mut next = 1;
+    while next < found.len() && found.len() < MAX_UNIONS {
+        for other in 0..next {
+            let (a, b) = (&found[next], &found[other]);
+            if !a.0.is_disjoint(&b.0) {
+                continue;
+            }
+            let members: BTreeSet<usize> = a.0.union(&b.0).copied().collect();
+            if seen.contains(&members) {
+                continue;
+            }
+            if let Some(joined) = joined(&a.1, &b.1) {
+                seen.insert(members.clone());
+                found.push((members, joined));
+                if found.len() == MAX_UNIONS {
+                    break;
+                }
+            }
+        }
+        next += 1;
+    }
+    let largest: Vec<(BTreeSet<usize>, Solid)> = found
+        .iter()
+        .filter(|(m, _)| m.len() > 1)
+        .filter(|(m, _)| {
+            !found
+                .iter()
+                .any(|(n, _)| n.len() > m.len() && m.is_subset(n))
+        })
+        .cloned()
+        .collect();
+    largest
+        .into_iter()
+        .map(|(members, solid)| (members.into_iter().collect(), solid))
+        .collect()
+}
+
+/// `a` union `b` as one solid, if it is convex (module docs).
+fn joined(a: &Solid, b: &Solid) -> Option<Solid> {
+    let behind = |faces: &[Plane], skip: Plane, points: &[GridPoint]| {
+        faces
+            .iter()
+            .filter(|f| **f != skip)
+            .all(|f| points.iter().all(|&p| side_of_point(f, p) != Side::Front))
+    };
+    let convex = a.faces().iter().any(|s| {
+        b.faces().contains(&s.flipped())
+            && behind(a.faces(), *s, b.vertices())
+            && behind(b.faces(), s.flipped(), a.vertices())
+    });
+    if !convex {
+        return None;
+    }
+    let points: Vec<GridPoint> = a.vertices().iter().chain(b.vertices()).copied().collect();
+    Solid::of_hull(&points, true)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::convex_groups;
+    use super::*;
+    use bsp_core::ConvexPolygon;
+
+    /// The six faces of the box from `lo` to `hi`, facing out.
+    fn cuboid(lo: [i32; 3], hi: [i32; 3]) -> Vec<ConvexPolygon> {
+        let g = |x, y, z| GridPoint { x, y, z };
+        let ([a, b, c], [d, e, f]) = (lo, hi);
+        let faces = [
+            [g(a, b, c), g(a, e, c), g(d, e, c), g(d, b, c)],
+            [g(a, b, f), g(d, b, f), g(d, e, f), g(a, e, f)],
+            [g(a, b, c), g(d, b, c), g(d, b, f), g(a, b, f)],
+            [g(a, e, c), g(a, e, f), g(d, e, f), g(d, e, c)],
+            [g(a, b, c), g(a, b, f), g(a, e, f), g(a, e, c)],
+            [g(d, b, c), g(d, e, c), g(d, e, f), g(d, b, f)],
+        ];
+        faces
+            .iter()
+            .map(|f| ConvexPolygon::from_grid_points(f, 0).unwrap())
+            .collect()
+    }
+
+    /// The bodies of `boxes`, each box its own object.
+    fn unions(boxes: &[([i32; 3], [i32; 3])]) -> Vec<Vec<usize>> {
+        let mut pieces = Vec::new();
+        let mut objects = Vec::new();
+        for (k, (lo, hi)) in boxes.iter().enumerate() {
+            let faces = cuboid(*lo, *hi);
+            objects.extend(std::iter::repeat_n(Some(k as u32), faces.len()));
+            pieces.extend(faces);
+        }
+        let groups = convex_groups(&pieces, &objects);
+        assert_eq!(groups.len(), boxes.len());
+        let refs: Vec<&ConvexGroup> = groups.iter().collect();
+        convex_unions(&refs).into_iter().map(|(m, _)| m).collect()
+    }
+
+    #[test]
+    fn boxes_side_by_side_make_one_body() {
+        assert_eq!(
+            unions(&[([0, 0, 0], [10, 10, 10]), ([10, 0, 0], [20, 10, 10])]),
+            vec![vec![0, 1]]
+        );
+    }
+
+    #[test]
+    fn a_row_of_three_makes_one_body_and_no_smaller_one() {
+        let row = [
+            ([20, 0, 0], [30, 10, 10]),
+            ([0, 0, 0], [10, 10, 10]),
+            ([10, 0, 0], [20, 10, 10]),
+        ];
+        assert_eq!(unions(&row), vec![vec![0, 1, 2]]);
+    }
+
+    #[test]
+    fn a_two_by_two_square_joins_rows_that_an_l_would_not() {
+        let square = [
+            ([0, 0, 0], [10, 10, 10]),
+            ([10, 0, 0], [20, 10, 10]),
+            ([0, 0, 10], [10, 10, 20]),
+            ([10, 0, 10], [20, 10, 20]),
+        ];
+        assert_eq!(unions(&square), vec![vec![0, 1, 2, 3]]);
+        // Three of them make an L: only its two straight pairs are convex.
+        assert_eq!(unions(&square[..3]), vec![vec![0, 1], vec![0, 2]]);
+    }
+
+    #[test]
+    fn a_small_box_on_a_big_one_or_apart_makes_none() {
+        // Not convex together.
+        assert!(unions(&[([0, 0, 0], [20, 10, 20]), ([5, 10, 5], [15, 20, 15])]).is_empty());
+        // Offset faces in one plane: an L in profile.
+        assert!(unions(&[([0, 0, 0], [10, 10, 10]), ([10, 0, 5], [20, 10, 15])]).is_empty());
+        // A gap between them.
+        assert!(unions(&[([0, 0, 0], [10, 10, 10]), ([11, 0, 0], [21, 10, 10])]).is_empty());
+    }
+
+    #[test]
+    fn the_union_is_the_hull_of_both() {
+        let mut pieces = cuboid([0, 0, 0], [10, 10, 10]);
+        pieces.extend(cuboid([0, 10, 0], [10, 30, 10]));
+        let objects: Vec<Option<u32>> = (0..12).map(|k| Some(k / 6)).collect();
+        let groups = convex_groups(&pieces, &objects);
+        let refs: Vec<&ConvexGroup> = groups.iter().collect();
+        let found = convex_unions(&refs);
+        assert_eq!(found.len(), 1);
+        let (members, union) = &found[0];
+        assert_eq!(members, &vec![0, 1]);
+        assert_eq!(union.pieces, (0..12).collect::<Vec<u32>>());
+        let Shape::Solid(solid) = &union.shape else {
+            panic!("a solid");
+        };
+        let g = |x, y, z| GridPoint { x, y, z };
+        let mut corners = vec![];
+        for x in [0, 10] {
+            for y in [0, 30] {
+                for z in [0, 10] {
+                    corners.push(g(x, y, z));
+                }
+            }
+        }
+        // Its corners are the tall box's; points on its boundary may stay.
+        assert!(corners.iter().all(|c| solid.vertices().contains(c)));
+        assert!(solid.vertices().iter().all(|p| {
+            (0..=10).contains(&p.x) && (0..=30).contains(&p.y) && (0..=10).contains(&p.z)
+        }));
+        for face in solid.faces() {
+            assert!(
+                solid
+                    .vertices()
+                    .iter()
+                    .all(|&p| side_of_point(face, p) != Side::Front)
+            );
+        }
+    }
+}

@@ -1,0 +1,159 @@
+//! Boxes of different objects that touch face to face and make one box:
+//! the umbra they make together (a joint body) against an exact oracle at
+//! floor points, and against fresh builds as one box moves into contact
+//! and away again.
+
+use crate::common::{TestScene, class_areas, floor, gp, light, triangulated_cuboid};
+use bsp_core::ConvexPolygon;
+use bsp_core::predicates::{Side, side_of_point};
+use dm_mesh::{CellClass, DmScene, PieceId};
+use proptest::prelude::*;
+use svbsp::PieceFlags;
+
+/// `a / b` against `c / d` (positive denominators).
+fn cmp(a: i128, b: i128, c: i128, d: i128) -> std::cmp::Ordering {
+    (a * d).cmp(&(c * b))
+}
+
+/// Whether the segment from `p` to `q` meets the closed box `lo..hi`,
+/// exactly.
+fn meets_box(p: [i64; 3], q: [i64; 3], lo: [i64; 3], hi: [i64; 3]) -> bool {
+    // The segment's parameter interval inside the box, as fractions.
+    let (mut from, mut to) = ((0_i128, 1_i128), (1_i128, 1_i128));
+    for a in 0..3 {
+        let (pa, d) = (i128::from(p[a]), i128::from(q[a] - p[a]));
+        let (l, h) = (i128::from(lo[a]) - pa, i128::from(hi[a]) - pa);
+        if d == 0 {
+            if l > 0 || h < 0 {
+                return false;
+            }
+            continue;
+        }
+        let (mut enter, mut leave) = ((l, d), (h, d));
+        if d < 0 {
+            (enter, leave) = ((h, d), (l, d));
+        }
+        let (enter, leave) = (
+            (enter.0 * d.signum(), d.abs()),
+            (leave.0 * d.signum(), d.abs()),
+        );
+        if cmp(enter.0, enter.1, from.0, from.1).is_gt() {
+            from = enter;
+        }
+        if cmp(leave.0, leave.1, to.0, to.1).is_lt() {
+            to = leave;
+        }
+    }
+    cmp(from.0, from.1, to.0, to.1).is_le()
+}
+
+/// The box `lo..hi` cut across axis `axis` at `at` sixteenths, and the
+/// upper part again across `again` when given.
+fn cut_box(
+    lo: [i64; 3],
+    hi: [i64; 3],
+    axis: usize,
+    at: i64,
+    again: Option<(usize, i64)>,
+) -> Vec<([i64; 3], [i64; 3])> {
+    let split = |lo: [i64; 3], hi: [i64; 3], axis: usize, at: i64| {
+        let c = lo[axis] + (hi[axis] - lo[axis]) * at / 16;
+        let (mut low_hi, mut high_lo) = (hi, lo);
+        low_hi[axis] = c;
+        high_lo[axis] = c;
+        [(lo, low_hi), (high_lo, hi)]
+    };
+    let [low, high] = split(lo, hi, axis, at);
+    match again {
+        Some((axis, at)) => {
+            let [a, b] = split(high.0, high.1, axis, at);
+            vec![low, a, b]
+        }
+        None => vec![low, high],
+    }
+}
+
+/// The floor's cells with their classes.
+fn floor_cells(scene: &DmScene, floor: PieceId) -> Vec<(ConvexPolygon, CellClass)> {
+    let dm = scene.receiver(floor).unwrap();
+    dm.cells()
+        .map(|(f, c)| (dm.mesh().face_polygon(f, 0).unwrap(), dm.class(c, 0)))
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(32))]
+
+    #[test]
+    fn touching_boxes_hide_the_light_where_they_do_together(
+        lo in prop::array::uniform3(-60_i64..20),
+        size in prop::array::uniform3(32_i64..90),
+        axis in 0_usize..3,
+        at in 4_i64..13,
+        again in prop::option::of((0_usize..3, 4_i64..13)),
+        cuts in any::<u32>(),
+        light_at in (-60_i64..60, -60_i64..60, 2_i64..40, 2_i64..40, 190_i64..260),
+        points in prop::collection::vec(prop::array::uniform2(-300_i64..300), 200),
+        away in prop::array::uniform3(-30_i64..30),
+    ) {
+        let lo = [lo[0], lo[1] + 20, lo[2]];
+        let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
+        let boxes = cut_box(lo, hi, axis, at, again);
+        let (x0, z0, w, d, y) = light_at;
+        let mut objects = vec![(vec![floor(400)], PieceFlags::default())];
+        objects.extend(boxes.iter().enumerate().map(|(k, (lo, hi))| {
+            (triangulated_cuboid(*lo, *hi, cuts.rotate_left(5 * k as u32)), PieceFlags::default())
+        }));
+        let t = TestScene { objects, light: light(x0, z0, w, d, y, 0) };
+        let (mut scene, ids) = t.build();
+        scene.check_invariants().map_err(TestCaseError::fail)?;
+        let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+        let cells = floor_cells(&scene, floor_piece);
+        let corners = [[x0, y, z0], [x0 + w, y, z0], [x0 + w, y, z0 + d], [x0, y, z0 + d]];
+        for c in points {
+            let p = gp(c[0], 0, c[1]);
+            let Some((_, class)) = cells.iter().find(|(polygon, _)| {
+                polygon.edges().all(|e| side_of_point(e, p) == Side::Back)
+            }) else {
+                continue;
+            };
+            let q = [c[0], 0, c[1]];
+            let inside = (0..3).all(|a| lo[a] <= q[a] && q[a] <= hi[a]);
+            let dark = inside || corners.iter().all(|&k| meets_box(q, k, lo, hi));
+            prop_assert_eq!(*class == CellClass::Umbra, dark, "{:?} in a {:?} cell", p, class);
+        }
+        // The last box moved away and back: as built there each time.
+        let last = ids.len() - 1;
+        let original = t.objects[last].0.clone();
+        let moved: Vec<ConvexPolygon> = original
+            .iter()
+            .map(|p| crate::common::translated(p, away))
+            .collect();
+        for polygons in [moved, original] {
+            scene.move_object(ids[last], polygons.clone()).unwrap();
+            scene.check_invariants().map_err(TestCaseError::fail)?;
+            let mut there = t.clone();
+            there.objects[last].0 = polygons;
+            let (fresh, fresh_ids) = there.build();
+            let a = class_areas(&scene, floor_piece);
+            let b = class_areas(&fresh, fresh.object_pieces(fresh_ids[0]).unwrap()[0]);
+            for k in 0..3 {
+                prop_assert!((a[k] - b[k]).abs() <= 1e-9 * 640_000.0, "class {}: {} vs {}", k, a[k], b[k]);
+            }
+        }
+        // Back in place, the same regions as first built.
+        let back = floor_cells(&scene, floor_piece);
+        for c in (-300_i64..300).step_by(37).flat_map(|x| (-300_i64..300).step_by(41).map(move |z| (x, z))) {
+            let p = gp(c.0, 0, c.1);
+            let class_at = |cells: &[(ConvexPolygon, CellClass)]| {
+                cells
+                    .iter()
+                    .find(|(polygon, _)| polygon.edges().all(|e| side_of_point(e, p) == Side::Back))
+                    .map(|(_, class)| *class)
+            };
+            if let (Some(a), Some(b)) = (class_at(&cells), class_at(&back)) {
+                prop_assert_eq!(a, b, "{:?}", p);
+            }
+        }
+    }
+}
