@@ -18,6 +18,9 @@
 //! pieces covering a concave polygon, [`FlatUnion`]; a surface one face
 //! short of a convex body, a body holding the light in,
 //! [`ConvexGroup::umbra_parts`]) that region comes in convex parts.
+//! Closed convex bodies that touch face to face and make one convex body
+//! together, whatever their objects (two boxes side by side, a stack),
+//! add that body's umbra ([`convex_unions`]).
 //! [`compute_shadows`] runs point, directional and area lights together,
 //! one mask bit each.
 //!

@@ -56,7 +56,12 @@
 //! the light's plane, or a nearly convex surface) each polygon casts its
 //! own unit and the body is an occluder whose one volume is its umbra, so
 //! that cells where nothing of the light is seen are umbra. Bodies are
-//! added, removed and moved with their object.
+//! added, removed and moved with their object. Closed convex bodies that
+//! touch face to face and make one convex body together (boxes side by
+//! side, a stack; [`area_shadow::convex_unions`]) hide the light together
+//! too: a joint body, with that body's umbra only, joins them whatever
+//! their objects, and is found again for the touching sets each change
+//! leaves and enters.
 //!
 //! Inside each penumbra the internal EV and VE discontinuities (a light
 //! vertex crossing an occluder edge, an occluder vertex crossing a light

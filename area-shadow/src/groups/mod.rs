@@ -59,6 +59,11 @@
 //! Anything else (concave or twice-open bodies, a face shared by two
 //! bodies) forms no group, and its umbra stays the union of its pieces'
 //! umbrae.
+//!
+//! Closed convex bodies (of any objects) that touch face to face and make
+//! one convex body together join into it ([`convex_unions`], module
+//! `joint`); separate bodies whose union is not convex hide the light
+//! together behind quadric (EEE) boundaries in general, and get nothing.
 
 use crate::AreaSource;
 use crate::volumes::volume_planes;

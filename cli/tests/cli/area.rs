@@ -611,3 +611,74 @@ fn an_open_box_shades_the_floor_as_the_closed_one() {
         }
     }
 }
+
+/// The box of [`an_open_box_shades_the_floor_as_the_closed_one`] given as
+/// two or three boxes, each its own object, touching face to face: each
+/// hides only part of the light beside a seam, together all of it, and
+/// both commands shade the floor as under the one box.
+#[test]
+fn touching_boxes_shade_the_floor_as_the_box_they_make() {
+    let cuboid = |lo: [f64; 3], hi: [f64; 3]| -> String {
+        let [a, b, c] = lo;
+        let [d, e, f] = hi;
+        let v = |x: f64, y: f64, z: f64| format!("[{x}, {y}, {z}]");
+        let faces = [
+            [v(a, b, c), v(d, b, c), v(d, b, f), v(a, b, f)],
+            [v(a, e, c), v(a, e, f), v(d, e, f), v(d, e, c)],
+            [v(a, b, c), v(a, b, f), v(a, e, f), v(a, e, c)],
+            [v(d, b, c), v(d, e, c), v(d, e, f), v(d, b, f)],
+            [v(a, b, c), v(a, e, c), v(d, e, c), v(d, b, c)],
+            [v(a, b, f), v(d, b, f), v(d, e, f), v(a, e, f)],
+        ];
+        let faces: Vec<String> = faces
+            .iter()
+            .map(|f| format!("[{}]", f.join(", ")))
+            .collect();
+        faces.join(", ")
+    };
+    let scene = |boxes: &[([f64; 3], [f64; 3])]| -> String {
+        let mut out = String::from(
+            "[[object]]\nname = \"floor\"\npolygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]\n\n",
+        );
+        for (k, (lo, hi)) in boxes.iter().enumerate() {
+            out += &format!(
+                "[[object]]\nname = \"box{k}\"\npolygons = [{}]\n\n",
+                cuboid(*lo, *hi)
+            );
+        }
+        out + "[[light]]\ntype = \"area\"\nvertices = [[2, 10, -1], [4, 10, -1], [4, 10, 1], [2, 10, 1]]\n"
+    };
+    let whole = scene(&[([-1.0, 4.0, -1.0], [1.0, 5.0, 1.0])]);
+    let halves = scene(&[
+        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
+        ([-1.0, 4.0, 0.0], [1.0, 5.0, 1.0]),
+    ]);
+    let three = scene(&[
+        ([-1.0, 4.0, -1.0], [0.0, 5.0, 1.0]),
+        ([0.0, 4.0, -1.0], [1.0, 5.0, -0.25]),
+        ([0.0, 4.0, -0.25], [1.0, 5.0, 1.0]),
+    ]);
+    let dir = folder(&[
+        ("whole.toml", whole.as_str()),
+        ("halves.toml", halves.as_str()),
+        ("three.toml", three.as_str()),
+    ]);
+    for command in ["shadow", "dm"] {
+        let classes = |name: &str| {
+            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
+        };
+        let want = classes("whole.toml");
+        assert!((want[2] - 6.0).abs() < 1e-9, "{command}: {want:?}");
+        for name in ["halves.toml", "three.toml"] {
+            let got = classes(name);
+            for k in 0..3 {
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-9,
+                    "{command} {name}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+}
