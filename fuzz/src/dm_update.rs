@@ -3,7 +3,8 @@
 //! re-additions.
 //!
 //! [`DmCase::arbitrary`] decodes a floor, up to four objects of one or two
-//! triangles or four (a tetrahedron, a convex body casting one unit) with
+//! triangles, four (a tetrahedron, a convex body casting one unit) or
+//! twelve (a box; boxes often touch face to face and make a joint body) with
 //! small coordinates (they touch, share planes and cross the light's
 //! plane), a parallelogram light, up to six operations and the
 //! way removals work (the paper's local deletion unless the last byte asks
@@ -35,8 +36,8 @@ pub enum Op {
 /// code.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DmCase {
-    /// Objects of one or two triangles, or of a tetrahedron's four, over
-    /// the floor.
+    /// Objects of one or two triangles, a tetrahedron's four or a box's
+    /// twelve, over the floor.
     pub objects: Vec<Vec<[[i64; 3]; 3]>>,
     /// The light: corner, extents along x and z, rise along x.
     pub light: ([i64; 3], [i64; 2], i64),
@@ -62,9 +63,19 @@ impl<'a> Arbitrary<'a> for DmCase {
             ])
         };
         for _ in 0..n {
-            // One or two triangles, or (3) a tetrahedron: a convex body.
-            let k = u.int_in_range(1_usize..=3)?;
-            let triangles = if k == 3 {
+            // One or two triangles, (3) a tetrahedron: a convex body, or
+            // (4) an axis-aligned box of twelve triangles (small sizes on
+            // the small grid: boxes often touch face to face and join).
+            let k = u.int_in_range(1_usize..=4)?;
+            let triangles = if k == 4 {
+                let lo = point(u)?;
+                let size = [
+                    coordinate(u, 1, 4)?,
+                    coordinate(u, 1, 4)?,
+                    coordinate(u, 1, 4)?,
+                ];
+                box_triangles(lo, [0, 1, 2].map(|a| lo[a] + size[a]))
+            } else if k == 3 {
                 let [a, b, c, d] = [point(u)?, point(u)?, point(u)?, point(u)?];
                 // Consistently oriented: every edge once each way.
                 vec![[a, b, c], [a, c, d], [a, d, b], [b, d, c]]
@@ -114,6 +125,30 @@ impl<'a> Arbitrary<'a> for DmCase {
             deletion,
         })
     }
+}
+
+/// The twelve triangles of the box `lo..hi`, counter-clockwise seen from
+/// outside.
+fn box_triangles(lo: [i64; 3], hi: [i64; 3]) -> Vec<[[i64; 3]; 3]> {
+    let c = |i: usize| {
+        [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ]
+    };
+    let quads = [
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+    ];
+    quads
+        .iter()
+        .flat_map(|q| [[c(q[0]), c(q[1]), c(q[2])], [c(q[0]), c(q[2]), c(q[3])]])
+        .collect()
 }
 
 /// Decodes fuzzer bytes.
