@@ -68,7 +68,7 @@ pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
 pub use groups::{
-    ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, flat_unions,
+    ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, flat_joints, flat_unions,
 };
 pub use merge_pieces::{merge_pair, merge_same_class};
 pub use pass::{

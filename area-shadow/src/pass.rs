@@ -40,7 +40,9 @@
 //! general), fragments stay penumbra and their vertices' visible part of
 //! the light comes out empty.
 
-use crate::groups::{ConvexGroup, FlatUnion, convex_groups, convex_unions, flat_unions};
+use crate::groups::{
+    ConvexGroup, FlatUnion, convex_groups, convex_unions, flat_joints, flat_unions,
+};
 use crate::merge_pieces::merge_same_class;
 use crate::tree::VolumeTree;
 use crate::volumes::cast_volumes_within;
@@ -127,8 +129,10 @@ pub struct ShadowGroups {
     /// Flat unions of pieces that are no convex polygon.
     pub flat_unions: Vec<FlatUnion>,
     /// Convex bodies that bodies of [`Self::bodies`] touching face to face
-    /// make together, whatever their objects ([`convex_unions`]): they
-    /// add their umbrae.
+    /// make together, whatever their objects ([`convex_unions`]), and flat
+    /// convex polygons that coplanar pieces of several objects cover
+    /// ([`flat_joints`]; their flat unions that are no convex polygon are
+    /// among [`Self::flat_unions`]): they add their umbrae.
     pub joint_bodies: Vec<ConvexGroup>,
 }
 
@@ -155,13 +159,17 @@ impl ShadowGroups {
             .map(|k| flags[k].casts_shadows.then_some(objects[k]))
             .collect();
         let bodies = convex_groups(pieces, &casting);
-        let joint_bodies = convex_unions(&bodies.iter().collect::<Vec<_>>())
+        let mut joint_bodies: Vec<ConvexGroup> = convex_unions(&bodies.iter().collect::<Vec<_>>())
             .into_iter()
             .map(|(_, union)| union)
             .collect();
+        let (flat_groups, joint_unions) = flat_joints(pieces, &casting);
+        joint_bodies.extend(flat_groups);
+        let mut unions = flat_unions(pieces, &casting);
+        unions.extend(joint_unions);
         Self {
             bodies,
-            flat_unions: flat_unions(pieces, &casting),
+            flat_unions: unions,
             joint_bodies,
         }
     }

@@ -61,7 +61,8 @@
 //! side, a stack; [`area_shadow::convex_unions`]) hide the light together
 //! too: a joint body, with that body's umbra only, joins them whatever
 //! their objects, and is found again for the touching sets each change
-//! leaves and enters.
+//! leaves and enters. So do coplanar polygons of several objects sharing
+//! whole edges ([`area_shadow::flat_joints`]: two panels side by side).
 //!
 //! Inside each penumbra the internal EV and VE discontinuities (a light
 //! vertex crossing an occluder edge, an occluder vertex crossing a light

@@ -253,8 +253,11 @@ pub struct DmScene {
     /// The objects with a closed convex body that has a face in each
     /// plane (facing out), for finding the bodies that touch.
     pub(crate) solid_faces: HashMap<Plane, BTreeSet<ObjectId>>,
-    /// Each joint body's members: (object, index into its solids).
-    pub(crate) joints: KeyMap<PieceId, Vec<(ObjectId, u32)>>,
+    /// The objects with a shadow-casting polygon in each plane, for
+    /// finding coplanar polygons of several objects.
+    pub(crate) flat_planes: HashMap<Plane, BTreeSet<ObjectId>>,
+    /// Each joint body's polygons' pieces, ascending.
+    pub(crate) joints: KeyMap<PieceId, Vec<PieceId>>,
     pub(crate) options: DmOptions,
     /// Whether [`illuminate`](Self::illuminate) has run: from then on a
     /// change illuminates each receiver it touched right after updating
@@ -287,6 +290,7 @@ impl DmScene {
             contacts: SecondaryMap::new(),
             overlap,
             solid_faces: HashMap::new(),
+            flat_planes: HashMap::new(),
             joints: KeyMap::default(),
             options,
             lit: false,

@@ -19,12 +19,15 @@
 //! Unions of more bodies are found by joining unions two at a time, among
 //! the bodies that touch through such face planes (a connected set); only
 //! the largest are kept, as a smaller one's umbra lies in a larger's.
+//!
+//! Coplanar pieces of several objects sharing whole edges (two panels side
+//! by side) make flat groups and flat unions as an object's pieces do
+//! ([`flat_joints`]).
 
-use super::ConvexGroup;
-use super::Shape;
 use super::solid::Solid;
+use super::{ConvexGroup, FlatUnion, Shape};
 use bsp_core::predicates::{Side, side_of_point};
-use bsp_core::{GridPoint, Plane};
+use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use std::collections::{BTreeSet, HashMap, HashSet};
 
 /// The most unions (single bodies included) tried among one connected set
@@ -64,6 +67,66 @@ pub fn convex_unions(bodies: &[&ConvexGroup]) -> Vec<(Vec<usize>, ConvexGroup)> 
         .collect();
     found.sort_by(|a, b| a.0.cmp(&b.0));
     found
+}
+
+/// The flat groups ([`ConvexGroup`], flat) and flat unions ([`FlatUnion`])
+/// that coplanar pieces of two or more objects make together (two panels
+/// side by side, each its own object): as [`super::convex_groups`] and
+/// [`super::flat_unions`] find them within an object, here among the
+/// pieces of each plane whatever their objects, keeping those of several
+/// objects. `objects[k]` is piece `k`'s object, `None` when it casts no
+/// shadow. Piece indices are into `pieces`; in order of first piece.
+///
+/// # Panics
+///
+/// If `objects` is shorter than `pieces`.
+pub fn flat_joints(
+    pieces: &[ConvexPolygon],
+    objects: &[Option<u32>],
+) -> (Vec<ConvexGroup>, Vec<FlatUnion>) {
+    let mut by_plane: HashMap<Plane, Vec<usize>> = HashMap::new();
+    for (k, piece) in pieces.iter().enumerate() {
+        if objects[k].is_some() {
+            by_plane.entry(*piece.support()).or_default().push(k);
+        }
+    }
+    let mut planes: Vec<Vec<usize>> = by_plane
+        .into_values()
+        .filter(|ks| {
+            let first = objects[ks[0]];
+            ks.iter().any(|&k| objects[k] != first)
+        })
+        .collect();
+    planes.sort_unstable();
+    let (mut groups, mut unions) = (Vec::new(), Vec::new());
+    for ks in planes {
+        let sub: Vec<ConvexPolygon> = ks.iter().map(|&k| pieces[k].clone()).collect();
+        let one = vec![Some(0); sub.len()];
+        let of_several = |members: &[u32]| {
+            let first = objects[ks[members[0] as usize]];
+            members.iter().any(|&m| objects[ks[m as usize]] != first)
+        };
+        let renumber = |members: &mut Vec<u32>| {
+            for m in members.iter_mut() {
+                *m = ks[*m as usize] as u32;
+            }
+        };
+        for mut group in super::convex_groups(&sub, &one) {
+            if group.is_flat() && of_several(&group.pieces) {
+                renumber(&mut group.pieces);
+                groups.push(group);
+            }
+        }
+        for mut union in super::flat_unions(&sub, &one) {
+            if of_several(&union.pieces) {
+                renumber(&mut union.pieces);
+                unions.push(union);
+            }
+        }
+    }
+    groups.sort_by(|a, b| a.pieces.cmp(&b.pieces));
+    unions.sort_by(|a, b| a.pieces.cmp(&b.pieces));
+    (groups, unions)
 }
 
 /// The sets of two or more solids connected by touching faces (a face
@@ -179,7 +242,6 @@ fn joined(a: &Solid, b: &Solid) -> Option<Solid> {
 mod tests {
     use super::super::convex_groups;
     use super::*;
-    use bsp_core::ConvexPolygon;
 
     /// The six faces of the box from `lo` to `hi`, facing out.
     fn cuboid(lo: [i32; 3], hi: [i32; 3]) -> Vec<ConvexPolygon> {
@@ -253,6 +315,39 @@ mod tests {
         assert!(unions(&[([0, 0, 0], [10, 10, 10]), ([10, 0, 5], [20, 10, 15])]).is_empty());
         // A gap between them.
         assert!(unions(&[([0, 0, 0], [10, 10, 10]), ([11, 0, 0], [21, 10, 10])]).is_empty());
+    }
+
+    #[test]
+    fn coplanar_panels_of_several_objects_join() {
+        let g = |x, y, z| GridPoint { x, y, z };
+        let quad = |x0: i32, z0: i32| {
+            let corners = [
+                g(x0, 5, z0),
+                g(x0, 5, z0 + 10),
+                g(x0 + 10, 5, z0 + 10),
+                g(x0 + 10, 5, z0),
+            ];
+            ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+        };
+        // Two side by side: one convex polygon. A third beside the first
+        // the other way: an L, a flat union.
+        let pieces = vec![quad(0, 0), quad(10, 0), quad(0, 10), quad(40, 40)];
+        let (groups, unions) = flat_joints(&pieces[..2], &[Some(0), Some(1)]);
+        assert_eq!(groups.len(), 1);
+        assert!(groups[0].is_flat());
+        assert_eq!(groups[0].pieces, vec![0, 1]);
+        assert!(unions.is_empty());
+        let objects = [Some(3), Some(1), Some(2), Some(1)];
+        let (groups, unions) = flat_joints(&pieces, &objects);
+        assert!(groups.is_empty());
+        assert_eq!(unions.len(), 1);
+        assert_eq!(unions[0].pieces, vec![0, 1, 2]);
+        // Of one object, they are not joints (its own groups).
+        let (groups, unions) = flat_joints(&pieces[..2], &[Some(0), Some(0)]);
+        assert!(groups.is_empty() && unions.is_empty());
+        // Nor when one casts no shadow.
+        let (groups, unions) = flat_joints(&pieces[..2], &[Some(0), None]);
+        assert!(groups.is_empty() && unions.is_empty());
     }
 
     #[test]

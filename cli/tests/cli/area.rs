@@ -682,3 +682,41 @@ fn touching_boxes_shade_the_floor_as_the_box_they_make() {
         }
     }
 }
+
+/// Two unit panels side by side, each its own object, under a light
+/// centred over their seam (a black-box check's scene): each hides only
+/// part of the light beside the seam and together all of it; both
+/// commands shade the floor as under one 2 x 1 panel (umbra 7/3).
+#[test]
+fn panels_side_by_side_shade_the_floor_as_one_panel() {
+    let scene = |panels: &[&str]| -> String {
+        let mut out = String::from(
+            "[[object]]\nname = \"floor\"\npolygons = [[[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]]\ncasts_shadows = false\n\n",
+        );
+        for (k, panel) in panels.iter().enumerate() {
+            out += &format!("[[object]]\nname = \"panel{k}\"\npolygons = [{panel}]\n\n");
+        }
+        out + "[[light]]\ntype = \"area\"\nvertices = [[-0.5, 4, -0.5], [0.5, 4, -0.5], [0.5, 4, 0.5], [-0.5, 4, 0.5]]\nintensity = 5.0\n"
+    };
+    let one = scene(&["[[-1, 1, -0.5], [-1, 1, 0.5], [1, 1, 0.5], [1, 1, -0.5]]"]);
+    let two = scene(&[
+        "[[-1, 1, -0.5], [-1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
+        "[[0, 1, -0.5], [0, 1, 0.5], [1, 1, 0.5], [1, 1, -0.5]]",
+    ]);
+    let dir = folder(&[("one.toml", one.as_str()), ("two.toml", two.as_str())]);
+    for command in ["shadow", "dm"] {
+        let classes = |name: &str| {
+            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
+        };
+        let (want, got) = (classes("one.toml"), classes("two.toml"));
+        assert!((want[2] - 7.0 / 3.0).abs() < 1e-9, "{command}: {want:?}");
+        for k in 0..3 {
+            assert!(
+                (got[k] - want[k]).abs() < 1e-9,
+                "{command}: {got:?} vs {want:?}"
+            );
+        }
+    }
+}

@@ -1,6 +1,8 @@
 //! Joint bodies: closed convex bodies of different objects (or of one)
 //! that touch face to face and together make one convex body, casting
-//! that body's umbra ([`area_shadow::convex_unions`]).
+//! that body's umbra ([`area_shadow::convex_unions`]), and coplanar
+//! polygons of several objects sharing whole edges, casting the umbra of
+//! the polygon they cover ([`area_shadow::flat_joints`]).
 //!
 //! Beside the seam of two boxes side by side each hides only part of the
 //! light, and together all of it: without the joint body those cells
@@ -14,55 +16,96 @@
 
 use super::update::BodyCast;
 use super::{DmScene, ObjectId, PieceId};
-use area_shadow::{AreaSource, ConvexGroup, convex_unions};
-use bsp_core::ConvexPolygon;
-use std::collections::{BTreeMap, BTreeSet};
+use area_shadow::{AreaSource, ConvexGroup, FlatUnion, convex_unions, flat_joints};
+use bsp_core::{ConvexPolygon, Plane};
+use std::collections::{BTreeMap, BTreeSet, HashMap};
 
-/// A joint body's members: (object, index into its solids), ascending.
-type Members = Vec<(ObjectId, u32)>;
+/// A joint body's members: its polygons' pieces, ascending.
+type Members = Vec<PieceId>;
+
+/// What a joint body is.
+enum Joint {
+    /// A convex body or a flat convex polygon: one umbra volume.
+    Body(ConvexGroup),
+    /// A flat union that is no convex polygon: an umbra in parts.
+    FlatUnion(FlatUnion),
+}
 
 impl DmScene {
     /// Keeps an object's groups (pieces indices into its pieces), and
-    /// lists the faces of its closed bodies.
-    pub(super) fn list_faces(&mut self, id: ObjectId, solids: Vec<ConvexGroup>) {
+    /// lists the faces of its closed bodies and the planes of its
+    /// shadow-casting polygons.
+    pub(super) fn list_planes(&mut self, id: ObjectId, solids: Vec<ConvexGroup>) {
         for face in solids.iter().flat_map(ConvexGroup::faces) {
             self.solid_faces.entry(*face).or_default().insert(id);
+        }
+        for &key in &self.objects[id].pieces {
+            let piece = &self.pieces[key];
+            if piece.flags.casts_shadows {
+                let support = *piece.polygon.support();
+                self.flat_planes.entry(support).or_default().insert(id);
+            }
         }
         self.objects[id].solids = solids;
     }
 
-    /// Takes an object's faces out of the list ([`Self::list_faces`]).
-    pub(super) fn forget_faces(&mut self, id: ObjectId, solids: &[ConvexGroup]) {
-        for face in solids.iter().flat_map(ConvexGroup::faces) {
-            if let Some(holders) = self.solid_faces.get_mut(face) {
+    /// Takes an object's planes out of the lists ([`Self::list_planes`]),
+    /// its groups and polygons (`pieces`, still in the scene) given.
+    pub(super) fn forget_planes(
+        &mut self,
+        id: ObjectId,
+        solids: &[ConvexGroup],
+        pieces: &[PieceId],
+    ) {
+        fn unlist(list: &mut HashMap<Plane, BTreeSet<ObjectId>>, plane: &Plane, id: ObjectId) {
+            if let Some(holders) = list.get_mut(plane) {
                 holders.remove(&id);
                 if holders.is_empty() {
-                    self.solid_faces.remove(face);
+                    list.remove(plane);
                 }
+            }
+        }
+        for face in solids.iter().flat_map(ConvexGroup::faces) {
+            unlist(&mut self.solid_faces, face, id);
+        }
+        for &key in pieces {
+            if let Some(piece) = self.pieces.get(key) {
+                unlist(&mut self.flat_planes, piece.polygon.support(), id);
             }
         }
     }
 
-    /// The objects (`id` among them, if it has bodies) with a body face in
-    /// a plane where one of `id`'s bodies has a face turned the other way.
+    /// The objects (`id` among them) with a body face in a plane where one
+    /// of `id`'s bodies has a face turned the other way, or with a
+    /// shadow-casting polygon in the plane of one of `id`'s.
     pub(super) fn touching(&self, id: ObjectId) -> BTreeSet<ObjectId> {
         let Some(object) = self.objects.get(id) else {
             return BTreeSet::new();
         };
-        object
+        let faces = object
             .solids
             .iter()
             .flat_map(ConvexGroup::faces)
-            .filter_map(|face| self.solid_faces.get(&face.flipped()))
-            .flatten()
-            .copied()
-            .collect()
+            .filter_map(|face| self.solid_faces.get(&face.flipped()));
+        let planes = object
+            .pieces
+            .iter()
+            .map(|&key| &self.pieces[key])
+            .filter(|piece| piece.flags.casts_shadows)
+            .filter_map(|piece| self.flat_planes.get(piece.polygon.support()));
+        faces.chain(planes).flatten().copied().collect()
     }
 
     /// Drops a joint body from the lists of the objects it joins (its
     /// piece stays, for its units to leave the receivers).
     pub(super) fn unlist_joint(&mut self, joint: PieceId) {
-        for (object, _) in self.joints.remove(&joint).unwrap_or_default() {
+        let members = self.joints.remove(&joint).unwrap_or_default();
+        let objects: BTreeSet<ObjectId> = members
+            .iter()
+            .filter_map(|&k| self.pieces.get(k))
+            .map(|piece| piece.object)
+            .collect();
+        for object in objects {
             if let Some(object) = self.objects.get_mut(object) {
                 object.joints.retain(|&j| j != joint);
             }
@@ -84,72 +127,142 @@ impl DmScene {
                 queue.extend(self.touching(o).into_iter().filter(|n| !set.contains(n)));
             }
         }
-        let mut owners: Members = Vec::new();
-        let mut groups: Vec<&ConvexGroup> = Vec::new();
+        let mut wanted = self.solid_joints(&set);
+        wanted.append(&mut self.flat_joints(&set));
+        let mut held: BTreeMap<Members, Vec<PieceId>> = BTreeMap::new();
         for &o in &set {
-            for (k, group) in self.objects[o].solids.iter().enumerate() {
-                owners.push((o, k as u32));
-                groups.push(group);
+            for &joint in &self.objects[o].joints {
+                let bodies = held.entry(self.joints[&joint].clone()).or_default();
+                if !bodies.contains(&joint) {
+                    bodies.push(joint);
+                }
             }
         }
-        let mut wanted: BTreeMap<Members, ConvexGroup> = convex_unions(&groups)
-            .into_iter()
-            .map(|(members, union)| (members.iter().map(|&i| owners[i]).collect(), union))
-            .collect();
         let mut parted = Vec::new();
-        let held: BTreeSet<PieceId> = set
-            .iter()
-            .flat_map(|&o| self.objects[o].joints.iter().copied())
-            .collect();
-        for joint in held {
-            if wanted.remove(&self.joints[&joint]).is_none() {
-                self.unlist_joint(joint);
-                parted.push(joint);
+        for (members, bodies) in held {
+            if wanted.remove(&members).is_none() {
+                for joint in bodies {
+                    self.unlist_joint(joint);
+                    parted.push(joint);
+                }
             }
         }
         let joined = wanted
             .into_iter()
-            .map(|(members, union)| self.attach_joint(members, &union))
+            .flat_map(|(members, (outward, joint))| self.attach_joint(members, outward, &joint))
             .collect();
         (joined, parted)
     }
 
-    /// Creates the occluder of a joint body with only the union's umbra,
-    /// and lists it with the objects it joins.
-    fn attach_joint(&mut self, members: Members, union: &ConvexGroup) -> PieceId {
-        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
-        let mut polygons: Vec<ConvexPolygon> = Vec::new();
-        let mut keys = Vec::new();
-        let mut outward = Vec::new();
-        for &(o, k) in &members {
-            let object = &self.objects[o];
-            let group = &object.solids[k as usize];
-            for &i in &group.pieces {
-                let key = object.pieces[i as usize];
-                let polygon = &self.pieces[key].polygon;
-                outward.push(group.outward(polygon.support()));
-                polygons.push(polygon.clone());
-                keys.push(key);
+    /// The convex bodies that closed bodies of the objects `set` make
+    /// touching face to face ([`convex_unions`]).
+    fn solid_joints(&self, set: &BTreeSet<ObjectId>) -> BTreeMap<Members, (Vec<Plane>, Joint)> {
+        let mut owners: Vec<(ObjectId, &ConvexGroup)> = Vec::new();
+        for &o in set {
+            for group in &self.objects[o].solids {
+                owners.push((o, group));
             }
         }
-        let (owner, _) = members[0];
-        let flags = self.pieces[keys[0]].flags;
-        let listed: Vec<(&ConvexPolygon, _)> = polygons.iter().map(|p| (p, None)).collect();
-        let cast = BodyCast {
-            outward,
-            members: &listed,
-            keys,
-            volumes: sources
-                .iter()
-                .map(|light| (None, union.umbra_planes(light)))
-                .collect(),
-        };
-        let joint = self.attach_body(owner, flags, cast, &sources);
-        let objects: BTreeSet<ObjectId> = members.iter().map(|(o, _)| *o).collect();
-        for o in objects {
-            self.objects[o].joints.push(joint);
+        let groups: Vec<&ConvexGroup> = owners.iter().map(|(_, g)| *g).collect();
+        convex_unions(&groups)
+            .into_iter()
+            .map(|(members, union)| {
+                let mut pieces: Vec<(PieceId, Plane)> = members
+                    .iter()
+                    .flat_map(|&i| {
+                        let (o, group) = owners[i];
+                        group.pieces.iter().map(move |&k| {
+                            let key = self.objects[o].pieces[k as usize];
+                            (key, group.outward(self.pieces[key].polygon.support()))
+                        })
+                    })
+                    .collect();
+                pieces.sort_unstable_by_key(|(key, _)| *key);
+                let (keys, outward) = pieces.into_iter().unzip();
+                (keys, (outward, Joint::Body(union)))
+            })
+            .collect()
+    }
+
+    /// The flat groups and unions that coplanar shadow-casting polygons of
+    /// two or more of the objects `set` make ([`flat_joints`]).
+    fn flat_joints(&self, set: &BTreeSet<ObjectId>) -> BTreeMap<Members, (Vec<Plane>, Joint)> {
+        let mut keys: Vec<PieceId> = Vec::new();
+        let mut polygons: Vec<ConvexPolygon> = Vec::new();
+        let mut objects: Vec<Option<u32>> = Vec::new();
+        for (n, &o) in set.iter().enumerate() {
+            for &key in &self.objects[o].pieces {
+                let piece = &self.pieces[key];
+                if piece.flags.casts_shadows {
+                    keys.push(key);
+                    polygons.push(piece.polygon.clone());
+                    objects.push(Some(n as u32));
+                }
+            }
         }
-        self.joints.insert(joint, members);
-        joint
+        let (groups, unions) = flat_joints(&polygons, &objects);
+        let members = |pieces: &[u32]| -> (Members, Vec<Plane>) {
+            let mut found: Vec<(PieceId, Plane)> = pieces
+                .iter()
+                .map(|&k| (keys[k as usize], *polygons[k as usize].support()))
+                .collect();
+            found.sort_unstable_by_key(|(key, _)| *key);
+            found.into_iter().unzip()
+        };
+        let groups = groups.into_iter().map(|group| {
+            let (keys, outward) = members(&group.pieces);
+            (keys, (outward, Joint::Body(group)))
+        });
+        let unions = unions.into_iter().map(|union| {
+            let (keys, outward) = members(&union.pieces);
+            (keys, (outward, Joint::FlatUnion(union)))
+        });
+        groups.chain(unions).collect()
+    }
+
+    /// Creates the occluders of a joint body (of the pieces `members`, with
+    /// their planes facing out `outward`): one with its umbra, or one per
+    /// convex part of it (a flat union); lists them with the objects it
+    /// joins.
+    fn attach_joint(
+        &mut self,
+        members: Members,
+        outward: Vec<Plane>,
+        joint: &Joint,
+    ) -> Vec<PieceId> {
+        let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
+        let parts: Vec<Vec<Vec<Plane>>> = sources
+            .iter()
+            .map(|light| match joint {
+                Joint::Body(group) => group.umbra_planes(light).into_iter().collect(),
+                Joint::FlatUnion(union) => union.umbra_parts(light),
+            })
+            .collect();
+        let polygons: Vec<ConvexPolygon> = members
+            .iter()
+            .map(|&key| self.pieces[key].polygon.clone())
+            .collect();
+        let listed: Vec<(&ConvexPolygon, _)> = polygons.iter().map(|p| (p, None)).collect();
+        let owner = self.pieces[members[0]].object;
+        let flags = self.pieces[members[0]].flags;
+        let objects: BTreeSet<ObjectId> = members.iter().map(|&k| self.pieces[k].object).collect();
+        // Per light its parts; body `i` takes each light's `i`-th.
+        let count = parts.iter().map(Vec::len).max().unwrap_or(0).max(1);
+        let mut made = Vec::with_capacity(count);
+        for i in 0..count {
+            let cast = BodyCast {
+                outward: outward.clone(),
+                members: &listed,
+                keys: members.clone(),
+                volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
+            };
+            let joint = self.attach_body(owner, flags, cast, &sources);
+            for &o in &objects {
+                self.objects[o].joints.push(joint);
+            }
+            self.joints.insert(joint, members.clone());
+            made.push(joint);
+        }
+        made
     }
 }

@@ -153,7 +153,7 @@ impl DmScene {
         self.objects[id].bodies.extend(&made);
         let parts = self.attach_umbra_parts(id, flags, &polygons, &bodies, &added, &sources);
         self.objects[id].bodies.extend(&parts);
-        self.list_faces(id, bodies);
+        self.list_planes(id, bodies);
         added.extend(parts);
         added.extend(made);
         Ok(added)
@@ -383,7 +383,7 @@ impl DmScene {
         gone.append(&mut object.bodies);
         let joints = std::mem::take(&mut object.joints);
         let solids = std::mem::take(&mut object.solids);
-        self.forget_faces(id, &solids);
+        self.forget_planes(id, &solids, &gone);
         for joint in joints {
             self.unlist_joint(joint);
             gone.push(joint);

@@ -1,6 +1,7 @@
 //! A flat occluder that is no convex polygon (an L, a T, a U, a Z or a
-//! ring of rectangles sharing whole edges): the umbra its pieces make
-//! together, as umbra-only bodies, against an exact oracle at floor
+//! ring of rectangles sharing whole edges), one object or each rectangle
+//! its own: the umbra its pieces make together, as umbra-only bodies (or
+//! joint bodies), against an exact oracle at floor
 //! points; vertex irradiance against the visible part of the light; a move
 //! against a fresh build.
 
@@ -74,13 +75,15 @@ proptest! {
         light_at in (-60_i64..60, -60_i64..60, 2_i64..24, 2_i64..24, 170_i64..260),
         points in prop::collection::vec(prop::array::uniform2(-200_i64..200), 150),
         step in prop::array::uniform3(-20_i64..20),
+        apart in any::<bool>(),
     ) {
         let (x, z) = origin;
         let xs = [x, x + widths[0], x + widths[0] + widths[1], x + widths.iter().sum::<i64>()];
         let zs = [z, z + depths[0], z + depths[0] + depths[1], z + depths.iter().sum::<i64>()];
         let rects: Vec<[i64; 4]> = SHAPES[shape].iter().map(|&c| cell(&xs, &zs, c)).collect();
-        let pieces = |dy: [i64; 3]| -> Vec<ConvexPolygon> {
-            rects
+        // The rectangles of `rects[range]`, moved by `dy`.
+        let some = |range: std::ops::Range<usize>, dy: [i64; 3]| -> Vec<ConvexPolygon> {
+            rects[range]
                 .iter()
                 .map(|&[x0, x1, z0, z1]| {
                     let y = h + dy[1];
@@ -93,12 +96,17 @@ proptest! {
                 })
                 .collect()
         };
+        let pieces = |dy: [i64; 3]| some(0..rects.len(), dy);
         let (x0, z0, w, d, y) = light_at;
+        // One object, or (`apart`) each rectangle its own: joint bodies.
+        let mut objects = vec![(vec![floor(400)], PieceFlags::default())];
+        if apart {
+            objects.extend((0..rects.len()).map(|k| (some(k..k + 1, [0; 3]), PieceFlags::default())));
+        } else {
+            objects.push((pieces([0; 3]), PieceFlags::default()));
+        }
         let t = TestScene {
-            objects: vec![
-                (vec![floor(400)], PieceFlags::default()),
-                (pieces([0; 3]), PieceFlags::default()),
-            ],
+            objects,
             light: light(x0, z0, w, d, y, 0),
         };
         let (mut scene, ids) = t.build();
@@ -124,14 +132,12 @@ proptest! {
             );
         }
         check_vertices(&t, &mut scene)?;
-        // Moved, the same as built there.
-        let moved = pieces(step);
+        // Moved (apart: the first rectangle alone), the same as built there.
+        let moved = if apart { some(0..1, step) } else { pieces(step) };
         scene.move_object(ids[1], moved.clone()).unwrap();
         scene.check_invariants().map_err(TestCaseError::fail)?;
-        let there = TestScene {
-            objects: vec![t.objects[0].clone(), (moved, PieceFlags::default())],
-            light: t.light.clone(),
-        };
+        let mut there = t.clone();
+        there.objects[1].0 = moved;
         let (fresh, fresh_ids) = there.build();
         let (a, b) = (class_areas(&scene, floor_piece), class_areas(&fresh, fresh.object_pieces(fresh_ids[0]).unwrap()[0]));
         for k in 0..3 {
