@@ -7,8 +7,8 @@ use std::collections::HashMap;
 
 use smallvec::SmallVec;
 
-use area_shadow::{Class, ConformingMesh};
-use bsp_core::{ConvexPolygon, Grid};
+use area_shadow::{Class, ConformingMesh, MeshPoint};
+use bsp_core::{ConvexPolygon, Grid, Side};
 use illum::rayon::prelude::*;
 use illum::{FragmentClass, OccluderIndex, Sidedness, VertexPlan, VisiblePart, vertex_plan};
 use svbsp::Fragment;
@@ -82,9 +82,10 @@ impl<'a> Illuminator<'a> {
         }
     }
 
-    /// Irradiance from light `i` at grid point `p` on piece `piece`, as
-    /// `value` asks.
-    fn value(&self, i: usize, value: Value, p: [f64; 3], piece: usize) -> f64 {
+    /// Irradiance from light `i` at the point `at` (grid coordinates `p`)
+    /// on piece `piece`, as `value` asks.
+    fn value(&self, i: usize, value: Value, at: (&MeshPoint, [f64; 3]), piece: usize) -> f64 {
+        let (exact, p) = at;
         let normal = self.pieces[piece].support().unit_normal_f64();
         let sidedness = self.sidedness(piece);
         match (&self.lights[i], value) {
@@ -95,7 +96,7 @@ impl<'a> Illuminator<'a> {
             (IllumLight::Directional(l), _) => l.irradiance(normal, sidedness),
             (IllumLight::Area(l), Value::Whole) => l.irradiance(p, normal, sidedness),
             (IllumLight::Area(l), Value::Visible) => {
-                let occluders = self.occluders(p, l, piece);
+                let occluders = self.occluders(exact, p, l);
                 let mut part = VisiblePart::new();
                 part.compute(l, &occluders, p);
                 part.irradiance(l, p, normal, sidedness)
@@ -103,20 +104,25 @@ impl<'a> Illuminator<'a> {
         }
     }
 
-    /// Outlines of the shadow-casting polygons that may lie between `p`
-    /// and `light`, except those in `piece`'s plane.
-    fn occluders(&self, p: [f64; 3], light: &illum::AreaLight, piece: usize) -> Vec<&[[f64; 3]]> {
-        let own = self.pieces[piece].support();
+    /// Outlines of the shadow-casting polygons that may lie between the
+    /// point `exact` (grid coordinates `p`) and `light`, except those whose
+    /// plane holds the point (exactly): from there a polygon hides nothing
+    /// of positive area (the receiver's own plane; a bent quad's other
+    /// triangle, from their common edge), and in floating point the
+    /// point's rounding error off the plane made the blocked region from a
+    /// point on the polygon's edge the whole light.
+    fn occluders(
+        &self,
+        exact: &MeshPoint,
+        p: [f64; 3],
+        light: &illum::AreaLight,
+    ) -> Vec<&[[f64; 3]]> {
         let mut candidates = Vec::new();
         self.occluders.candidates_between(p, light, &mut candidates);
         candidates
             .into_iter()
             .map(|k| k as usize)
-            .filter(|&k| {
-                !self.pieces[self.occluder_pieces[k]]
-                    .support()
-                    .is_coincident(own)
-            })
+            .filter(|&k| exact.side(self.pieces[self.occluder_pieces[k]].support()) != Side::On)
             .map(|k| self.occluders.outlines()[k].as_slice())
             .collect()
     }
@@ -125,11 +131,13 @@ impl<'a> Illuminator<'a> {
     /// class (no sharing: for adaptive subdivision), summed over lights.
     pub fn fragment_irradiance(&self, fragment: &Fragment) -> Vec<f64> {
         let piece = fragment.polygon.source() as usize;
-        fragment
-            .polygon
+        let polygon = &fragment.polygon;
+        polygon
             .vertices_f64()
             .into_iter()
-            .map(|p| {
+            .enumerate()
+            .map(|(k, p)| {
+                let exact = MeshPoint::vertex(polygon, k);
                 (0..self.lights.len())
                     .map(|i| {
                         let value = match Class::of(fragment, i as u32) {
@@ -137,7 +145,7 @@ impl<'a> Illuminator<'a> {
                             Class::Penumbra => Value::Visible,
                             Class::Umbra => Value::Zero,
                         };
-                        self.value(i, value, p, piece)
+                        self.value(i, value, (&exact, p), piece)
                     })
                     .sum()
             })
@@ -248,7 +256,7 @@ pub fn illuminate(
         .flat_map_iter(|g| {
             let fs = &around[around_start[g]..around_start[g + 1]];
             let (point, piece) = groups[g];
-            let p = mesh.coords[point as usize];
+            let at = (&mesh.points[point as usize], mesh.coords[point as usize]);
             (0..lights).map(move |i| {
                 let plan = vertex_plan(
                     fs.iter()
@@ -257,9 +265,9 @@ pub fn illuminate(
                 .expect("a group has a fragment");
                 let value = match plan {
                     VertexPlan::Zero => 0.0,
-                    VertexPlan::VisiblePart => illuminator.value(i, Value::Visible, p, piece),
+                    VertexPlan::VisiblePart => illuminator.value(i, Value::Visible, at, piece),
                     VertexPlan::Unoccluded | VertexPlan::Split => {
-                        illuminator.value(i, Value::Whole, p, piece)
+                        illuminator.value(i, Value::Whole, at, piece)
                     }
                 };
                 (plan, value)

@@ -113,7 +113,8 @@ pub(crate) struct Piece {
 
 impl Piece {
     /// Appends the polygons that hide what this occluder hides of light
-    /// `light` from a vertex at `position`: a polygon's own outline, or
+    /// `light` from a vertex at `position`: a polygon's own outline (none
+    /// from its plane), or
     /// some of a body's polygons. From outside the body, those with the
     /// vertex strictly on their outer side (a segment from the light
     /// through the body leaves it through one of them: at most three of a
@@ -129,7 +130,15 @@ impl Piece {
         out: &mut impl Extend<&'p [[f64; 3]]>,
     ) {
         if self.kind == PieceKind::Polygon {
-            out.extend([self.outline.as_slice()]);
+            // From its own plane (a receiver it touches along an edge: a
+            // bent quad's other triangle) a polygon hides nothing of
+            // positive area; decided exactly, as in floating point the
+            // vertex lies a rounding error off the plane, and the blocked
+            // region from a point on the polygon's edge came out as the
+            // whole light.
+            if position.side(self.polygon.support()) != Side::On {
+                out.extend([self.outline.as_slice()]);
+            }
             return;
         }
         let sides: SmallVec<[Side; 8]> = self
