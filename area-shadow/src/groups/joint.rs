@@ -28,7 +28,7 @@ use super::solid::Solid;
 use super::{ConvexGroup, FlatUnion, Shape};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
-use std::collections::{BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
 /// The most unions (single bodies included) tried among one connected set
 /// of touching bodies: a wall of many bricks finds some of its unions, not
@@ -90,8 +90,12 @@ pub fn flat_joints(
             by_plane.entry(*piece.support()).or_default().push(k);
         }
     }
+    // Within a plane, the sets of pieces whose bounding boxes meet, one
+    // after another: pieces sharing an edge are in one, and the answer
+    // for a set does not depend on what else lies in the plane far away.
     let mut planes: Vec<Vec<usize>> = by_plane
         .into_values()
+        .flat_map(|ks| touching_boxes(pieces, ks))
         .filter(|ks| {
             let first = objects[ks[0]];
             ks.iter().any(|&k| objects[k] != first)
@@ -127,6 +131,62 @@ pub fn flat_joints(
     groups.sort_by(|a, b| a.pieces.cmp(&b.pieces));
     unions.sort_by(|a, b| a.pieces.cmp(&b.pieces));
     (groups, unions)
+}
+
+/// The pieces `ks` (ascending) in sets connected by bounding boxes that
+/// meet (closed: touching counts), each ascending.
+fn touching_boxes(pieces: &[ConvexPolygon], mut ks: Vec<usize>) -> Vec<Vec<usize>> {
+    let boxes: HashMap<usize, ([f64; 3], [f64; 3])> = ks
+        .iter()
+        .map(|&k| {
+            let points = pieces[k].vertices_f64();
+            let lo =
+                std::array::from_fn(|a| points.iter().map(|p| p[a]).fold(f64::INFINITY, f64::min));
+            let hi = std::array::from_fn(|a| {
+                points
+                    .iter()
+                    .map(|p| p[a])
+                    .fold(f64::NEG_INFINITY, f64::max)
+            });
+            (k, (lo, hi))
+        })
+        .collect();
+    // Swept along x: each piece meets only those still open at its start.
+    ks.sort_by(|a, b| boxes[a].0[0].total_cmp(&boxes[b].0[0]).then(a.cmp(b)));
+    let mut parent: HashMap<usize, usize> = ks.iter().map(|&k| (k, k)).collect();
+    fn root(parent: &mut HashMap<usize, usize>, mut k: usize) -> usize {
+        while parent[&k] != k {
+            let up = parent[&parent[&k]];
+            parent.insert(k, up);
+            k = up;
+        }
+        k
+    }
+    let mut open: Vec<usize> = Vec::new();
+    for &k in &ks {
+        let (lo, hi) = boxes[&k];
+        open.retain(|o| boxes[o].1[0] >= lo[0]);
+        for &o in &open {
+            let (olo, ohi) = boxes[&o];
+            if (1..3).all(|a| olo[a] <= hi[a] && lo[a] <= ohi[a]) {
+                let (a, b) = (root(&mut parent, k), root(&mut parent, o));
+                parent.insert(a.max(b), a.min(b));
+            }
+        }
+        open.push(k);
+    }
+    let mut sets: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+    for &k in &ks {
+        let r = root(&mut parent, k);
+        sets.entry(r).or_default().push(k);
+    }
+    sets.into_values()
+        .map(|mut set| {
+            set.sort_unstable();
+            set
+        })
+        .filter(|set| set.len() > 1)
+        .collect()
 }
 
 /// The sets of two or more solids connected by touching faces (a face
@@ -348,6 +408,33 @@ mod tests {
         // Nor when one casts no shadow.
         let (groups, unions) = flat_joints(&pieces[..2], &[Some(0), None]);
         assert!(groups.is_empty() && unions.is_empty());
+    }
+
+    #[test]
+    fn far_coplanar_panels_change_no_flat_joint() {
+        let g = |x, y, z| GridPoint { x, y, z };
+        let rect = |x0: i32, z0: i32, w: i32, d: i32| {
+            let corners = [
+                g(x0, 5, z0),
+                g(x0, 5, z0 + d),
+                g(x0 + w, 5, z0 + d),
+                g(x0 + w, 5, z0),
+            ];
+            ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+        };
+        // An L of two panels meeting in a T-junction (the short one's
+        // corner on the long one's edge), then 80 panels far off in the
+        // plane, each its own object: more than the T-junction search
+        // takes in one set.
+        let mut pieces = vec![rect(0, 0, 20, 10), rect(0, 10, 10, 10)];
+        let alone = flat_joints(&pieces, &[Some(0), Some(1)]);
+        assert_eq!(alone.1.len(), 1);
+        pieces.extend((0..80).map(|k| rect(100 + 30 * k, 0, 10, 10)));
+        let objects: Vec<Option<u32>> = (0..pieces.len() as u32).map(Some).collect();
+        let crowded = flat_joints(&pieces, &objects);
+        assert!(crowded.0.is_empty());
+        assert_eq!(crowded.1.len(), 1);
+        assert_eq!(crowded.1[0].pieces, vec![0, 1]);
     }
 
     #[test]

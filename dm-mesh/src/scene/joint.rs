@@ -18,7 +18,7 @@ use super::update::BodyCast;
 use super::{DmScene, ObjectId, PieceId};
 use area_shadow::{AreaSource, ConvexGroup, FlatUnion, convex_unions, flat_joints};
 use bsp_core::{ConvexPolygon, Plane};
-use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::collections::{BTreeMap, BTreeSet};
 
 /// A joint body's members: its polygons' pieces, ascending.
 type Members = Vec<PieceId>;
@@ -43,7 +43,8 @@ impl DmScene {
             let piece = &self.pieces[key];
             if piece.flags.casts_shadows {
                 let support = *piece.polygon.support();
-                self.flat_planes.entry(support).or_default().insert(id);
+                let entry = (id, bounds(&piece.outline));
+                self.flat_planes.entry(support).or_default().push(entry);
             }
         }
         self.objects[id].solids = solids;
@@ -57,27 +58,33 @@ impl DmScene {
         solids: &[ConvexGroup],
         pieces: &[PieceId],
     ) {
-        fn unlist(list: &mut HashMap<Plane, BTreeSet<ObjectId>>, plane: &Plane, id: ObjectId) {
-            if let Some(holders) = list.get_mut(plane) {
+        for face in solids.iter().flat_map(ConvexGroup::faces) {
+            if let Some(holders) = self.solid_faces.get_mut(face) {
                 holders.remove(&id);
                 if holders.is_empty() {
-                    list.remove(plane);
+                    self.solid_faces.remove(face);
                 }
             }
         }
-        for face in solids.iter().flat_map(ConvexGroup::faces) {
-            unlist(&mut self.solid_faces, face, id);
-        }
         for &key in pieces {
-            if let Some(piece) = self.pieces.get(key) {
-                unlist(&mut self.flat_planes, piece.polygon.support(), id);
+            let Some(piece) = self.pieces.get(key) else {
+                continue;
+            };
+            let plane = piece.polygon.support();
+            if let Some(holders) = self.flat_planes.get_mut(plane) {
+                holders.retain(|(o, _)| *o != id);
+                if holders.is_empty() {
+                    self.flat_planes.remove(plane);
+                }
             }
         }
     }
 
     /// The objects (`id` among them) with a body face in a plane where one
     /// of `id`'s bodies has a face turned the other way, or with a
-    /// shadow-casting polygon in the plane of one of `id`'s.
+    /// shadow-casting polygon in the plane of one of `id`'s whose bounding
+    /// box meets its (all boxes on a floor have their bottoms in one plane;
+    /// only those side by side can share an edge).
     pub(super) fn touching(&self, id: ObjectId) -> BTreeSet<ObjectId> {
         let Some(object) = self.objects.get(id) else {
             return BTreeSet::new();
@@ -86,14 +93,24 @@ impl DmScene {
             .solids
             .iter()
             .flat_map(ConvexGroup::faces)
-            .filter_map(|face| self.solid_faces.get(&face.flipped()));
+            .filter_map(|face| self.solid_faces.get(&face.flipped()))
+            .flatten()
+            .copied();
         let planes = object
             .pieces
             .iter()
             .map(|&key| &self.pieces[key])
             .filter(|piece| piece.flags.casts_shadows)
-            .filter_map(|piece| self.flat_planes.get(piece.polygon.support()));
-        faces.chain(planes).flatten().copied().collect()
+            .flat_map(|piece| {
+                let own = bounds(&piece.outline);
+                self.flat_planes
+                    .get(piece.polygon.support())
+                    .into_iter()
+                    .flatten()
+                    .filter(move |(_, other)| meet(&own, other))
+                    .map(|(o, _)| *o)
+            });
+        faces.chain(planes).collect()
     }
 
     /// Drops a joint body from the lists of the objects it joins (its
@@ -265,4 +282,25 @@ impl DmScene {
         }
         made
     }
+}
+
+/// The bounding box of grid-unit points (whole numbers: exact in `f64`).
+pub(super) type Bounds = ([f64; 3], [f64; 3]);
+
+/// The bounding box of `points`.
+fn bounds(points: &[[f64; 3]]) -> Bounds {
+    points.iter().fold(
+        ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+        |(lo, hi), p| {
+            (
+                std::array::from_fn(|a| lo[a].min(p[a])),
+                std::array::from_fn(|a| hi[a].max(p[a])),
+            )
+        },
+    )
+}
+
+/// Whether two closed boxes meet (touching counts).
+fn meet(a: &Bounds, b: &Bounds) -> bool {
+    (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
 }
