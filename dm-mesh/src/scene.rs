@@ -262,9 +262,9 @@ pub struct DmScene {
     /// The objects with a closed convex body that has a face in each
     /// plane (facing out), for finding the bodies that touch.
     pub(crate) solid_faces: HashMap<Plane, BTreeSet<ObjectId>>,
-    /// The shadow-casting polygons in each plane, as their objects and
-    /// bounding boxes, for finding coplanar polygons of several objects
-    /// side by side.
+    /// The shadow-casting polygons in each plane (either way facing, under
+    /// [`area_shadow::one_way`]), as their objects and bounding boxes, for
+    /// finding coplanar polygons of several objects side by side.
     pub(crate) flat_planes: HashMap<Plane, Vec<(ObjectId, joint::Bounds)>>,
     /// Each joint body's polygons' pieces, ascending.
     pub(crate) joints: KeyMap<PieceId, Vec<PieceId>>,

@@ -70,12 +70,14 @@ pub fn convex_unions(bodies: &[&ConvexGroup]) -> Vec<(Vec<usize>, ConvexGroup)> 
 }
 
 /// The flat groups ([`ConvexGroup`], flat) and flat unions ([`FlatUnion`])
-/// that coplanar pieces of two or more objects make together (two panels
-/// side by side, each its own object): as [`super::convex_groups`] and
-/// [`super::flat_unions`] find them within an object, here among the
-/// pieces of each plane whatever their objects, keeping those of several
-/// objects. `objects[k]` is piece `k`'s object, `None` when it casts no
-/// shadow. Piece indices are into `pieces`; in order of first piece.
+/// that coplanar pieces of two or more objects, or facing both ways, make
+/// together (two panels side by side, each its own object or one turned
+/// over): as [`super::convex_groups`] and [`super::flat_unions`] find
+/// them among an object's pieces facing one way, here among the pieces of
+/// each plane whatever their objects, each turned to face
+/// [`one_way`] (a polygon blocks light whichever side faces it). `objects[k]` is piece `k`'s object,
+/// `None` when it casts no shadow. Piece indices are into `pieces`; in
+/// order of first piece.
 ///
 /// # Panics
 ///
@@ -87,7 +89,10 @@ pub fn flat_joints(
     let mut by_plane: HashMap<Plane, Vec<usize>> = HashMap::new();
     for (k, piece) in pieces.iter().enumerate() {
         if objects[k].is_some() {
-            by_plane.entry(*piece.support()).or_default().push(k);
+            by_plane
+                .entry(one_way(piece.support()))
+                .or_default()
+                .push(k);
         }
     }
     // Within a plane, the sets of pieces whose bounding boxes meet, one
@@ -96,19 +101,27 @@ pub fn flat_joints(
     let mut planes: Vec<Vec<usize>> = by_plane
         .into_values()
         .flat_map(|ks| touching_boxes(pieces, ks))
-        .filter(|ks| {
-            let first = objects[ks[0]];
-            ks.iter().any(|&k| objects[k] != first)
-        })
         .collect();
     planes.sort_unstable();
     let (mut groups, mut unions) = (Vec::new(), Vec::new());
     for ks in planes {
-        let sub: Vec<ConvexPolygon> = ks.iter().map(|&k| pieces[k].clone()).collect();
+        let plane = one_way(pieces[ks[0]].support());
+        let sub: Vec<ConvexPolygon> = ks
+            .iter()
+            .map(|&k| match *pieces[k].support() == plane {
+                true => pieces[k].clone(),
+                false => pieces[k].flipped(),
+            })
+            .collect();
         let one = vec![Some(0); sub.len()];
+        // What an object's own groups do not find: pieces of several
+        // objects, or of both orientations.
         let of_several = |members: &[u32]| {
-            let first = objects[ks[members[0] as usize]];
-            members.iter().any(|&m| objects[ks[m as usize]] != first)
+            let first = ks[members[0] as usize];
+            members.iter().any(|&m| {
+                let k = ks[m as usize];
+                objects[k] != objects[first] || pieces[k].support() != pieces[first].support()
+            })
         };
         let renumber = |members: &mut Vec<u32>| {
             for m in members.iter_mut() {
@@ -131,6 +144,17 @@ pub fn flat_joints(
     groups.sort_by(|a, b| a.pieces.cmp(&b.pieces));
     unions.sort_by(|a, b| a.pieces.cmp(&b.pieces));
     (groups, unions)
+}
+
+/// `plane` turned, if need be, to the one of its two orientations whose
+/// normal's first non-zero component is positive: the way
+/// [`flat_joints`] turns coplanar pieces to face.
+pub fn one_way(plane: &Plane) -> Plane {
+    let normal = plane.normal();
+    match normal.iter().find(|&&c| c != 0) {
+        Some(&c) if c < 0 => plane.flipped(),
+        _ => *plane,
+    }
 }
 
 /// The pieces `ks` (ascending) in sets connected by bounding boxes that
@@ -408,6 +432,14 @@ mod tests {
         // Nor when one casts no shadow.
         let (groups, unions) = flat_joints(&pieces[..2], &[Some(0), None]);
         assert!(groups.is_empty() && unions.is_empty());
+        // One turned over, of one object or two: they still join.
+        let turned = vec![pieces[0].clone(), pieces[1].flipped()];
+        for objects in [[Some(0), Some(0)], [Some(0), Some(1)]] {
+            let (groups, unions) = flat_joints(&turned, &objects);
+            assert_eq!(groups.len(), 1);
+            assert_eq!(groups[0].pieces, vec![0, 1]);
+            assert!(unions.is_empty());
+        }
     }
 
     #[test]

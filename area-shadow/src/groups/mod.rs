@@ -77,7 +77,7 @@ mod joint;
 mod solid;
 
 pub use flat_union::FlatUnion;
-pub use joint::{convex_unions, flat_joints};
+pub use joint::{convex_unions, flat_joints, one_way};
 
 /// The most side tests (pieces times vertices) spent checking that one
 /// closed surface is convex; bigger surfaces form no group. About a

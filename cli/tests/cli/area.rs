@@ -703,20 +703,33 @@ fn panels_side_by_side_shade_the_floor_as_one_panel() {
         "[[-1, 1, -0.5], [-1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
         "[[0, 1, -0.5], [0, 1, 0.5], [1, 1, 0.5], [1, 1, -0.5]]",
     ]);
-    let dir = folder(&[("one.toml", one.as_str()), ("two.toml", two.as_str())]);
+    // The second panel turned over (it faces down): it blocks light all
+    // the same.
+    let turned = scene(&[
+        "[[-1, 1, -0.5], [-1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
+        "[[1, 1, -0.5], [1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
+    ]);
+    let dir = folder(&[
+        ("one.toml", one.as_str()),
+        ("two.toml", two.as_str()),
+        ("turned.toml", turned.as_str()),
+    ]);
     for command in ["shadow", "dm"] {
         let classes = |name: &str| {
             let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
             assert_eq!(run.code, 0, "{}", run.stderr);
             floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
         };
-        let (want, got) = (classes("one.toml"), classes("two.toml"));
+        let want = classes("one.toml");
         assert!((want[2] - 7.0 / 3.0).abs() < 1e-9, "{command}: {want:?}");
-        for k in 0..3 {
-            assert!(
-                (got[k] - want[k]).abs() < 1e-9,
-                "{command}: {got:?} vs {want:?}"
-            );
+        for name in ["two.toml", "turned.toml"] {
+            let got = classes(name);
+            for k in 0..3 {
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-9,
+                    "{command} {name}: {got:?} vs {want:?}"
+                );
+            }
         }
     }
 }

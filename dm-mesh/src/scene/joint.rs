@@ -16,7 +16,7 @@
 
 use super::update::BodyCast;
 use super::{DmScene, ObjectId, PieceId};
-use area_shadow::{AreaSource, ConvexGroup, FlatUnion, convex_unions, flat_joints};
+use area_shadow::{AreaSource, ConvexGroup, FlatUnion, convex_unions, flat_joints, one_way};
 use bsp_core::{ConvexPolygon, Plane};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -42,9 +42,9 @@ impl DmScene {
         for &key in &self.objects[id].pieces {
             let piece = &self.pieces[key];
             if piece.flags.casts_shadows {
-                let support = *piece.polygon.support();
+                let plane = one_way(piece.polygon.support());
                 let entry = (id, bounds(&piece.outline));
-                self.flat_planes.entry(support).or_default().push(entry);
+                self.flat_planes.entry(plane).or_default().push(entry);
             }
         }
         self.objects[id].solids = solids;
@@ -70,11 +70,11 @@ impl DmScene {
             let Some(piece) = self.pieces.get(key) else {
                 continue;
             };
-            let plane = piece.polygon.support();
-            if let Some(holders) = self.flat_planes.get_mut(plane) {
+            let plane = one_way(piece.polygon.support());
+            if let Some(holders) = self.flat_planes.get_mut(&plane) {
                 holders.retain(|(o, _)| *o != id);
                 if holders.is_empty() {
-                    self.flat_planes.remove(plane);
+                    self.flat_planes.remove(&plane);
                 }
             }
         }
@@ -104,7 +104,7 @@ impl DmScene {
             .flat_map(|piece| {
                 let own = bounds(&piece.outline);
                 self.flat_planes
-                    .get(piece.polygon.support())
+                    .get(&one_way(piece.polygon.support()))
                     .into_iter()
                     .flatten()
                     .filter(move |(_, other)| meet(&own, other))
@@ -221,7 +221,7 @@ impl DmScene {
         let members = |pieces: &[u32]| -> (Members, Vec<Plane>) {
             let mut found: Vec<(PieceId, Plane)> = pieces
                 .iter()
-                .map(|&k| (keys[k as usize], *polygons[k as usize].support()))
+                .map(|&k| (keys[k as usize], one_way(polygons[k as usize].support())))
                 .collect();
             found.sort_unstable_by_key(|(key, _)| *key);
             found.into_iter().unzip()

@@ -1,6 +1,6 @@
 //! A flat occluder that is no convex polygon (an L, a T, a U, a Z or a
 //! ring of rectangles sharing whole edges), one object or each rectangle
-//! its own: the umbra its pieces make together, as umbra-only bodies (or
+//! its own, some maybe turned over: the umbra its pieces make together, as umbra-only bodies (or
 //! joint bodies), against an exact oracle at floor
 //! points; vertex irradiance against the visible part of the light; a move
 //! against a fresh build.
@@ -76,20 +76,23 @@ proptest! {
         points in prop::collection::vec(prop::array::uniform2(-200_i64..200), 150),
         step in prop::array::uniform3(-20_i64..20),
         apart in any::<bool>(),
+        turned in prop_oneof![Just(0_u8), any::<u8>()],
     ) {
         let (x, z) = origin;
         let xs = [x, x + widths[0], x + widths[0] + widths[1], x + widths.iter().sum::<i64>()];
         let zs = [z, z + depths[0], z + depths[0] + depths[1], z + depths.iter().sum::<i64>()];
         let rects: Vec<[i64; 4]> = SHAPES[shape].iter().map(|&c| cell(&xs, &zs, c)).collect();
-        // The rectangles of `rects[range]`, moved by `dy`.
+        // The rectangles of `rects[range]`, moved by `dy`; rectangle `k`
+        // turned over when bit `k` of `turned` is set (a polygon blocks
+        // light whichever side faces it).
         let some = |range: std::ops::Range<usize>, dy: [i64; 3]| -> Vec<ConvexPolygon> {
-            rects[range]
-                .iter()
-                .map(|&[x0, x1, z0, z1]| {
+            range
+                .map(|k| (k, rects[k]))
+                .map(|(k, [x0, x1, z0, z1])| {
                     let y = h + dy[1];
                     let (x0, x1, z0, z1) = (x0 + dy[0], x1 + dy[0], z0 + dy[2], z1 + dy[2]);
                     let mut c = vec![gp(x0, y, z0), gp(x0, y, z1), gp(x1, y, z1), gp(x1, y, z0)];
-                    if !up {
+                    if !up ^ (turned >> k & 1 == 1) {
                         c.reverse();
                     }
                     ConvexPolygon::from_grid_points(&c, 0).unwrap()
