@@ -68,8 +68,8 @@ pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
 pub use groups::{
-    ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, flat_joints, flat_unions,
-    one_way,
+    ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, edge_contact,
+    flat_joints, flat_unions, one_way,
 };
 pub use merge_pieces::{merge_pair, merge_same_class};
 pub use pass::{

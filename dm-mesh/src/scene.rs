@@ -12,7 +12,7 @@ use bsp_core::{ConvexPolygon, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use smallvec::SmallVec;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::HashMap;
 use svbsp::PieceFlags;
 
 mod contact;
@@ -259,13 +259,14 @@ pub struct DmScene {
     /// and go).
     pub(crate) contacts: SecondaryMap<PieceId, ContactPlanes>,
     pub(crate) overlap: Overlap,
-    /// The objects with a closed convex body that has a face in each
-    /// plane (facing out), for finding the bodies that touch.
-    pub(crate) solid_faces: HashMap<Plane, BTreeSet<ObjectId>>,
+    /// The objects with a convex body that has a face in each plane
+    /// (facing out), with the body's bounding box, for finding the bodies
+    /// that touch.
+    pub(crate) solid_faces: HashMap<Plane, Vec<(ObjectId, joint::Bounds)>>,
     /// The shadow-casting polygons in each plane (either way facing, under
-    /// [`area_shadow::one_way`]), as their objects and bounding boxes, for
-    /// finding coplanar polygons of several objects side by side.
-    pub(crate) flat_planes: HashMap<Plane, Vec<(ObjectId, joint::Bounds)>>,
+    /// [`area_shadow::one_way`]), with their bounding boxes, for finding
+    /// coplanar polygons of several objects side by side.
+    pub(crate) flat_planes: HashMap<Plane, Vec<(PieceId, joint::Bounds)>>,
     /// Each joint body's polygons' pieces, ascending.
     pub(crate) joints: KeyMap<PieceId, Vec<PieceId>>,
     pub(crate) options: DmOptions,

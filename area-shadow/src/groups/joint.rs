@@ -95,9 +95,10 @@ pub fn flat_joints(
                 .push(k);
         }
     }
-    // Within a plane, the sets of pieces whose bounding boxes meet, one
-    // after another: pieces sharing an edge are in one, and the answer
-    // for a set does not depend on what else lies in the plane far away.
+    // Within a plane, the sets of pieces in contact along their edges
+    // ([`edge_contact`]), one after another: pieces sharing an edge are in
+    // one, and the answer for a set does not depend on what else lies in
+    // the plane (a floor under boxes whose bottoms lie inside it).
     let mut planes: Vec<Vec<usize>> = by_plane
         .into_values()
         .flat_map(|ks| touching_boxes(pieces, ks))
@@ -157,8 +158,28 @@ pub fn one_way(plane: &Plane) -> Plane {
     }
 }
 
-/// The pieces `ks` (ascending) in sets connected by bounding boxes that
-/// meet (closed: touching counts), each ascending.
+/// Whether two convex polygons with grid-point vertices touch along their
+/// boundaries: a vertex of one is a vertex of the other or lies inside
+/// one of its edges (pieces sharing an edge, or meeting in a T-junction,
+/// do). Exact; `false` when a vertex is no grid point.
+pub fn edge_contact(a: &ConvexPolygon, b: &ConvexPolygon) -> bool {
+    let outline = |p: &ConvexPolygon| -> Option<Vec<GridPoint>> {
+        (0..p.len()).map(|k| p.vertex_grid_point(k)).collect()
+    };
+    let (Some(a), Some(b)) = (outline(a), outline(b)) else {
+        return false;
+    };
+    let on = |p: GridPoint, of: &[GridPoint]| {
+        of.contains(&p)
+            || (0..of.len())
+                .any(|k| super::strictly_inside(p, of[k], of[(k + 1) % of.len()]).is_some())
+    };
+    a.iter().any(|&p| on(p, &b)) || b.iter().any(|&p| on(p, &a))
+}
+
+/// The pieces `ks` (ascending) in sets connected by contact along their
+/// edges ([`edge_contact`], among those whose bounding boxes meet), each
+/// ascending.
 fn touching_boxes(pieces: &[ConvexPolygon], mut ks: Vec<usize>) -> Vec<Vec<usize>> {
     let boxes: HashMap<usize, ([f64; 3], [f64; 3])> = ks
         .iter()
@@ -192,7 +213,9 @@ fn touching_boxes(pieces: &[ConvexPolygon], mut ks: Vec<usize>) -> Vec<Vec<usize
         open.retain(|o| boxes[o].1[0] >= lo[0]);
         for &o in &open {
             let (olo, ohi) = boxes[&o];
-            if (1..3).all(|a| olo[a] <= hi[a] && lo[a] <= ohi[a]) {
+            if (1..3).all(|a| olo[a] <= hi[a] && lo[a] <= ohi[a])
+                && edge_contact(&pieces[k], &pieces[o])
+            {
                 let (a, b) = (root(&mut parent, k), root(&mut parent, o));
                 parent.insert(a.max(b), a.min(b));
             }
@@ -233,12 +256,30 @@ fn touching_sets(solids: &[Option<&Solid>]) -> Vec<Vec<usize>> {
         }
         i
     }
+    // Bounding boxes: bodies at one height far apart share face planes.
+    let boxes: Vec<Option<([i32; 3], [i32; 3])>> = solids
+        .iter()
+        .map(|solid| {
+            let points = (*solid)?.vertices();
+            let lo = std::array::from_fn(|a| {
+                points.iter().map(|p| [p.x, p.y, p.z][a]).min().unwrap_or(0)
+            });
+            let hi = std::array::from_fn(|a| {
+                points.iter().map(|p| [p.x, p.y, p.z][a]).max().unwrap_or(0)
+            });
+            Some((lo, hi))
+        })
+        .collect();
+    let meet = |i: usize, j: usize| match (boxes[i], boxes[j]) {
+        (Some(a), Some(b)) => (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k]),
+        _ => false,
+    };
     for (face, holders) in &by_face {
         let Some(facing) = by_face.get(&face.flipped()) else {
             continue;
         };
         for &i in holders {
-            for &j in facing {
+            for &j in facing.iter().filter(|&&j| meet(i, j)) {
                 let (a, b) = (root(&mut parent, i), root(&mut parent, j));
                 parent[a.max(b)] = a.min(b);
             }
@@ -467,6 +508,39 @@ mod tests {
         assert!(crowded.0.is_empty());
         assert_eq!(crowded.1.len(), 1);
         assert_eq!(crowded.1[0].pieces, vec![0, 1]);
+    }
+
+    #[test]
+    fn edge_contact_is_a_shared_corner_or_a_corner_on_an_edge() {
+        let g = |x, y, z| GridPoint { x, y, z };
+        let rect = |x0: i32, z0: i32, w: i32, d: i32| {
+            let corners = [
+                g(x0, 0, z0),
+                g(x0, 0, z0 + d),
+                g(x0 + w, 0, z0 + d),
+                g(x0 + w, 0, z0),
+            ];
+            ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+        };
+        let floor = rect(-100, -100, 200, 200);
+        // A box's bottom inside the floor: no contact (the floor's pieces
+        // and the boxes' bottoms stay apart).
+        assert!(!edge_contact(&floor, &rect(0, 0, 10, 10)));
+        assert!(!edge_contact(&floor, &rect(0, 0, 10, 10).flipped()));
+        // Side by side, a T-junction, a corner only: contact.
+        assert!(edge_contact(&rect(0, 0, 10, 10), &rect(10, 0, 10, 10)));
+        assert!(edge_contact(&rect(0, 0, 20, 10), &rect(0, 10, 10, 10)));
+        assert!(edge_contact(&rect(0, 0, 10, 10), &rect(10, 10, 10, 10)));
+        // Apart.
+        assert!(!edge_contact(&rect(0, 0, 10, 10), &rect(11, 0, 10, 10)));
+        // The floor with 100 boxes' bottoms inside it makes no joint.
+        let mut pieces = vec![floor];
+        pieces.extend(
+            (0..100).map(|k| rect(-90 + 17 * (k % 10), -90 + 17 * (k / 10), 10, 10).flipped()),
+        );
+        let objects: Vec<Option<u32>> = (0..pieces.len() as u32).map(Some).collect();
+        let (groups, unions) = flat_joints(&pieces, &objects);
+        assert!(groups.is_empty() && unions.is_empty());
     }
 
     #[test]

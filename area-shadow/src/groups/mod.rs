@@ -77,7 +77,7 @@ mod joint;
 mod solid;
 
 pub use flat_union::FlatUnion;
-pub use joint::{convex_unions, flat_joints, one_way};
+pub use joint::{convex_unions, edge_contact, flat_joints, one_way};
 
 /// The most side tests (pieces times vertices) spent checking that one
 /// closed surface is convex; bigger surfaces form no group. About a
@@ -349,7 +349,7 @@ fn with_t_junctions(
 
 /// Where `p` lies on the open segment `ab`, if it does: its position along
 /// it (scaled by |b - a|^2), exactly.
-fn strictly_inside(p: GridPoint, a: GridPoint, b: GridPoint) -> Option<i128> {
+pub(super) fn strictly_inside(p: GridPoint, a: GridPoint, b: GridPoint) -> Option<i128> {
     let (u, v) = (difference(a, b), difference(a, p));
     let dot = |x: [i128; 3], y: [i128; 3]| x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
     let t = dot(u, v);

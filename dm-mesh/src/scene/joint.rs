@@ -16,7 +16,9 @@
 
 use super::update::BodyCast;
 use super::{DmScene, ObjectId, PieceId};
-use area_shadow::{AreaSource, ConvexGroup, FlatUnion, convex_unions, flat_joints, one_way};
+use area_shadow::{
+    AreaSource, ConvexGroup, FlatUnion, convex_unions, edge_contact, flat_joints, one_way,
+};
 use bsp_core::{ConvexPolygon, Plane};
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -36,14 +38,33 @@ impl DmScene {
     /// lists the faces of its closed bodies and the planes of its
     /// shadow-casting polygons.
     pub(super) fn list_planes(&mut self, id: ObjectId, solids: Vec<ConvexGroup>) {
-        for face in solids.iter().flat_map(ConvexGroup::faces) {
-            self.solid_faces.entry(*face).or_default().insert(id);
+        for solid in &solids {
+            let outline: Vec<[f64; 3]> = solid
+                .pieces
+                .iter()
+                .flat_map(|&k| {
+                    self.pieces[self.objects[id].pieces[k as usize]]
+                        .outline
+                        .iter()
+                })
+                .copied()
+                .collect();
+            let around = bounds(&outline);
+            let mut faces: Vec<Plane> = Vec::with_capacity(solid.faces().len());
+            for face in solid.faces() {
+                if !faces.contains(face) {
+                    faces.push(*face);
+                }
+            }
+            for face in faces {
+                self.solid_faces.entry(face).or_default().push((id, around));
+            }
         }
         for &key in &self.objects[id].pieces {
             let piece = &self.pieces[key];
             if piece.flags.casts_shadows {
                 let plane = one_way(piece.polygon.support());
-                let entry = (id, bounds(&piece.outline));
+                let entry = (key, bounds(&piece.outline));
                 self.flat_planes.entry(plane).or_default().push(entry);
             }
         }
@@ -60,7 +81,7 @@ impl DmScene {
     ) {
         for face in solids.iter().flat_map(ConvexGroup::faces) {
             if let Some(holders) = self.solid_faces.get_mut(face) {
-                holders.remove(&id);
+                holders.retain(|(o, _)| *o != id);
                 if holders.is_empty() {
                     self.solid_faces.remove(face);
                 }
@@ -72,7 +93,7 @@ impl DmScene {
             };
             let plane = one_way(piece.polygon.support());
             if let Some(holders) = self.flat_planes.get_mut(&plane) {
-                holders.retain(|(o, _)| *o != id);
+                holders.retain(|(k, _)| *k != key);
                 if holders.is_empty() {
                     self.flat_planes.remove(&plane);
                 }
@@ -81,21 +102,31 @@ impl DmScene {
     }
 
     /// The objects (`id` among them) with a body face in a plane where one
-    /// of `id`'s bodies has a face turned the other way, or with a
-    /// shadow-casting polygon in the plane of one of `id`'s whose bounding
-    /// box meets its (all boxes on a floor have their bottoms in one plane;
-    /// only those side by side can share an edge).
+    /// of `id`'s bodies has a face turned the other way (their bounding
+    /// boxes meeting), or with a
+    /// shadow-casting polygon in the plane of one of `id`'s in contact with
+    /// it along their edges ([`edge_contact`]; a floor and the bottoms of
+    /// the boxes on it lie in one plane, but do not touch so).
     pub(super) fn touching(&self, id: ObjectId) -> BTreeSet<ObjectId> {
         let Some(object) = self.objects.get(id) else {
             return BTreeSet::new();
         };
-        let faces = object
-            .solids
-            .iter()
-            .flat_map(ConvexGroup::faces)
-            .filter_map(|face| self.solid_faces.get(&face.flipped()))
-            .flatten()
-            .copied();
+        let faces = object.solids.iter().flat_map(|solid| {
+            let outline: Vec<[f64; 3]> = solid
+                .pieces
+                .iter()
+                .flat_map(|&k| self.pieces[object.pieces[k as usize]].outline.iter())
+                .copied()
+                .collect();
+            let own = bounds(&outline);
+            solid
+                .faces()
+                .iter()
+                .filter_map(|face| self.solid_faces.get(&face.flipped()))
+                .flatten()
+                .filter(move |(_, other)| meet(&own, other))
+                .map(|(o, _)| *o)
+        });
         let planes = object
             .pieces
             .iter()
@@ -107,8 +138,10 @@ impl DmScene {
                     .get(&one_way(piece.polygon.support()))
                     .into_iter()
                     .flatten()
-                    .filter(move |(_, other)| meet(&own, other))
-                    .map(|(o, _)| *o)
+                    .filter(move |(k, other)| {
+                        meet(&own, other) && edge_contact(&piece.polygon, &self.pieces[*k].polygon)
+                    })
+                    .map(|(k, _)| self.pieces[*k].object)
             });
         faces.chain(planes).collect()
     }
