@@ -434,6 +434,34 @@ mod tests {
         }
     }
 
+    /// Two boxes side by side and a third on top of one (joint bodies
+    /// under a light over the seam): moved apart and back, the stacked one
+    /// taken off and put back, both ways of deleting; each state checked
+    /// against a rebuild and area-shadow.
+    #[test]
+    fn touching_boxes_join_and_part() {
+        for deletion in [Deletion::Local, Deletion::Collapse] {
+            let case = DmCase {
+                objects: vec![
+                    box_triangles([-3, 2, -2], [0, 5, 1]),
+                    box_triangles([0, 2, -2], [3, 5, 1]),
+                    box_triangles([0, 5, -2], [3, 7, 1]),
+                ],
+                light: ([-1, 11, -1], [2, 1], 0),
+                ops: vec![
+                    Op::Move(1, [1, 0, 0]),
+                    Op::Move(1, [-1, 0, 0]),
+                    Op::Remove(2),
+                    Op::ReAdd(2),
+                    Op::Move(0, [0, 0, 1]),
+                    Op::Move(0, [0, 0, -1]),
+                ],
+                deletion,
+            };
+            check_dm_update(&case).unwrap();
+        }
+    }
+
     /// Two tetrahedra (convex bodies, each casting one unit while wholly
     /// in front of the light) and a triangle, moved into each other and up
     /// through the light's plane, removed and added back, both ways of
