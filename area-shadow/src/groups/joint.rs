@@ -25,7 +25,7 @@
 //! ([`flat_joints`]).
 
 use super::solid::Solid;
-use super::{ConvexGroup, FlatUnion, Shape};
+use super::{ConvexGroup, DisjointSets, FlatUnion, Shape};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
@@ -180,65 +180,33 @@ pub fn edge_contact(a: &ConvexPolygon, b: &ConvexPolygon) -> bool {
 /// The pieces `ks` (ascending) in sets connected by contact along their
 /// edges ([`edge_contact`], among those whose bounding boxes meet), each
 /// ascending.
-fn touching_boxes(pieces: &[ConvexPolygon], mut ks: Vec<usize>) -> Vec<Vec<usize>> {
-    let boxes: HashMap<usize, ([f64; 3], [f64; 3])> = ks
+fn touching_boxes(pieces: &[ConvexPolygon], ks: Vec<usize>) -> Vec<Vec<usize>> {
+    // Positions in `ks`, by their boxes' least x: swept along x, each
+    // piece meets only those still open at its start.
+    let boxes: Vec<Bounds> = ks
         .iter()
-        .map(|&k| {
-            let points = pieces[k].vertices_f64();
-            let lo =
-                std::array::from_fn(|a| points.iter().map(|p| p[a]).fold(f64::INFINITY, f64::min));
-            let hi = std::array::from_fn(|a| {
-                points
-                    .iter()
-                    .map(|p| p[a])
-                    .fold(f64::NEG_INFINITY, f64::max)
-            });
-            (k, (lo, hi))
-        })
+        .map(|&k| grid_bounds((0..pieces[k].len()).filter_map(|i| pieces[k].vertex_grid_point(i))))
         .collect();
-    // Swept along x: each piece meets only those still open at its start.
-    ks.sort_by(|a, b| boxes[a].0[0].total_cmp(&boxes[b].0[0]).then(a.cmp(b)));
-    let mut parent: HashMap<usize, usize> = ks.iter().map(|&k| (k, k)).collect();
-    fn root(parent: &mut HashMap<usize, usize>, mut k: usize) -> usize {
-        while parent[&k] != k {
-            let up = parent[&parent[&k]];
-            parent.insert(k, up);
-            k = up;
-        }
-        k
-    }
+    let mut order: Vec<usize> = (0..ks.len()).collect();
+    order.sort_by_key(|&i| (boxes[i].0[0], i));
+    let mut sets = DisjointSets::new(ks.len());
     let mut open: Vec<usize> = Vec::new();
-    for &k in &ks {
-        let (lo, hi) = boxes[&k];
-        open.retain(|o| boxes[o].1[0] >= lo[0]);
+    for i in order {
+        open.retain(|&o| boxes[o].1[0] >= boxes[i].0[0]);
         for &o in &open {
-            let (olo, ohi) = boxes[&o];
-            if (1..3).all(|a| olo[a] <= hi[a] && lo[a] <= ohi[a])
-                && edge_contact(&pieces[k], &pieces[o])
-            {
-                let (a, b) = (root(&mut parent, k), root(&mut parent, o));
-                parent.insert(a.max(b), a.min(b));
+            if meet(&boxes[i], &boxes[o]) && edge_contact(&pieces[ks[i]], &pieces[ks[o]]) {
+                sets.union(i as u32, o as u32);
             }
         }
-        open.push(k);
+        open.push(i);
     }
-    let mut sets: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
-    for &k in &ks {
-        let r = root(&mut parent, k);
-        sets.entry(r).or_default().push(k);
-    }
-    sets.into_values()
-        .map(|mut set| {
-            set.sort_unstable();
-            set
-        })
-        .filter(|set| set.len() > 1)
-        .collect()
+    grouped(&mut sets, (0..ks.len()).map(|i| (i, ks[i])))
 }
 
 /// The sets of two or more solids connected by touching faces (a face
-/// plane of one that another has facing the other way), each ascending,
-/// in order of first solid.
+/// plane of one that another has facing the other way, their bounding
+/// boxes meeting: bodies at one height far apart share face planes), each
+/// ascending, in order of first solid.
 fn touching_sets(solids: &[Option<&Solid>]) -> Vec<Vec<usize>> {
     let mut by_face: HashMap<Plane, Vec<usize>> = HashMap::new();
     for (i, solid) in solids.iter().enumerate() {
@@ -248,50 +216,68 @@ fn touching_sets(solids: &[Option<&Solid>]) -> Vec<Vec<usize>> {
             by_face.entry(face).or_default().push(i);
         }
     }
-    let mut parent: Vec<usize> = (0..solids.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    // Bounding boxes: bodies at one height far apart share face planes.
-    let boxes: Vec<Option<([i32; 3], [i32; 3])>> = solids
+    let boxes: Vec<Option<Bounds>> = solids
         .iter()
-        .map(|solid| {
-            let points = (*solid)?.vertices();
-            let lo = std::array::from_fn(|a| {
-                points.iter().map(|p| [p.x, p.y, p.z][a]).min().unwrap_or(0)
-            });
-            let hi = std::array::from_fn(|a| {
-                points.iter().map(|p| [p.x, p.y, p.z][a]).max().unwrap_or(0)
-            });
-            Some((lo, hi))
-        })
+        .map(|solid| Some(grid_bounds((*solid)?.vertices().iter().copied())))
         .collect();
-    let meet = |i: usize, j: usize| match (boxes[i], boxes[j]) {
-        (Some(a), Some(b)) => (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k]),
-        _ => false,
-    };
+    let mut sets = DisjointSets::new(solids.len());
     for (face, holders) in &by_face {
         let Some(facing) = by_face.get(&face.flipped()) else {
             continue;
         };
         for &i in holders {
-            for &j in facing.iter().filter(|&&j| meet(i, j)) {
-                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
-                parent[a.max(b)] = a.min(b);
+            for &j in facing {
+                if let (Some(a), Some(b)) = (&boxes[i], &boxes[j])
+                    && meet(a, b)
+                {
+                    sets.union(i as u32, j as u32);
+                }
             }
         }
     }
-    let mut sets: Vec<Vec<usize>> = vec![Vec::new(); solids.len()];
-    for i in (0..solids.len()).filter(|&i| solids[i].is_some()) {
-        let r = root(&mut parent, i);
-        sets[r].push(i);
+    let present = (0..solids.len()).filter(|&i| solids[i].is_some());
+    grouped(&mut sets, present.map(|i| (i, i)))
+}
+
+/// A box of grid points: least and greatest coordinates.
+type Bounds = ([i32; 3], [i32; 3]);
+
+/// The bounding box of `points` (at least one).
+fn grid_bounds(points: impl Iterator<Item = GridPoint>) -> Bounds {
+    points.fold(([i32::MAX; 3], [i32::MIN; 3]), |(lo, hi), p| {
+        let c = [p.x, p.y, p.z];
+        (
+            std::array::from_fn(|a| lo[a].min(c[a])),
+            std::array::from_fn(|a| hi[a].max(c[a])),
+        )
+    })
+}
+
+/// Whether two closed boxes meet (touching counts).
+fn meet(a: &Bounds, b: &Bounds) -> bool {
+    (0..3).all(|k| a.0[k] <= b.1[k] && b.0[k] <= a.1[k])
+}
+
+/// The sets of two or more `items` (union-find position, value) by their
+/// positions' sets, each ascending by value, in order of least value.
+fn grouped(
+    sets: &mut DisjointSets,
+    items: impl Iterator<Item = (usize, usize)>,
+) -> Vec<Vec<usize>> {
+    let mut by_root: BTreeMap<u32, Vec<usize>> = BTreeMap::new();
+    for (i, value) in items {
+        by_root.entry(sets.find(i as u32)).or_default().push(value);
     }
-    sets.retain(|set| set.len() > 1);
-    sets
+    let mut out: Vec<Vec<usize>> = by_root
+        .into_values()
+        .filter(|set| set.len() > 1)
+        .map(|mut set| {
+            set.sort_unstable();
+            set
+        })
+        .collect();
+    out.sort_unstable();
+    out
 }
 
 /// The largest convex unions of two or more of the solids `set` (indices

@@ -476,18 +476,18 @@ fn boundary_cycles(outlines: &[&[GridPoint]]) -> Option<Vec<Vec<GridPoint>>> {
 }
 
 /// Union-find over piece indices.
-struct DisjointSets {
+pub(super) struct DisjointSets {
     parent: Vec<u32>,
 }
 
 impl DisjointSets {
-    fn new(n: usize) -> Self {
+    pub(super) fn new(n: usize) -> Self {
         Self {
             parent: (0..n as u32).collect(),
         }
     }
 
-    fn find(&mut self, mut k: u32) -> u32 {
+    pub(super) fn find(&mut self, mut k: u32) -> u32 {
         while self.parent[k as usize] != k {
             let up = self.parent[self.parent[k as usize] as usize];
             self.parent[k as usize] = up;
@@ -496,7 +496,7 @@ impl DisjointSets {
         k
     }
 
-    fn union(&mut self, a: u32, b: u32) {
+    pub(super) fn union(&mut self, a: u32, b: u32) {
         let (ra, rb) = (self.find(a), self.find(b));
         // The smaller root stays, so that the sets do not depend on the
         // order of the unions.

@@ -366,26 +366,47 @@ proptest! {
         let pieces: Vec<ConvexPolygon> = pieces.into_iter().enumerate().map(|(k, p)| p.with_source(k as u32)).collect();
         let flags = vec![PieceFlags::default(); pieces.len()];
         let out = compute_shadows(&pieces, &flags, &[SceneLight::Area(light.clone())], &BuildOptions::default()).unwrap();
-        let casters: Vec<Caster> = pieces[1..].iter().map(Caster::new).collect();
-        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
-        let inside_light = light_samples(light.polygon());
-        let [a, b, c, d] = light.support().approx();
-        for f in out.fragments.iter().filter(|f| f.polygon.source() == 0) {
-            let class = Class::of(f, 0);
-            for q in samples(&f.polygon) {
-                // Behind the light's plane nothing arrives (the floor faces
-                // every light point: they are all above it).
-                let reached = a * q[0] + b * q[1] + c * q[2] + d > 0.0;
-                let seen = |x: &[f64; 3]| reached && !blocked(q, *x, &casters, &pieces[0]);
-                let sees = |targets: &[[f64; 3]]| targets.iter().any(seen);
-                match class {
-                    Class::Umbra => prop_assert!(!sees(&inside_light) && !sees(&corners), "umbra at {q:?} sees the light"),
-                    Class::Penumbra => prop_assert!(sees(&corners) || sees(&inside_light), "penumbra at {q:?} sees none of the light"),
-                    Class::Lit => prop_assert!(corners.iter().chain(&inside_light).all(seen), "lit at {q:?} misses some of the light"),
-                }
+        floor_classes_are_exact(&out.fragments, &pieces, &light)?;
+    }
+}
+
+/// Every floor fragment (source 0; `pieces[0]` is the floor, the others
+/// cast shadows) against the exact segment oracle at its sample points:
+/// umbra sees none of the light, penumbra some light vertex or sample,
+/// lit all of them (behind the light's plane nothing arrives; the floor
+/// faces every light point).
+pub(crate) fn floor_classes_are_exact(
+    fragments: &[svbsp::Fragment],
+    pieces: &[ConvexPolygon],
+    light: &AreaSource,
+) -> Result<(), TestCaseError> {
+    let casters: Vec<Caster> = pieces[1..].iter().map(Caster::new).collect();
+    let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
+    let inside_light = light_samples(light.polygon());
+    let [a, b, c, d] = light.support().approx();
+    for f in fragments.iter().filter(|f| f.polygon.source() == 0) {
+        let class = Class::of(f, 0);
+        for q in samples(&f.polygon) {
+            let reached = a * q[0] + b * q[1] + c * q[2] + d > 0.0;
+            let seen = |x: &[f64; 3]| reached && !blocked(q, *x, &casters, &pieces[0]);
+            let sees = |targets: &[[f64; 3]]| targets.iter().any(seen);
+            match class {
+                Class::Umbra => prop_assert!(
+                    !sees(&inside_light) && !sees(&corners),
+                    "umbra at {q:?} sees the light"
+                ),
+                Class::Penumbra => prop_assert!(
+                    sees(&corners) || sees(&inside_light),
+                    "penumbra at {q:?} sees none of the light"
+                ),
+                Class::Lit => prop_assert!(
+                    corners.iter().chain(&inside_light).all(seen),
+                    "lit at {q:?} misses some of the light"
+                ),
             }
         }
     }
+    Ok(())
 }
 
 /// A UV sphere of `rings` x `segments` quads, each cut into two

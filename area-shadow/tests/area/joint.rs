@@ -2,11 +2,11 @@
 //! box: together they hide the light where neither does alone, and the
 //! floor's classes are exact there too.
 
-use crate::groups::{box_faces, light_strategy};
-use crate::oracle::{Caster, blocked, gp, light_samples, samples};
-use area_shadow::{Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
+use crate::groups::{box_faces, floor_classes_are_exact, light_strategy};
+use crate::oracle::gp;
+use area_shadow::{SceneLight, ShadowGroups, compute_shadows_with_groups};
 use bsp_core::predicates::{Side, side_of_point};
-use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
+use bsp_core::{BuildOptions, ConvexPolygon};
 use proptest::prelude::*;
 use svbsp::PieceFlags;
 
@@ -91,23 +91,6 @@ proptest! {
             &[SceneLight::Area(light.clone())],
             &BuildOptions::default(),
         ).unwrap();
-        let casters: Vec<Caster> = pieces[1..].iter().map(Caster::new).collect();
-        let corners: Vec<[f64; 3]> = light.vertices().map(GridPoint::to_f64).collect();
-        let inside_light = light_samples(light.polygon());
-        let [a, b, c, d] = light.support().approx();
-        for f in out.fragments.iter().filter(|f| f.polygon.source() == 0) {
-            let class = Class::of(f, 0);
-            for q in samples(&f.polygon) {
-                // Behind the light's plane nothing arrives.
-                let reached = a * q[0] + b * q[1] + c * q[2] + d > 0.0;
-                let seen = |x: &[f64; 3]| reached && !blocked(q, *x, &casters, &pieces[0]);
-                let sees = |targets: &[[f64; 3]]| targets.iter().any(seen);
-                match class {
-                    Class::Umbra => prop_assert!(!sees(&inside_light) && !sees(&corners), "umbra at {q:?} sees the light"),
-                    Class::Penumbra => prop_assert!(sees(&corners) || sees(&inside_light), "penumbra at {q:?} sees none of the light"),
-                    Class::Lit => prop_assert!(corners.iter().chain(&inside_light).all(seen), "lit at {q:?} misses some of the light"),
-                }
-            }
-        }
+        floor_classes_are_exact(&out.fragments, &pieces, &light)?;
     }
 }

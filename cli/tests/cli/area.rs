@@ -560,6 +560,31 @@ fn a_box_that_holds_the_light_in_leaves_the_floor_in_umbra() {
     }
 }
 
+/// Runs both commands on each scene file `(name, text)` and checks that
+/// the floor's class areas agree with the first's, whose umbra is
+/// `umbra_area`.
+fn shade_the_floor_alike(scenes: &[(&str, &str)], umbra_area: f64) {
+    let dir = folder(scenes);
+    for command in ["shadow", "dm"] {
+        let classes = |name: &str| {
+            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
+        };
+        let want = classes(scenes[0].0);
+        assert!((want[2] - umbra_area).abs() < 1e-9, "{command}: {want:?}");
+        for (name, _) in &scenes[1..] {
+            let got = classes(name);
+            for k in 0..3 {
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-9,
+                    "{command} {name}: {got:?} vs {want:?}"
+                );
+            }
+        }
+    }
+}
+
 /// A box one face short under a light off to its side, open towards the
 /// light or away from it: from the floor it hides what the closed box
 /// does, in both commands (open at the top, its bottom alone would leave
@@ -587,29 +612,14 @@ fn an_open_box_shades_the_floor_as_the_closed_one() {
         )
     };
     let (closed, top_open, side_open) = (scene(None), scene(Some(1)), scene(Some(5)));
-    let dir = folder(&[
-        ("closed.toml", closed.as_str()),
-        ("top.toml", top_open.as_str()),
-        ("side.toml", side_open.as_str()),
-    ]);
-    for command in ["shadow", "dm"] {
-        let classes = |name: &str| {
-            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
-            assert_eq!(run.code, 0, "{}", run.stderr);
-            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
-        };
-        let want = classes("closed.toml");
-        assert!((want[2] - 6.0).abs() < 1e-9, "{command}: {want:?}");
-        for name in ["top.toml", "side.toml"] {
-            let got = classes(name);
-            for k in 0..3 {
-                assert!(
-                    (got[k] - want[k]).abs() < 1e-9,
-                    "{command} {name}: {got:?} vs {want:?}"
-                );
-            }
-        }
-    }
+    shade_the_floor_alike(
+        &[
+            ("closed.toml", closed.as_str()),
+            ("top.toml", top_open.as_str()),
+            ("side.toml", side_open.as_str()),
+        ],
+        6.0,
+    );
 }
 
 /// The box of [`an_open_box_shades_the_floor_as_the_closed_one`] given as
@@ -658,29 +668,14 @@ fn touching_boxes_shade_the_floor_as_the_box_they_make() {
         ([0.0, 4.0, -1.0], [1.0, 5.0, -0.25]),
         ([0.0, 4.0, -0.25], [1.0, 5.0, 1.0]),
     ]);
-    let dir = folder(&[
-        ("whole.toml", whole.as_str()),
-        ("halves.toml", halves.as_str()),
-        ("three.toml", three.as_str()),
-    ]);
-    for command in ["shadow", "dm"] {
-        let classes = |name: &str| {
-            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
-            assert_eq!(run.code, 0, "{}", run.stderr);
-            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
-        };
-        let want = classes("whole.toml");
-        assert!((want[2] - 6.0).abs() < 1e-9, "{command}: {want:?}");
-        for name in ["halves.toml", "three.toml"] {
-            let got = classes(name);
-            for k in 0..3 {
-                assert!(
-                    (got[k] - want[k]).abs() < 1e-9,
-                    "{command} {name}: {got:?} vs {want:?}"
-                );
-            }
-        }
-    }
+    shade_the_floor_alike(
+        &[
+            ("whole.toml", whole.as_str()),
+            ("halves.toml", halves.as_str()),
+            ("three.toml", three.as_str()),
+        ],
+        6.0,
+    );
 }
 
 /// Two unit panels side by side, each its own object, under a light
@@ -709,29 +704,14 @@ fn panels_side_by_side_shade_the_floor_as_one_panel() {
         "[[-1, 1, -0.5], [-1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
         "[[1, 1, -0.5], [1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
     ]);
-    let dir = folder(&[
-        ("one.toml", one.as_str()),
-        ("two.toml", two.as_str()),
-        ("turned.toml", turned.as_str()),
-    ]);
-    for command in ["shadow", "dm"] {
-        let classes = |name: &str| {
-            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
-            assert_eq!(run.code, 0, "{}", run.stderr);
-            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())
-        };
-        let want = classes("one.toml");
-        assert!((want[2] - 7.0 / 3.0).abs() < 1e-9, "{command}: {want:?}");
-        for name in ["two.toml", "turned.toml"] {
-            let got = classes(name);
-            for k in 0..3 {
-                assert!(
-                    (got[k] - want[k]).abs() < 1e-9,
-                    "{command} {name}: {got:?} vs {want:?}"
-                );
-            }
-        }
-    }
+    shade_the_floor_alike(
+        &[
+            ("one.toml", one.as_str()),
+            ("two.toml", two.as_str()),
+            ("turned.toml", turned.as_str()),
+        ],
+        7.0 / 3.0,
+    );
 }
 
 /// Two faces of a turned cube (a black-box check's scene): the grid bends
