@@ -397,8 +397,8 @@ impl DmRun {
             .iter()
             .position(|o| o.name == name)
             .ok_or_else(|| field(format!("no object is named `{name}`")))?;
-        let scale = self.pieces.grid.scale();
-        let step: [i64; 3] = by.map(|x| (x * scale).round() as i64);
+        let grid = self.pieces.grid;
+        let step: [i64; 3] = by.map(|x| grid.length_to_units(x).round() as i64);
         let (id, ks) = self.objects[index].clone();
         let original: Vec<ConvexPolygon> = ks
             .iter()

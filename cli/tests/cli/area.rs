@@ -294,7 +294,7 @@ fn output_does_not_depend_on_the_thread_count() {
 
 /// The floor's areas (lit, penumbra, umbra) for light 0 in a PLY written
 /// by `umbra shadow` or `umbra dm`.
-fn floor_classes(mesh: &OutputMesh) -> [f64; 3] {
+pub(crate) fn floor_classes(mesh: &OutputMesh) -> [f64; 3] {
     let mut out = [0.0; 3];
     for (f, face) in mesh.faces.iter().enumerate() {
         if face.source != 0 {
@@ -622,42 +622,49 @@ fn an_open_box_shades_the_floor_as_the_closed_one() {
     );
 }
 
+/// The six faces of the box `[lo, hi]`, facing out, as a scene file's
+/// `polygons` list.
+fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> String {
+    let [a, b, c] = lo;
+    let [d, e, f] = hi;
+    let v = |x: f64, y: f64, z: f64| format!("[{x}, {y}, {z}]");
+    let faces = [
+        [v(a, b, c), v(d, b, c), v(d, b, f), v(a, b, f)],
+        [v(a, e, c), v(a, e, f), v(d, e, f), v(d, e, c)],
+        [v(a, b, c), v(a, b, f), v(a, e, f), v(a, e, c)],
+        [v(d, b, c), v(d, e, c), v(d, e, f), v(d, b, f)],
+        [v(a, b, c), v(a, e, c), v(d, e, c), v(d, b, c)],
+        [v(a, b, f), v(d, b, f), v(d, e, f), v(a, e, f)],
+    ];
+    let faces: Vec<String> = faces
+        .iter()
+        .map(|f| format!("[{}]", f.join(", ")))
+        .collect();
+    faces.join(", ")
+}
+
+/// A 20 x 20 floor (object 0), the boxes `[lo, hi]` as objects `box0`,
+/// `box1`, ..., and a 2 x 2 light at y = 10 off to their side.
+pub(crate) fn boxes_under_a_side_light(boxes: &[([f64; 3], [f64; 3])]) -> String {
+    let mut out = String::from(
+        "[[object]]\nname = \"floor\"\npolygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]\n\n",
+    );
+    for (k, (lo, hi)) in boxes.iter().enumerate() {
+        out += &format!(
+            "[[object]]\nname = \"box{k}\"\npolygons = [{}]\n\n",
+            cuboid(*lo, *hi)
+        );
+    }
+    out + "[[light]]\ntype = \"area\"\nvertices = [[2, 10, -1], [4, 10, -1], [4, 10, 1], [2, 10, 1]]\n"
+}
+
 /// The box of [`an_open_box_shades_the_floor_as_the_closed_one`] given as
 /// two or three boxes, each its own object, touching face to face: each
 /// hides only part of the light beside a seam, together all of it, and
 /// both commands shade the floor as under the one box.
 #[test]
 fn touching_boxes_shade_the_floor_as_the_box_they_make() {
-    let cuboid = |lo: [f64; 3], hi: [f64; 3]| -> String {
-        let [a, b, c] = lo;
-        let [d, e, f] = hi;
-        let v = |x: f64, y: f64, z: f64| format!("[{x}, {y}, {z}]");
-        let faces = [
-            [v(a, b, c), v(d, b, c), v(d, b, f), v(a, b, f)],
-            [v(a, e, c), v(a, e, f), v(d, e, f), v(d, e, c)],
-            [v(a, b, c), v(a, b, f), v(a, e, f), v(a, e, c)],
-            [v(d, b, c), v(d, e, c), v(d, e, f), v(d, b, f)],
-            [v(a, b, c), v(a, e, c), v(d, e, c), v(d, b, c)],
-            [v(a, b, f), v(d, b, f), v(d, e, f), v(a, e, f)],
-        ];
-        let faces: Vec<String> = faces
-            .iter()
-            .map(|f| format!("[{}]", f.join(", ")))
-            .collect();
-        faces.join(", ")
-    };
-    let scene = |boxes: &[([f64; 3], [f64; 3])]| -> String {
-        let mut out = String::from(
-            "[[object]]\nname = \"floor\"\npolygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]\n\n",
-        );
-        for (k, (lo, hi)) in boxes.iter().enumerate() {
-            out += &format!(
-                "[[object]]\nname = \"box{k}\"\npolygons = [{}]\n\n",
-                cuboid(*lo, *hi)
-            );
-        }
-        out + "[[light]]\ntype = \"area\"\nvertices = [[2, 10, -1], [4, 10, -1], [4, 10, 1], [2, 10, 1]]\n"
-    };
+    let scene = boxes_under_a_side_light;
     let whole = scene(&[([-1.0, 4.0, -1.0], [1.0, 5.0, 1.0])]);
     let halves = scene(&[
         ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),

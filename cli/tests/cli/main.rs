@@ -3,6 +3,7 @@
 mod area;
 mod commands;
 mod csg;
+mod decimal;
 mod decomposition;
 mod demos;
 mod dm;

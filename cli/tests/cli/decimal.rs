@@ -1,0 +1,167 @@
+//! Scene files written in decimals come back to the last bit: the grid
+//! takes a decimal step when that holds more of the input exactly, so
+//! fragments lie in their input polygon's plane and add up to its area to
+//! rounding, and `umbra update` moves by exactly the decimal step asked.
+
+use crate::area::{boxes_under_a_side_light, floor_classes};
+use crate::{folder, umbra};
+use umbra::{OutputMesh, load_ply};
+
+/// A floor, a 0.6 x 0.25 x 0.6 box just under a unit light (a black-box
+/// check's scene; on a power-of-two grid its face areas came out 1.3e-6
+/// too large) and a panel moved by a decimal `translate`.
+const DECIMAL_SCENE: &str = r#"
+[[object]]
+name = "floor"
+polygons = [[[-4.0, 0.0, -4.0], [-4.0, 0.0, 4.0], [4.0, 0.0, 4.0], [4.0, 0.0, -4.0]]]
+casts_shadows = false
+
+[[object]]
+name = "box"
+polygons = [
+  [[-0.3, 3.7, -0.3], [-0.3, 3.95, -0.3], [0.3, 3.95, -0.3], [0.3, 3.7, -0.3]],
+  [[-0.3, 3.7, 0.3], [0.3, 3.7, 0.3], [0.3, 3.95, 0.3], [-0.3, 3.95, 0.3]],
+  [[-0.3, 3.7, -0.3], [0.3, 3.7, -0.3], [0.3, 3.7, 0.3], [-0.3, 3.7, 0.3]],
+  [[-0.3, 3.95, -0.3], [-0.3, 3.95, 0.3], [0.3, 3.95, 0.3], [0.3, 3.95, -0.3]],
+  [[-0.3, 3.7, -0.3], [-0.3, 3.7, 0.3], [-0.3, 3.95, 0.3], [-0.3, 3.95, -0.3]],
+  [[0.3, 3.7, -0.3], [0.3, 3.95, -0.3], [0.3, 3.95, 0.3], [0.3, 3.7, 0.3]],
+]
+
+[[object]]
+name = "panel"
+polygons = [[[-1.3, 2.1, -0.7], [-1.3, 2.1, 0.9], [0.35, 2.1, 0.9], [0.35, 2.1, -0.7]]]
+translate = [0.1, 0.2, -0.3]
+
+[[light]]
+type = "area"
+vertices = [[-0.5, 4.0, -0.5], [0.5, 4.0, -0.5], [0.5, 4.0, 0.5], [-0.5, 4.0, 0.5]]
+intensity = 5.0
+"#;
+
+/// The input polygons of [`DECIMAL_SCENE`] as the scene file gives them,
+/// transforms applied in `f64`.
+fn input_polygons() -> Vec<Vec<[f64; 3]>> {
+    let table: toml::Table = DECIMAL_SCENE.parse().unwrap();
+    let mut out = Vec::new();
+    for object in table["object"].as_array().unwrap() {
+        let t = object
+            .get("translate")
+            .map(|t| {
+                t.as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_float().unwrap())
+                    .collect()
+            })
+            .unwrap_or_else(|| vec![0.0; 3]);
+        for polygon in object["polygons"].as_array().unwrap() {
+            let points = polygon.as_array().unwrap().iter().map(|p| {
+                let c: Vec<f64> = p
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|v| v.as_float().unwrap())
+                    .collect();
+                [c[0] + t[0], c[1] + t[1], c[2] + t[2]]
+            });
+            out.push(points.collect());
+        }
+    }
+    out
+}
+
+/// Newell normal (twice the vector area) of a planar polygon.
+fn newell(points: &[[f64; 3]]) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    for (i, a) in points.iter().enumerate() {
+        let b = points[(i + 1) % points.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    n
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+#[test]
+fn decimal_fragments_lie_in_their_polygons_and_add_up_to_them() {
+    let inputs = input_polygons();
+    assert_eq!(inputs.len(), 8);
+    let dir = folder(&[("scene.toml", DECIMAL_SCENE)]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh: OutputMesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let mut sums = vec![0.0; inputs.len()];
+        for face in &mesh.faces {
+            let source = face.source as usize;
+            let polygon = &inputs[source];
+            let n = newell(polygon);
+            let unit = n.map(|c| c / norm(n));
+            let points: Vec<[f64; 3]> = face
+                .vertices
+                .iter()
+                .map(|&v| mesh.vertices[v as usize].0)
+                .collect();
+            for p in &points {
+                let d: f64 = (0..3).map(|a| (p[a] - polygon[0][a]) * unit[a]).sum();
+                assert!(
+                    d.abs() < 1e-13,
+                    "{command}: {p:?} is {d:e} off polygon {source}"
+                );
+            }
+            sums[source] += 0.5 * norm(newell(&points));
+        }
+        for (source, polygon) in inputs.iter().enumerate() {
+            let want = 0.5 * norm(newell(polygon));
+            assert!(
+                (sums[source] - want).abs() <= 1e-13 * want,
+                "{command}: polygon {source} has fragments of area {} for {want}",
+                sums[source]
+            );
+        }
+    }
+}
+
+/// Two boxes 0.3 apart; `update` moves the second by -0.1 three times and
+/// must end touching the first, as the scene file with the boxes touching
+/// does: one joint body, the floor shaded as under one 2 x 2 box (umbra
+/// 6). On a power-of-two grid three snapped steps of 0.1 overshot 0.3 by a
+/// grid step and the boxes overlapped instead.
+#[test]
+fn update_by_decimal_steps_closes_a_decimal_gap() {
+    let apart = boxes_under_a_side_light(&[
+        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
+        ([-1.0, 4.0, 0.3], [1.0, 5.0, 1.3]),
+    ]);
+    let touching = boxes_under_a_side_light(&[
+        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
+        ([-1.0, 4.0, 0.0], [1.0, 5.0, 1.0]),
+    ]);
+    let dir = folder(&[("apart.toml", &apart), ("touching.toml", &touching)]);
+    let args = [
+        "update",
+        "apart.toml",
+        "--move",
+        "box1",
+        "--by",
+        "0,0,-0.1",
+        "--steps",
+        "3",
+        "-o",
+        "moved.ply",
+    ];
+    let run = umbra(dir.path(), &args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let run = umbra(dir.path(), &["dm", "touching.toml", "-o", "built.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let moved = floor_classes(&load_ply(&dir.path().join("moved.ply")).unwrap());
+    let built = floor_classes(&load_ply(&dir.path().join("built.ply")).unwrap());
+    assert!((built[2] - 6.0).abs() < 1e-9, "{built:?}");
+    for k in 0..3 {
+        assert!((moved[k] - built[k]).abs() < 1e-9, "{moved:?} vs {built:?}");
+    }
+}
