@@ -22,7 +22,7 @@ use crate::volumes::volume_planes;
 use bsp_core::predicates::Side;
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use std::cmp::Ordering;
-use svbsp::ConvexPolyhedron;
+use svbsp::{CellParts, ConvexPolyhedron};
 
 /// The most vertices of a union's outline looked at (its simplicity is
 /// checked pair by pair); bigger unions form no group.
@@ -123,7 +123,13 @@ impl FlatUnion {
         let Some(pockets) = self.pocket_triangles() else {
             return Vec::new();
         };
-        let mut parts = vec![umbra];
+        let Some(first) = ConvexPolyhedron::from_planes(&umbra) else {
+            return Vec::new();
+        };
+        // The parts are carried as polyhedra, cut one plane at a time:
+        // rebuilding each candidate from its planes cost the furnished room
+        // twice its shadow time.
+        let mut parts = vec![first];
         for triangle in pockets {
             for taken in volume_planes(&triangle, light).penumbra {
                 parts = parts
@@ -135,7 +141,24 @@ impl FlatUnion {
                 }
             }
         }
+        let frame: Vec<Plane> = ConvexPolyhedron::bounding_box()
+            .facets()
+            .iter()
+            .map(|f| *f.support())
+            .collect();
         parts
+            .iter()
+            .map(|part| {
+                let mut planes: Vec<Plane> = Vec::new();
+                for facet in part.facets() {
+                    let plane = facet.support();
+                    if !frame.contains(plane) && !planes.contains(plane) {
+                        planes.push(*plane);
+                    }
+                }
+                planes
+            })
+            .collect()
     }
 
     /// How `c` turns from the line `ab`, seen from the front of the plane:
@@ -341,22 +364,21 @@ fn within(p: GridPoint, s: GridPoint, t: GridPoint) -> bool {
     between(p.x, s.x, t.x) && between(p.y, s.y, t.y) && between(p.z, s.z, t.z)
 }
 
-/// The convex parts of `part` outside the convex volume behind `taken`.
-fn without(part: Vec<Plane>, taken: &[Plane]) -> Vec<Vec<Plane>> {
-    let mut both = part.clone();
-    both.extend_from_slice(taken);
-    if ConvexPolyhedron::from_planes(&both).is_none() {
-        return vec![part];
-    }
+/// The convex parts of `part` outside the convex volume behind `taken`:
+/// `part` itself when they share no interior.
+fn without(part: ConvexPolyhedron, taken: &[Plane]) -> Vec<ConvexPolyhedron> {
     let mut out = Vec::new();
-    let mut behind = part;
+    let mut rest = part.clone();
     for plane in taken {
-        let mut outside = behind.clone();
-        outside.push(plane.flipped());
-        if ConvexPolyhedron::from_planes(&outside).is_some() {
-            out.push(outside);
+        match rest.into_split(plane) {
+            CellParts::Back(back) => rest = back,
+            // What is left lies outside the volume: so does all of `part`.
+            CellParts::Front(_) => return vec![part],
+            CellParts::Both { back, front, .. } => {
+                out.push(front);
+                rest = back;
+            }
         }
-        behind.push(*plane);
     }
     out
 }
