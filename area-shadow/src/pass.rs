@@ -23,6 +23,12 @@
 //!    it whichever order the pieces came in, so the classification does not
 //!    depend on the order, and the light need not be split.
 //!
+//! A two-sided piece whose plane cuts the light receives each part of the
+//! light on its own side, so it is lit where no other piece hides any of
+//! the light; but it lies inside its own two penumbra volumes (one each
+//! side of its plane). Such volumes go into a union of their own, and the
+//! piece is cut by each of them but its own.
+//!
 //! The paper's umbra is the union of single occluders' umbrae. Pieces
 //! that make up one convex body (module `groups`: a triangulated sphere, a
 //! quad given as two triangles) hide the whole light together from the
@@ -44,7 +50,7 @@ use crate::groups::{
     ConvexGroup, FlatUnion, convex_groups, convex_unions, flat_joints, flat_unions,
 };
 use crate::merge_pieces::merge_same_class;
-use crate::tree::VolumeTree;
+use crate::tree::{Partition, VolumeTree};
 use crate::volumes::cast_volumes_within;
 use crate::{AreaSource, SourceSide};
 use bsp_core::{ConvexPolygon, GRID_LIMIT, GridPoint, Split};
@@ -191,6 +197,14 @@ pub struct AreaTrees {
     /// Convex bodies of several pieces whose umbra volume went in
     /// ([`Self::bodies`]).
     pub groups: usize,
+    /// Penumbra volumes of two-sided pieces whose plane cuts the light,
+    /// with the piece's index; kept out of [`Self::penumbra`]. Such a piece
+    /// receives on both sides, so it sees all of the light where nothing
+    /// else hides any, but it lies inside the union of its own two volumes
+    /// (one each side of its plane, glued along it).
+    pub straddling: Vec<(u32, ConvexPolyhedron)>,
+    /// The same volumes as one union, for every other receiver.
+    pub straddling_union: VolumeTree,
 }
 
 impl AreaTrees {
@@ -262,8 +276,15 @@ impl AreaTrees {
                 continue;
             }
             trees.occluders += 1;
+            let straddling =
+                flags[k].two_sided && light.side_of(piece.support()) == SourceSide::Both;
             for volume in volumes.penumbra {
-                trees.penumbra.insert(volume);
+                if straddling {
+                    trees.straddling_union.insert(volume.clone());
+                    trees.straddling.push((k as u32, volume));
+                } else {
+                    trees.penumbra.insert(volume);
+                }
             }
             if let Some(volume) = volumes.umbra {
                 trees.umbra.insert(volume);
@@ -309,10 +330,11 @@ impl AreaTrees {
         flags: PieceFlags,
         light: &AreaSource,
     ) -> Vec<(ConvexPolygon, Class)> {
-        let reach = match light.side_of(polygon.support()) {
+        let side = light.side_of(polygon.support());
+        let reach = match side {
             SourceSide::In => Reach::None,
             SourceSide::Front => Reach::All,
-            SourceSide::Back if flags.two_sided => Reach::All,
+            SourceSide::Back | SourceSide::Both if flags.two_sided => Reach::All,
             SourceSide::Back => Reach::None,
             SourceSide::Both => Reach::Part,
         };
@@ -342,7 +364,21 @@ impl AreaTrees {
             SourceSide::Both if flags.two_sided => None,
             _ => Some(*polygon.support()),
         };
-        let hidden = self.penumbra.partition(lit_part);
+        let own = polygon.source();
+        let mut hidden = self.penumbra.partition(lit_part);
+        if !self.straddling.is_empty() {
+            let mut open = Vec::new();
+            for piece in hidden.outside {
+                let cut = if flags.two_sided && side == SourceSide::Both {
+                    self.outside_straddling_but(piece, own)
+                } else {
+                    self.straddling_union.partition(piece)
+                };
+                open.extend(cut.outside);
+                hidden.inside.extend(cut.inside);
+            }
+            hidden.outside = open;
+        }
         out.extend(hidden.outside.into_iter().map(|p| (p, unblocked)));
         for piece in hidden.inside {
             let dark = self.umbra.partition(piece);
@@ -371,6 +407,50 @@ impl AreaTrees {
         }
         merge_same_class(out)
     }
+}
+
+impl AreaTrees {
+    /// `polygon` cut by the [`Self::straddling`] volumes of every piece but
+    /// `own`: the parts inside one of them and the parts outside all.
+    fn outside_straddling_but(&self, polygon: ConvexPolygon, own: u32) -> Partition {
+        let mut cut = Partition::default();
+        let mut open = vec![polygon];
+        for (_, volume) in self.straddling.iter().filter(|(k, _)| *k != own) {
+            let mut next = Vec::with_capacity(open.len());
+            for piece in open {
+                let (outside, inside) = clip_to_volume(piece, volume);
+                next.extend(outside);
+                cut.inside.extend(inside);
+            }
+            open = next;
+        }
+        cut.outside = open;
+        cut
+    }
+}
+
+/// The parts of `polygon` outside the convex `volume`, and the part inside
+/// it (a part on its boundary counts as outside, as in [`VolumeTree`]).
+fn clip_to_volume(
+    polygon: ConvexPolygon,
+    volume: &ConvexPolyhedron,
+) -> (Vec<ConvexPolygon>, Option<ConvexPolygon>) {
+    let mut outside = Vec::new();
+    let mut rest = polygon;
+    for facet in volume.facets() {
+        match rest.split(facet.support()) {
+            Split::Back => {}
+            Split::Front | Split::Coplanar(_) => {
+                outside.push(rest);
+                return (outside, None);
+            }
+            Split::Both(back, front) => {
+                outside.push(front);
+                rest = back;
+            }
+        }
+    }
+    (outside, Some(rest))
 }
 
 /// The box `lo..hi` one grid unit larger on each side, so that every

@@ -142,8 +142,10 @@ proptest! {
             let own = &pieces[k as usize];
             let whole_light_in_front = match light.side_of(own.support()) {
                 SourceSide::Front => true,
-                SourceSide::Back => flags[k as usize].two_sided,
-                _ => false,
+                // Two-sided, a receiver takes each part of a light its plane
+                // cuts on its own side: all of the light.
+                SourceSide::Back | SourceSide::Both => flags[k as usize].two_sided,
+                SourceSide::In => false,
             };
             if !whole_light_in_front {
                 continue; // part of the light is behind the receiver: penumbra at best
@@ -165,12 +167,13 @@ fn in_front_of_light(light: &AreaSource, q: [f64; 3]) -> bool {
     a * q[0] + b * q[1] + c * q[2] + d > 0.0
 }
 
-/// Whether light from `x` arrives on a receiving side of `own` at `q`.
+/// Whether light from `x` arrives on a receiving side of `own` at `q`
+/// (two-sided: on either side, grazing included).
 fn faces(own: &ConvexPolygon, two_sided: bool, q: [f64; 3], x: [f64; 3]) -> bool {
     let [a, b, c, d] = own.support().approx();
     let side = a * x[0] + b * x[1] + c * x[2] + d;
     let _ = q;
-    side > 0.0 || (two_sided && side < 0.0)
+    side > 0.0 || two_sided
 }
 
 proptest! {

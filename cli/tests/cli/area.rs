@@ -849,3 +849,58 @@ fn a_vertex_on_a_bent_quads_diagonal_sees_past_the_other_triangle() {
         assert!(checked >= 6, "{command}: {checked} vertices");
     }
 }
+
+/// A two-sided upright panel in the plane x = 0 under a 2 x 2 light that
+/// this plane cuts in half: the panel takes each half on its own side, so
+/// it sees all of the light where nothing else hides any (lit, not
+/// penumbra). A small square at y = 7 over x in [0.5, 1.5] hides part of
+/// the light's x > 0 half exactly from the panel's points with y <= 4
+/// (the plane through the square's edge x = 0.5 and the light's edge
+/// x = 1): penumbra 12 below, lit 4 above, in both commands, and the
+/// floor, shaded by the panel's volumes on both of its sides, alike.
+#[test]
+fn a_two_sided_panel_cutting_the_light_sees_all_of_it() {
+    let scene = "[[object]]\nname = \"floor\"\npolygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]\n\n\
+                 [[object]]\nname = \"panel\"\ntwo_sided = true\npolygons = [[[0, 1, -2], [0, 1, 2], [0, 5, 2], [0, 5, -2]]]\n\n\
+                 [[object]]\nname = \"square\"\npolygons = [[[0.5, 7, -0.5], [0.5, 7, 0.5], [1.5, 7, 0.5], [1.5, 7, -0.5]]]\n\n\
+                 [[light]]\ntype = \"area\"\nvertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]\n";
+    let dir = folder(&[("scene.toml", scene)]);
+    let mut floors = Vec::new();
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let mut panel = [0.0; 3];
+        for (f, face) in mesh.faces.iter().enumerate() {
+            if face.source != 1 {
+                continue;
+            }
+            let class = match (face.lit_mask & 1, face.umbra_mask & 1) {
+                (1, 0) => 0,
+                (0, 0) => 1,
+                _ => 2,
+            };
+            // The panel's faces: the yz-plane area.
+            let v = face_points(&mesh, f);
+            let twice: f64 = (0..v.len())
+                .map(|i| {
+                    let (p, q) = (v[i], v[(i + 1) % v.len()]);
+                    p[1] * q[2] - q[1] * p[2]
+                })
+                .sum();
+            panel[class] += 0.5 * twice.abs();
+        }
+        for (got, want) in panel.iter().zip([4.0, 12.0, 0.0]) {
+            assert!((got - want).abs() < 1e-9, "{command}: {panel:?}");
+        }
+        floors.push(floor_classes(&mesh));
+    }
+    for k in 0..3 {
+        assert!(
+            (floors[0][k] - floors[1][k]).abs() < 1e-9,
+            "floor: shadow {:?}, dm {:?}",
+            floors[0],
+            floors[1]
+        );
+    }
+}

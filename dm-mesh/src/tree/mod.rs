@@ -165,7 +165,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             let reach = match light.side_of(dm.polygon.support()) {
                 SourceSide::In => Reach::None,
                 SourceSide::Front => Reach::All,
-                SourceSide::Back if two_sided => Reach::All,
+                // A two-sided receiver whose plane cuts the light receives
+                // each part on its own side: all of it, where unblocked.
+                SourceSide::Back | SourceSide::Both if two_sided => Reach::All,
                 SourceSide::Back => Reach::None,
                 SourceSide::Both => Reach::Part,
             };

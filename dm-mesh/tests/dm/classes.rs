@@ -105,7 +105,8 @@ fn check_against_oracle(t: &TestScene, one_body: bool) -> Result<(), TestCaseErr
                     .map(|x| {
                         let in_front = la * p[0] + lb * p[1] + lc * p[2] + ld > 0.0;
                         let side = a * x[0] + b * x[1] + c * x[2] + d;
-                        let faces = side > 0.0 || (side < 0.0 && two_sided(t, &own));
+                        // Two-sided: from either side, grazing included.
+                        let faces = side > 0.0 || two_sided(t, &own);
                         in_front && faces && !hidden(p, *x, &casters, &own)
                     })
                     .collect();
@@ -175,8 +176,10 @@ fn full_reach(t: &TestScene, own: &bsp_core::ConvexPolygon) -> bool {
     use area_shadow::SourceSide;
     match t.light.side_of(own.support()) {
         SourceSide::Front => true,
-        SourceSide::Back => two_sided(t, own),
-        _ => false,
+        // Two-sided, a receiver takes each part of a light its plane cuts
+        // on its own side: all of the light.
+        SourceSide::Back | SourceSide::Both => two_sided(t, own),
+        SourceSide::In => false,
     }
 }
 
