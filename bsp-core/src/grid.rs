@@ -93,6 +93,9 @@ enum Step {
     },
 }
 
+/// The most input points [`Grid::enclosing`] looks at to choose its step.
+const SNAP_SAMPLE: usize = 4096;
+
 /// The powers of ten that `f64` holds exactly.
 const POW10: [f64; 23] = [
     1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
@@ -181,7 +184,7 @@ impl Grid {
     ///
     /// Its step is a power of two ([`Grid::new`]) unless a decimal step
     /// ([`Grid::decimal`]) snaps strictly more of the points' coordinates
-    /// exactly: scene files written in decimals then keep their vertices,
+    /// exactly (of at most 4096 points, evenly spread over the list): scene files written in decimals then keep their vertices,
     /// planes and areas to the last bit, and binary input keeps its grid.
     pub fn enclosing<'a>(
         points: impl IntoIterator<Item = &'a [f64; 3]>,
@@ -204,19 +207,23 @@ impl Grid {
         let grow = extent * margin.max(0.0);
         let (min, max) = (min.map(|v| v - grow), max.map(|v| v + grow));
         let binary = Self::new(min, max)?;
-        let Some(decimal) = Self::decimal(min, max)? else {
-            return Ok(binary);
-        };
+        // At most SNAP_SAMPLE points, evenly spread, decide: a million
+        // triangles' corners would cost more than the rest of the choice.
+        let stride = points.len().div_ceil(SNAP_SAMPLE).max(1);
+        let sample: Vec<&[f64; 3]> = points.iter().step_by(stride).copied().collect();
         let exact = |grid: &Self| -> usize {
-            points
+            sample
                 .iter()
                 .map(|p| (0..3).filter(|&a| grid.holds(a, p[a])).count())
                 .sum()
         };
-        Ok(if exact(&decimal) > exact(&binary) {
-            decimal
-        } else {
-            binary
+        let on_binary = exact(&binary);
+        if on_binary == 3 * sample.len() {
+            return Ok(binary);
+        }
+        Ok(match Self::decimal(min, max)? {
+            Some(decimal) if exact(&decimal) > on_binary => decimal,
+            _ => binary,
         })
     }
 
