@@ -187,9 +187,10 @@ pub struct UpdateArgs {
     /// Name of the object to move.
     #[arg(long = "move", value_name = "NAME")]
     pub object: String,
-    /// Displacement of each step, rounded to whole grid steps (exact for
-    /// decimals such as 0.1 when the scene is written in decimals: its grid
-    /// step is then a power of ten, or twice or five times one).
+    /// Displacement of each step. After step s the object is s times this
+    /// away, rounded to whole grid steps (exact for decimals such as 0.1
+    /// when the scene is written in decimals: its grid step is then a power
+    /// of ten, or twice or five times one).
     #[arg(long, value_name = "DX,DY,DZ", value_parser = parse_vector, allow_hyphen_values = true)]
     pub by: [f64; 3],
     /// Number of steps.

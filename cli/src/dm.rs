@@ -368,8 +368,9 @@ impl DmRun {
         }
     }
 
-    /// Moves scene object `name` by `by` (world units, snapped to a whole
-    /// number of grid cells) `steps` times, updating incrementally, then
+    /// Moves scene object `name` by `by` (world units) `steps` times, step
+    /// `s` to `s * by` from its place rounded to whole grid cells, updating
+    /// incrementally, then
     /// times a full rebuild of each step's state for comparison.
     /// `on_step(k, update, rebuild)` is called for each step once its
     /// rebuild is timed.
@@ -398,7 +399,6 @@ impl DmRun {
             .position(|o| o.name == name)
             .ok_or_else(|| field(format!("no object is named `{name}`")))?;
         let grid = self.pieces.grid;
-        let step: [i64; 3] = by.map(|x| grid.length_to_units(x).round() as i64);
         let (id, ks) = self.objects[index].clone();
         let original: Vec<ConvexPolygon> = ks
             .iter()
@@ -411,7 +411,10 @@ impl DmRun {
         };
         let mut states = Vec::with_capacity(steps as usize);
         for s in 1..=steps {
-            let offset = step.map(|c| c * i64::from(s));
+            // The whole way so far, rounded once: after `s` steps the
+            // object is where a scene file `s * by` away puts it, not `s`
+            // rounded steps away.
+            let offset = by.map(|x| grid.length_to_units(x * f64::from(s)).round() as i64);
             let moved = original
                 .iter()
                 .map(|p| translate(p, offset))

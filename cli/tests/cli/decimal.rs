@@ -1,7 +1,8 @@
 //! Scene files written in decimals come back to the last bit: the grid
 //! takes a decimal step when that holds more of the input exactly, so
 //! fragments lie in their input polygon's plane and add up to its area to
-//! rounding, and `umbra update` moves by exactly the decimal step asked.
+//! rounding, and `umbra update` moves by exactly the decimal step asked
+//! (and any step to where the scene file puts the object).
 
 use crate::area::{boxes_under_a_side_light, floor_classes};
 use crate::{folder, umbra};
@@ -149,6 +150,45 @@ fn update_by_decimal_steps_closes_a_decimal_gap() {
         "box1",
         "--by",
         "0,0,-0.1",
+        "--steps",
+        "3",
+        "-o",
+        "moved.ply",
+    ];
+    let run = umbra(dir.path(), &args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let run = umbra(dir.path(), &["dm", "touching.toml", "-o", "built.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let moved = floor_classes(&load_ply(&dir.path().join("moved.ply")).unwrap());
+    let built = floor_classes(&load_ply(&dir.path().join("built.ply")).unwrap());
+    assert!((built[2] - 6.0).abs() < 1e-9, "{built:?}");
+    for k in 0..3 {
+        assert!((moved[k] - built[k]).abs() < 1e-9, "{moved:?} vs {built:?}");
+    }
+}
+
+/// Steps that no grid holds (a third) still end where the scene file puts
+/// the object: step `s` goes `s * by` from the start, rounded once. Three
+/// rounded thirds of the gap fell one grid step short of the first box.
+#[test]
+fn update_steps_round_the_whole_way_once() {
+    let apart = boxes_under_a_side_light(&[
+        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
+        ([-1.0, 4.0, 1.0], [1.0, 5.0, 2.0]),
+    ]);
+    let touching = boxes_under_a_side_light(&[
+        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
+        ([-1.0, 4.0, 0.0], [1.0, 5.0, 1.0]),
+    ]);
+    let dir = folder(&[("apart.toml", &apart), ("touching.toml", &touching)]);
+    let by = format!("0,0,{}", -1.0 / 3.0);
+    let args = [
+        "update",
+        "apart.toml",
+        "--move",
+        "box1",
+        "--by",
+        by.as_str(),
         "--steps",
         "3",
         "-o",
