@@ -8,7 +8,7 @@ use crate::illuminate::{IllumStats, ReceiverIllum};
 use crate::overlap::{Overlap, OverlapFigures, OverlapKind};
 use crate::tree::{Deletion, ReceiverDm};
 use area_shadow::{AreaSource, ConvexGroup};
-use bsp_core::{ConvexPolygon, Plane, Side, VertexPosition};
+use bsp_core::{ConvexPolygon, GridPoint, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use smallvec::SmallVec;
@@ -263,6 +263,10 @@ pub struct DmScene {
     /// (facing out), with the body's bounding box, for finding the bodies
     /// that touch.
     pub(crate) solid_faces: HashMap<Plane, Vec<(ObjectId, joint::Bounds)>>,
+    /// The objects with a body that has a surface corner at each grid
+    /// point ([`ConvexGroup::joining_corners`]), for finding the bodies the
+    /// grid bent that touch others.
+    pub(crate) solid_corners: HashMap<GridPoint, Vec<ObjectId>>,
     /// The shadow-casting polygons in each plane (either way facing, under
     /// [`area_shadow::one_way`]), with their bounding boxes, for finding
     /// coplanar polygons of several objects side by side.
@@ -301,6 +305,7 @@ impl DmScene {
             contacts: SecondaryMap::new(),
             overlap,
             solid_faces: HashMap::new(),
+            solid_corners: HashMap::new(),
             flat_planes: HashMap::new(),
             joints: KeyMap::default(),
             options,

@@ -20,6 +20,15 @@
 //! the bodies that touch through such face planes (a connected set); only
 //! the largest are kept, as a smaller one's umbra lies in a larger's.
 //!
+//! Bodies the grid bent (a turned box: its faces' corners rounded off
+//! their planes, each face two triangles) are only nearly convex, so no
+//! face plane of one is exactly another's. They join by their surfaces
+//! instead: two that share corners give up the pieces whose corners are
+//! all the other's (the doubled faces they touch by), and what is left of
+//! both, if nearly convex ([`Solid::of_surface`]), is their union. Every
+//! piece left is a real occluder, so the union hides no more than the
+//! scene does.
+//!
 //! Coplanar pieces of several objects sharing whole edges (two panels side
 //! by side) make flat groups and flat unions as an object's pieces do
 //! ([`flat_joints`]).
@@ -37,9 +46,13 @@ const MAX_UNIONS: usize = 256;
 
 /// The largest unions of two or more of `bodies` that are one convex body
 /// (module docs): per union, the indices of its bodies (ascending) and the
-/// union as a group, its pieces all of theirs (ascending). Only closed,
-/// exactly convex bodies join (not flat groups, bodies moved in or open
-/// surfaces). The result depends on the bodies' shapes only, not on their
+/// union as a group, its pieces all of theirs (ascending). Closed, exactly
+/// convex bodies join by their faces; bodies the grid bent (moved in, or
+/// closed over a hole) join by their surfaces where they share corners
+/// ([`ConvexGroup::joining_corners`]), with each other or with exact
+/// ones, when what their surfaces make without the pieces they touch by is
+/// nearly convex. Flat groups join
+/// none here. The result depends on the bodies' shapes only, not on their
 /// order in `bodies` or their indices; unions in order of first body.
 pub fn convex_unions(bodies: &[&ConvexGroup]) -> Vec<(Vec<usize>, ConvexGroup)> {
     let solids: Vec<Option<&Solid>> = bodies
@@ -49,9 +62,24 @@ pub fn convex_unions(bodies: &[&ConvexGroup]) -> Vec<(Vec<usize>, ConvexGroup)> 
             _ => None,
         })
         .collect();
-    let mut found: Vec<(Vec<usize>, ConvexGroup)> = touching_sets(&solids)
+    // Bodies the grid bent (moved in, or closed over a bent hole) join
+    // through their surfaces where they share corners, with each other or
+    // with exact ones.
+    let bent: Vec<Option<&Solid>> = bodies
+        .iter()
+        .map(|body| match &body.shape {
+            Shape::Solid(solid) if !solid.surface().is_empty() => Some(solid),
+            _ => None,
+        })
+        .collect();
+    let exact_unions = touching_sets(&solids)
         .into_iter()
-        .flat_map(|set| unions_of(&set, &solids))
+        .flat_map(|set| unions_of(&set, &solids, joined));
+    let bent_unions = corner_sets(&bent)
+        .into_iter()
+        .flat_map(|set| unions_of(&set, &bent, joined_surfaces));
+    let mut found: Vec<(Vec<usize>, ConvexGroup)> = exact_unions
+        .chain(bent_unions)
         .map(|(members, solid)| {
             let mut pieces: Vec<u32> = members
                 .iter()
@@ -282,7 +310,11 @@ fn grouped(
 
 /// The largest convex unions of two or more of the solids `set` (indices
 /// into `solids`, ascending), each with its members ascending.
-fn unions_of(set: &[usize], solids: &[Option<&Solid>]) -> Vec<(Vec<usize>, Solid)> {
+fn unions_of(
+    set: &[usize],
+    solids: &[Option<&Solid>],
+    join: fn(&Solid, &Solid) -> Option<Solid>,
+) -> Vec<(Vec<usize>, Solid)> {
     // Joined in an order of the solids' shapes, so that which unions the
     // limit leaves out does not depend on how the bodies were numbered.
     let mut order: Vec<usize> = set.to_vec();
@@ -303,7 +335,7 @@ fn unions_of(set: &[usize], solids: &[Option<&Solid>]) -> Vec<(Vec<usize>, Solid
             if seen.contains(&members) {
                 continue;
             }
-            if let Some(joined) = joined(&a.1, &b.1) {
+            if let Some(joined) = join(&a.1, &b.1) {
                 seen.insert(members.clone());
                 found.push((members, joined));
                 if found.len() == MAX_UNIONS {
@@ -347,6 +379,69 @@ fn joined(a: &Solid, b: &Solid) -> Option<Solid> {
     }
     let points: Vec<GridPoint> = a.vertices().iter().chain(b.vertices()).copied().collect();
     Solid::of_hull(&points, true)
+}
+
+/// The sets of two or more solids connected by shared corners of their
+/// surfaces ([`Solid::surface`]), each ascending, in order of first solid.
+fn corner_sets(solids: &[Option<&Solid>]) -> Vec<Vec<usize>> {
+    let mut by_corner: BTreeMap<GridPoint, Vec<usize>> = BTreeMap::new();
+    for (i, solid) in solids.iter().enumerate() {
+        let Some(solid) = solid else { continue };
+        let corners: BTreeSet<GridPoint> = surface_corners(solid);
+        for corner in corners {
+            by_corner.entry(corner).or_default().push(i);
+        }
+    }
+    let mut sets = DisjointSets::new(solids.len());
+    for holders in by_corner.values() {
+        for pair in holders.windows(2) {
+            sets.union(pair[0] as u32, pair[1] as u32);
+        }
+    }
+    let present = (0..solids.len()).filter(|&i| solids[i].is_some());
+    grouped(&mut sets, present.map(|i| (i, i)))
+}
+
+/// The corners of a solid's surface pieces.
+pub(super) fn surface_corners(solid: &Solid) -> BTreeSet<GridPoint> {
+    solid
+        .surface()
+        .iter()
+        .flat_map(|(outline, _)| outline.iter().copied())
+        .collect()
+}
+
+/// `a` union `b` as one nearly convex solid made from their surfaces,
+/// when they share an edge's corners at least: the pieces of each whose
+/// corners are all the other's (the faces they touch by, doubled) are left
+/// out, and what remains, closed or open, goes to [`Solid::of_surface`] or
+/// [`Solid::of_open_surface`]. Every piece left is a real occluder, so the
+/// body found blocks no more light than the scene does.
+fn joined_surfaces(a: &Solid, b: &Solid) -> Option<Solid> {
+    if a.is_closed_and_exact() && b.is_closed_and_exact() {
+        // Exact bodies join by their faces ([`joined`]).
+        return None;
+    }
+    let (ca, cb) = (surface_corners(a), surface_corners(b));
+    // Two corners at least (an edge) in common.
+    ca.intersection(&cb).nth(1)?;
+    let kept = |solid: &Solid, other: &BTreeSet<GridPoint>| -> Vec<(Vec<GridPoint>, Plane)> {
+        solid
+            .surface()
+            .iter()
+            .filter(|(outline, _)| !outline.iter().all(|p| other.contains(p)))
+            .cloned()
+            .collect()
+    };
+    let mut pieces = kept(a, &cb);
+    pieces.extend(kept(b, &ca));
+    let supports: Vec<Plane> = pieces.iter().map(|(_, s)| *s).collect();
+    if supports.iter().all(|s| *s == supports[0]) {
+        // Coplanar: flat joints' business.
+        return None;
+    }
+    let outlines: Vec<&[GridPoint]> = pieces.iter().map(|(o, _)| o.as_slice()).collect();
+    Solid::of_surface(&outlines, &supports).or_else(|| Solid::of_open_surface(&outlines, &supports))
 }
 
 #[cfg(test)]
@@ -566,5 +661,131 @@ mod tests {
                     .all(|&p| side_of_point(face, p) != Side::Front)
             );
         }
+    }
+
+    /// The faces of the box `lo..hi` (world units) turned by a rotation
+    /// about a skew axis, scaled by 1000 and rounded to the grid, each
+    /// face as two triangles by diagonal `diagonals >> face & 1`: the
+    /// rounding bends most faces, so the box is only nearly convex.
+    fn turned_box(lo: [f64; 3], hi: [f64; 3], diagonals: u32) -> Vec<ConvexPolygon> {
+        let (s, c) = (0.3_f64.sin(), 0.3_f64.cos());
+        let (t, d) = (0.5_f64.sin(), 0.5_f64.cos());
+        let turn = |p: [f64; 3]| {
+            // About z by 0.3, then about x by 0.5.
+            let q = [c * p[0] - s * p[1], s * p[0] + c * p[1], p[2]];
+            let r = [q[0], d * q[1] - t * q[2], t * q[1] + d * q[2]];
+            GridPoint::new(
+                (1000.0 * r[0]).round() as i64,
+                (1000.0 * r[1]).round() as i64,
+                (1000.0 * r[2]).round() as i64,
+            )
+            .unwrap()
+        };
+        let corner = |i: usize| {
+            turn([
+                if i & 1 == 0 { lo[0] } else { hi[0] },
+                if i & 2 == 0 { lo[1] } else { hi[1] },
+                if i & 4 == 0 { lo[2] } else { hi[2] },
+            ])
+        };
+        let quads = [
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+        ];
+        let mut out = Vec::new();
+        for (f, q) in quads.iter().enumerate() {
+            let q: Vec<GridPoint> = q.iter().map(|&i| corner(i)).collect();
+            let triangles = if diagonals >> f & 1 == 0 {
+                [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
+            } else {
+                [[q[1], q[2], q[3]], [q[1], q[3], q[0]]]
+            };
+            for t in triangles {
+                out.push(ConvexPolygon::from_grid_points(&t, 0).unwrap());
+            }
+        }
+        out
+    }
+
+    /// The unions of turned boxes, each its own object.
+    fn turned_unions(boxes: &[([f64; 3], [f64; 3], u32)]) -> Vec<(Vec<usize>, ConvexGroup)> {
+        let mut pieces = Vec::new();
+        let mut objects = Vec::new();
+        for (k, (lo, hi, diagonals)) in boxes.iter().enumerate() {
+            let faces = turned_box(*lo, *hi, *diagonals);
+            objects.extend(std::iter::repeat_n(Some(k as u32), faces.len()));
+            pieces.extend(faces);
+        }
+        let groups = convex_groups(&pieces, &objects);
+        assert_eq!(groups.len(), boxes.len());
+        assert!(
+            groups.iter().all(|g| !g.joining_corners().is_empty()),
+            "bent bodies"
+        );
+        let refs: Vec<&ConvexGroup> = groups.iter().collect();
+        convex_unions(&refs)
+    }
+
+    #[test]
+    fn turned_boxes_side_by_side_join_by_their_surfaces() {
+        // The face they touch by split the same way, and crosswise.
+        for diagonals in [0, 1 << 1] {
+            let found = turned_unions(&[
+                ([0.0, 0.0, 0.0], [10.0, 10.0, 10.0], 0),
+                ([10.0, 0.0, 0.0], [20.0, 10.0, 10.0], diagonals),
+            ]);
+            assert_eq!(found.len(), 1, "diagonals {diagonals}");
+            let (members, union) = &found[0];
+            assert_eq!(members, &vec![0, 1]);
+            assert_eq!(union.pieces, (0..24).collect::<Vec<u32>>());
+            // No face of the union has any of the two boxes' corners in
+            // front: it is (nearly) the boxes' convex union.
+            let Shape::Solid(solid) = &union.shape else {
+                panic!("a solid");
+            };
+            assert!(!solid.is_closed_and_exact());
+            for face in solid.faces() {
+                assert!(
+                    solid
+                        .vertices()
+                        .iter()
+                        .all(|&p| side_of_point(face, p) != Side::Front)
+                );
+            }
+        }
+        // A stack of three.
+        let stack = turned_unions(&[
+            ([0.0, 0.0, 0.0], [10.0, 10.0, 10.0], 0),
+            ([0.0, 10.0, 0.0], [10.0, 20.0, 10.0], 0b1010),
+            ([0.0, 20.0, 0.0], [10.0, 30.0, 10.0], 0b0101),
+        ]);
+        assert_eq!(
+            stack.iter().map(|(m, _)| m.clone()).collect::<Vec<_>>(),
+            vec![vec![0, 1, 2]]
+        );
+    }
+
+    #[test]
+    fn turned_boxes_apart_or_askew_do_not_join() {
+        // A gap.
+        assert!(
+            turned_unions(&[
+                ([0.0, 0.0, 0.0], [10.0, 10.0, 10.0], 0),
+                ([10.5, 0.0, 0.0], [20.0, 10.0, 10.0], 0),
+            ])
+            .is_empty()
+        );
+        // Sharing one edge only: their union is not convex.
+        assert!(
+            turned_unions(&[
+                ([0.0, 0.0, 0.0], [10.0, 10.0, 10.0], 0),
+                ([10.0, 10.0, 0.0], [20.0, 20.0, 10.0], 0),
+            ])
+            .is_empty()
+        );
     }
 }

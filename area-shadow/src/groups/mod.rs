@@ -173,6 +173,17 @@ impl ConvexGroup {
         }
     }
 
+    /// The corners through which the body joins other bodies by their
+    /// surfaces ([`convex_unions`], when the grid bent one of them): its
+    /// surface's, ascending; none for a flat group or a body made as a
+    /// hull (a union).
+    pub fn joining_corners(&self) -> Vec<GridPoint> {
+        match &self.shape {
+            Shape::Solid(solid) => joint::surface_corners(solid).into_iter().collect(),
+            Shape::Flat(_) => Vec::new(),
+        }
+    }
+
     /// The support plane `support` of one of the group's pieces, turned to
     /// face out of the body (a closed surface may face in); a flat group's
     /// as it is.

@@ -45,6 +45,9 @@ pub(super) struct Solid {
     /// Those faces' planes, facing out, when more than one (then the
     /// light must lie on one side of them all, see [`Self::umbra_parts`]).
     caps: Vec<Plane>,
+    /// The pieces (outline, support) of the surface it was made from,
+    /// without the faces that closed it; empty for a hull.
+    surface: Vec<(Vec<GridPoint>, Plane)>,
 }
 
 impl Solid {
@@ -92,7 +95,16 @@ impl Solid {
         } else {
             Self::with_faces(outlines, faces, vertices, true)
         };
-        solid.map(|solid| Self { faces_in, ..solid })
+        let surface = outlines
+            .iter()
+            .zip(supports)
+            .map(|(o, s)| (o.to_vec(), *s))
+            .collect();
+        solid.map(|solid| Self {
+            faces_in,
+            surface,
+            ..solid
+        })
     }
 
     /// The body of a surface closed but for one face: its unmatched edges
@@ -149,6 +161,11 @@ impl Solid {
             Some(Self {
                 capped: true,
                 caps,
+                surface: outlines
+                    .iter()
+                    .zip(supports)
+                    .map(|(o, s)| (o.to_vec(), *s))
+                    .collect(),
                 ..solid
             })
         })
@@ -177,6 +194,12 @@ impl Solid {
     /// vertices).
     pub(super) fn vertices(&self) -> &[GridPoint] {
         &self.vertices
+    }
+
+    /// The pieces (outline, support) of the surface the body was made
+    /// from, without faces that closed it; empty for a hull.
+    pub(super) fn surface(&self) -> &[(Vec<GridPoint>, Plane)] {
+        &self.surface
     }
 
     /// Whether the body is the closed surface's own solid: neither moved
@@ -269,6 +292,7 @@ impl Solid {
             faces_in: false,
             capped: false,
             caps: Vec::new(),
+            surface: Vec::new(),
         })
     }
 

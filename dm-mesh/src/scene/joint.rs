@@ -1,6 +1,7 @@
 //! Joint bodies: closed convex bodies of different objects (or of one)
-//! that touch face to face and together make one convex body, casting
-//! that body's umbra ([`area_shadow::convex_unions`]), and coplanar
+//! that touch face to face and together make one convex body (or nearly,
+//! when the grid bent them), casting that body's umbra
+//! ([`area_shadow::convex_unions`]), and coplanar
 //! polygons of several objects sharing whole edges, casting the umbra of
 //! the polygon they cover ([`area_shadow::flat_joints`]).
 //!
@@ -59,6 +60,12 @@ impl DmScene {
             for face in faces {
                 self.solid_faces.entry(face).or_default().push((id, around));
             }
+            for corner in solid.joining_corners() {
+                let holders = self.solid_corners.entry(corner).or_default();
+                if !holders.contains(&id) {
+                    holders.push(id);
+                }
+            }
         }
         for &key in &self.objects[id].pieces {
             let piece = &self.pieces[key];
@@ -87,6 +94,14 @@ impl DmScene {
                 }
             }
         }
+        for corner in solids.iter().flat_map(ConvexGroup::joining_corners) {
+            if let Some(holders) = self.solid_corners.get_mut(&corner) {
+                holders.retain(|o| *o != id);
+                if holders.is_empty() {
+                    self.solid_corners.remove(&corner);
+                }
+            }
+        }
         for &key in pieces {
             let Some(piece) = self.pieces.get(key) else {
                 continue;
@@ -103,7 +118,9 @@ impl DmScene {
 
     /// The objects (`id` among them) with a body face in a plane where one
     /// of `id`'s bodies has a face turned the other way (their bounding
-    /// boxes meeting), or with a
+    /// boxes meeting), with a body that shares a surface corner with one
+    /// of `id`'s ([`ConvexGroup::joining_corners`]: bodies the grid bent
+    /// join so), or with a
     /// shadow-casting polygon in the plane of one of `id`'s in contact with
     /// it along their edges ([`edge_contact`]; a floor and the bottoms of
     /// the boxes on it lie in one plane, but do not touch so).
@@ -143,7 +160,14 @@ impl DmScene {
                     })
                     .map(|(k, _)| self.pieces[*k].object)
             });
-        faces.chain(planes).collect()
+        let corners = object
+            .solids
+            .iter()
+            .flat_map(ConvexGroup::joining_corners)
+            .filter_map(|corner| self.solid_corners.get(&corner))
+            .flatten()
+            .copied();
+        faces.chain(planes).chain(corners).collect()
     }
 
     /// Drops a joint body from the lists of the objects it joins (its
