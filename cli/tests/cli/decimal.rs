@@ -4,7 +4,8 @@
 //! rounding, and `umbra update` moves by exactly the decimal step asked
 //! (and any step to where the scene file puts the object).
 
-use crate::area::{boxes_under_a_side_light, floor_classes};
+use crate::area::floor_classes;
+use crate::joints::boxes_under_a_side_light;
 use crate::{folder, umbra};
 use umbra::{OutputMesh, load_ply};
 
