@@ -220,7 +220,32 @@ impl ConvexGroup {
 /// If `objects` is shorter than `pieces`.
 pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<ConvexGroup> {
     let (outlines, groups) = edge_connected(pieces, objects);
-    groups
+    let flats = t_junction_flats(pieces, objects, &outlines);
+    // A flat convex polygon whose pieces meet in T-junctions takes the
+    // place of the groups its pieces make by whole edges (its umbra holds
+    // theirs), unless one of those reaches beyond it.
+    let mut taken: HashMap<u32, usize> = HashMap::new();
+    for (f, flat) in flats.iter().enumerate() {
+        for &k in &flat.pieces {
+            taken.insert(k, f);
+        }
+    }
+    let spill = |members: &[u32]| {
+        members
+            .iter()
+            .filter_map(|k| taken.get(k))
+            .any(|&f| members.iter().any(|k| taken.get(k) != Some(&f)))
+    };
+    let blocked: std::collections::HashSet<usize> = groups
+        .iter()
+        .filter(|members| spill(members))
+        .flat_map(|members| members.iter().filter_map(|k| taken.get(k).copied()))
+        .collect();
+    let groups: Vec<Vec<u32>> = groups
+        .into_iter()
+        .filter(|members| blocked_or_free(members, &taken, &blocked))
+        .collect();
+    let mut out: Vec<ConvexGroup> = groups
         .into_iter()
         .filter_map(|members| {
             let outlines: Vec<&[GridPoint]> = members
@@ -241,6 +266,70 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
             Some(ConvexGroup {
                 pieces: members,
                 shape,
+            })
+        })
+        .collect();
+    out.extend(
+        flats
+            .into_iter()
+            .enumerate()
+            .filter(|(f, _)| !blocked.contains(f))
+            .map(|(_, flat)| flat),
+    );
+    out.sort_by(|a, b| a.pieces.cmp(&b.pieces));
+    out
+}
+
+/// Whether an edge-connected group stays: its pieces are in no T-junction
+/// flat, or only in flats that give way to it (`blocked`).
+fn blocked_or_free(
+    members: &[u32],
+    taken: &HashMap<u32, usize>,
+    blocked: &std::collections::HashSet<usize>,
+) -> bool {
+    members
+        .iter()
+        .filter_map(|k| taken.get(k))
+        .all(|f| blocked.contains(f))
+}
+
+/// The flat convex groups that coplanar pieces of one object, facing one
+/// way, make when some of them meet in a T-junction (an edge running past
+/// another piece's corner, which whole-edge groups miss): their unmatched
+/// edges, cut at such corners, close into one convex cycle, which they
+/// then cover once ([`flat_unions`], the same sets, takes the cycles that
+/// are not convex). `outlines` as [`edge_connected`] gives them.
+fn t_junction_flats(
+    pieces: &[ConvexPolygon],
+    objects: &[Option<u32>],
+    outlines: &[Option<Vec<GridPoint>>],
+) -> Vec<ConvexGroup> {
+    let refined = with_t_junctions(pieces, objects, outlines.to_vec());
+    connected_sets(&refined, objects)
+        .into_iter()
+        .filter_map(|members| {
+            // Only sets that a T-junction joins.
+            if members
+                .iter()
+                .all(|&k| refined[k as usize] == outlines[k as usize])
+            {
+                return None;
+            }
+            let support = *pieces[members[0] as usize].support();
+            if members
+                .iter()
+                .any(|&k| *pieces[k as usize].support() != support)
+            {
+                return None;
+            }
+            let cycle_outlines: Vec<&[GridPoint]> = members
+                .iter()
+                .map(|&k| refined[k as usize].as_deref().expect("grid outline"))
+                .collect();
+            let polygon = flat_shape(&cycle_outlines, &support)?;
+            Some(ConvexGroup {
+                pieces: members,
+                shape: Shape::Flat(polygon),
             })
         })
         .collect()

@@ -95,11 +95,24 @@ fn panels_side_by_side_shade_the_floor_as_one_panel() {
         "[[-1, 1, -0.5], [-1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
         "[[1, 1, -0.5], [1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
     ]);
+    // The second panel in two halves (one object): the first's edge runs
+    // past their common corner, a T-junction (a black-box check's scene);
+    // and a third panel's halves split the other way, with the T-junction
+    // within one object.
+    let halves = scene(&[
+        "[[-1, 1, -0.5], [-1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]]",
+        "[[0, 1, -0.5], [0, 1, 0], [1, 1, 0], [1, 1, -0.5]], [[0, 1, 0], [0, 1, 0.5], [1, 1, 0.5], [1, 1, 0]]",
+    ]);
+    let one_object = scene(&[
+        "[[-1, 1, -0.5], [-1, 1, 0.5], [0, 1, 0.5], [0, 1, -0.5]], [[0, 1, -0.5], [0, 1, 0], [1, 1, 0], [1, 1, -0.5]], [[0, 1, 0], [0, 1, 0.5], [1, 1, 0.5], [1, 1, 0]]",
+    ]);
     shade_the_floor_alike(
         &[
             ("one.toml", one.as_str()),
             ("two.toml", two.as_str()),
             ("turned.toml", turned.as_str()),
+            ("halves.toml", halves.as_str()),
+            ("one_object.toml", one_object.as_str()),
         ],
         7.0 / 3.0,
     );

@@ -78,6 +78,34 @@ fn a_small_box_on_a_big_one_or_apart_makes_none() {
     assert!(unions(&[([0, 0, 0], [10, 10, 10]), ([11, 0, 0], [21, 10, 10])]).is_empty());
 }
 
+/// A 20 x 10 panel as a 10 x 10 quad beside two 10 x 5 halves: the
+/// quad's edge runs past the halves' common corner (a T-junction), so no
+/// whole edge joins it to them; the three still cover one convex polygon.
+#[test]
+fn panels_meeting_in_a_t_junction_make_one_flat_group() {
+    let g = |x, y, z| GridPoint { x, y, z };
+    let rect = |x0: i32, z0: i32, x1: i32, z1: i32| {
+        let corners = [g(x0, 5, z0), g(x0, 5, z1), g(x1, 5, z1), g(x1, 5, z0)];
+        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+    };
+    let pieces = vec![rect(0, 0, 10, 10), rect(10, 0, 20, 5), rect(10, 5, 20, 10)];
+    // One object: one flat group of the three, in place of the halves'.
+    let groups = convex_groups(&pieces, &[Some(0); 3]);
+    assert_eq!(groups.len(), 1);
+    assert!(groups[0].is_flat());
+    assert_eq!(groups[0].pieces, vec![0, 1, 2]);
+    // The halves one object, the quad another: a flat joint.
+    let (groups, unions) = flat_joints(&pieces, &[Some(0), Some(1), Some(1)]);
+    assert_eq!(groups.len(), 1);
+    assert_eq!(groups[0].pieces, vec![0, 1, 2]);
+    assert!(unions.is_empty());
+    // The halves shifted off the quad's edge: no T-junction, only theirs.
+    let apart = vec![rect(0, 0, 10, 10), rect(11, 0, 21, 5), rect(11, 5, 21, 10)];
+    let groups = convex_groups(&apart, &[Some(0); 3]);
+    assert_eq!(groups.len(), 1);
+    assert_eq!(groups[0].pieces, vec![1, 2]);
+}
+
 #[test]
 fn coplanar_panels_of_several_objects_join() {
     let g = |x, y, z| GridPoint { x, y, z };
