@@ -22,8 +22,9 @@
 //!
 //! Bodies the grid bent (a turned box: its faces' corners rounded off
 //! their planes, each face two triangles) are only nearly convex, so no
-//! face plane of one is exactly another's. They join by their surfaces
-//! instead: two that share corners give up the pieces whose corners are
+//! face plane of one is exactly another's; exact ones turned about an
+//! axis keep planar faces but may meet at a crease (one's top a grid step
+//! off the other's plane). They join by their surfaces instead: two that share corners give up the pieces whose corners are
 //! all the other's (the doubled faces they touch by), and what is left of
 //! both, if nearly convex ([`Solid::of_surface`]), is their union. Every
 //! piece left is a real occluder, so the union hides no more than the
@@ -418,8 +419,9 @@ pub(super) fn surface_corners(solid: &Solid) -> BTreeSet<GridPoint> {
 /// [`Solid::of_open_surface`]. Every piece left is a real occluder, so the
 /// body found blocks no more light than the scene does.
 fn joined_surfaces(a: &Solid, b: &Solid) -> Option<Solid> {
-    if a.is_closed_and_exact() && b.is_closed_and_exact() {
-        // Exact bodies join by their faces ([`joined`]).
+    if a.is_closed_and_exact() && b.is_closed_and_exact() && joined(a, b).is_some() {
+        // Exact bodies join by their faces ([`joined`]) when they can:
+        // only a crease the grid left between their faces brings them here.
         return None;
     }
     let (ca, cb) = (surface_corners(a), surface_corners(b));
