@@ -190,6 +190,18 @@ impl Grid {
         points: impl IntoIterator<Item = &'a [f64; 3]>,
         margin: f64,
     ) -> Result<Self, Error> {
+        Self::fitted(points, margin, &[])
+    }
+
+    /// [`Grid::enclosing`], with `lengths` (displacements the caller will
+    /// move things by, such as `umbra update`'s step) counted among the
+    /// values the chosen step should hold exactly: a dyadic scene moved by
+    /// `0.1` takes the decimal grid, on which the moves are exact.
+    pub fn fitted<'a>(
+        points: impl IntoIterator<Item = &'a [f64; 3]>,
+        margin: f64,
+        lengths: &[f64],
+    ) -> Result<Self, Error> {
         let points: Vec<&[f64; 3]> = points.into_iter().collect();
         let mut min = [f64::INFINITY; 3];
         let mut max = [f64::NEG_INFINITY; 3];
@@ -212,13 +224,14 @@ impl Grid {
         let stride = points.len().div_ceil(SNAP_SAMPLE).max(1);
         let sample: Vec<&[f64; 3]> = points.iter().step_by(stride).copied().collect();
         let exact = |grid: &Self| -> usize {
-            sample
+            let coordinates: usize = sample
                 .iter()
                 .map(|p| (0..3).filter(|&a| grid.holds(a, p[a])).count())
-                .sum()
+                .sum();
+            coordinates + lengths.iter().filter(|&&l| grid.holds_length(l)).count()
         };
         let on_binary = exact(&binary);
-        if on_binary == 3 * sample.len() {
+        if on_binary == 3 * sample.len() + lengths.len() {
             return Ok(binary);
         }
         Ok(match Self::decimal(min, max)? {
@@ -349,6 +362,26 @@ impl Grid {
         }
     }
 
+    /// Whether the world length `length` is a whole number of steps,
+    /// exactly.
+    fn holds_length(&self, length: f64) -> bool {
+        let units = self.length_to_units(length).round();
+        let back = match self.step {
+            Step::Binary { .. } => units / self.scale,
+            Step::Decimal {
+                mantissa, exponent, ..
+            } => {
+                let n = units * mantissa;
+                if exponent < 0 {
+                    n / POW10[exponent.unsigned_abs() as usize]
+                } else {
+                    n * POW10[exponent as usize]
+                }
+            }
+        };
+        units.abs() <= f64::from(GRID_LIMIT) && back == length
+    }
+
     /// Whether world coordinate `v` on `axis` is a grid point exactly.
     fn holds(&self, axis: usize, v: f64) -> bool {
         let g = self.units(axis, v).round();
@@ -467,6 +500,23 @@ mod tests {
         // Ties (both grids hold everything) keep the binary one too.
         let halves = [[0.0; 3], [2.0, 0.5, 1.25]];
         assert!(!Grid::enclosing(halves.iter(), 0.1).unwrap().is_decimal());
+    }
+
+    #[test]
+    fn lengths_to_move_by_count_towards_the_step() {
+        let halves = [[0.0; 3], [2.0, 0.5, 1.25]];
+        let grid = Grid::fitted(halves.iter(), 0.1, &[-0.1, 0.05]).unwrap();
+        assert!(grid.is_decimal());
+        assert_eq!(grid.length_to_units(-0.1).fract(), 0.0);
+        for p in &halves {
+            assert_eq!(grid.snap_with_distance(*p).unwrap().1, 0.0);
+        }
+        // Dyadic steps keep the binary grid.
+        assert!(
+            !Grid::fitted(halves.iter(), 0.1, &[0.25])
+                .unwrap()
+                .is_decimal()
+        );
     }
 
     #[test]

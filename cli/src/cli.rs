@@ -9,8 +9,8 @@ use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
     Deletion, DemoFiles, DmOptions, DmRun, Error, ObjMesh, Outputs, OverlapKind, Pieces,
-    PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene_with, render_scene_with, save_csg_obj,
-    shadow_scene, shadow_scene_with, stage_obj, stage_ply,
+    PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene_moving, dm_scene_with,
+    render_scene_with, save_csg_obj, shadow_scene, shadow_scene_with, stage_obj, stage_ply,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -483,7 +483,7 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
     }
     progress.say("building discontinuity meshes");
     let options = dm_options(args.outer_only, args.deletion, args.overlap);
-    let mut run = dm_scene_with(&scene, options)?;
+    let mut run = dm_scene_moving(&scene, options, &args.by)?;
     progress.say("moving");
     let mut lines = Vec::new();
     let figures = run.move_steps(

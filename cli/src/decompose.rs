@@ -71,6 +71,13 @@ impl Pieces {
     /// scene vertex, point-light position and area-light vertex, grown by
     /// [`GRID_MARGIN`].
     pub fn from_scene(scene: &Scene) -> Result<Self> {
+        Self::from_scene_moving(scene, &[])
+    }
+
+    /// [`Self::from_scene`] for a scene whose objects will move by
+    /// `lengths` (world units along an axis): the grid's step is chosen to
+    /// hold those exactly too when it can ([`Grid::fitted`]).
+    pub fn from_scene_moving(scene: &Scene, lengths: &[f64]) -> Result<Self> {
         let grid_error = |source| Error::Grid {
             path: scene.path.clone(),
             source,
@@ -86,7 +93,7 @@ impl Pieces {
                 LightKind::Directional { .. } => {}
             }
         }
-        let grid = Grid::enclosing(points, GRID_MARGIN).map_err(grid_error)?;
+        let grid = Grid::fitted(points, GRID_MARGIN, lengths).map_err(grid_error)?;
 
         let mut out = Self {
             grid,

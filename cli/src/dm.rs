@@ -186,8 +186,14 @@ pub fn dm_scene(scene: &Scene) -> Result<DmRun> {
 
 /// Builds and illuminates the DM-trees of a loaded scene.
 pub fn dm_scene_with(scene: &Scene, options: DmOptions) -> Result<DmRun> {
+    dm_scene_moving(scene, options, &[])
+}
+
+/// [`dm_scene_with`] for a scene whose objects will move by `lengths`
+/// (world units along an axis, [`Pieces::from_scene_moving`]).
+pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Result<DmRun> {
     let started = Instant::now();
-    let pieces = Pieces::from_scene(scene)?;
+    let pieces = Pieces::from_scene_moving(scene, lengths)?;
     let lights = area_lights(scene, &pieces)?;
     let groups = grouped(scene, &pieces);
     let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = groups

@@ -72,7 +72,7 @@ pub use decompose::{
     DIRECTION_SCALE, GRID_MARGIN, Pieces, SnappedLight, convex_pieces, integer_direction,
 };
 pub use demo::{DEMOS, DemoFiles, TETRA_DEPTH, tetra_triangles, write_demo};
-pub use dm::{DmFigures, DmRun, DmStats, UpdateFigures, dm_scene, dm_scene_with};
+pub use dm::{DmFigures, DmRun, DmStats, UpdateFigures, dm_scene, dm_scene_moving, dm_scene_with};
 pub use dm_mesh::{Deletion, DmOptions, OverlapKind};
 pub use error::{Error, Result};
 pub use mesh::{OutputFace, OutputMesh};

@@ -206,3 +206,56 @@ fn update_steps_round_the_whole_way_once() {
         assert!((moved[k] - built[k]).abs() < 1e-9, "{moved:?} vs {built:?}");
     }
 }
+
+/// A scene on a binary lattice moved by a decimal step: the step counts
+/// towards the grid's choice, so `update` takes the decimal grid and ends
+/// exactly where the scene file with the final position puts the box (on
+/// the binary grid it ended up to half a grid step off, 1e-7).
+#[test]
+fn update_of_a_dyadic_scene_by_a_decimal_step_is_exact() {
+    let start = boxes_under_a_side_light(&[
+        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
+        ([-1.0, 4.0, 0.5], [1.0, 5.0, 1.5]),
+    ]);
+    let end = boxes_under_a_side_light(&[
+        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
+        ([-1.0, 4.0, 0.3], [1.0, 5.0, 1.3]),
+    ]);
+    let dir = folder(&[("start.toml", &start), ("end.toml", &end)]);
+    let args = [
+        "update",
+        "start.toml",
+        "--move",
+        "box1",
+        "--by",
+        "0,0,-0.1",
+        "--steps",
+        "2",
+        "-o",
+        "moved.ply",
+    ];
+    let run = umbra(dir.path(), &args);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let run = umbra(dir.path(), &["dm", "end.toml", "-o", "built.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let moved = load_ply(&dir.path().join("moved.ply")).unwrap();
+    let built = load_ply(&dir.path().join("built.ply")).unwrap();
+    let (a, b) = (floor_classes(&moved), floor_classes(&built));
+    for k in 0..3 {
+        assert!((a[k] - b[k]).abs() < 1e-12 * 400.0, "{a:?} vs {b:?}");
+    }
+    // The moved box's corners are the scene file's, bit for bit.
+    let corners = |mesh: &OutputMesh| -> Vec<[f64; 3]> {
+        let mut out: Vec<[f64; 3]> = mesh
+            .vertices
+            .iter()
+            .map(|v| v.0)
+            .filter(|p| p[2] == 0.3 || p[2] == 1.3)
+            .collect();
+        out.sort_by(|p, q| p.partial_cmp(q).unwrap());
+        out.dedup();
+        out
+    };
+    assert!(!corners(&moved).is_empty());
+    assert_eq!(corners(&moved), corners(&built));
+}
