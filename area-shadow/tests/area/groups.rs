@@ -746,6 +746,11 @@ proptest! {
     ) {
         let c = [corner[0], 100 + corner[1] / 4, corner[2]];
         let (u, v) = ([u.0, u.1, u.2], [v.0, v.1, v.2]);
+        // A bent quad: the bend must take the fourth corner off the plane
+        // of the other three, whose normal u x v then needs a y part
+        // (else the four lie in one upright plane, the quad is flat and
+        // folds over, and the triangles overlap: no body).
+        prop_assume!(u[2] * v[0] - u[0] * v[2] != 0);
         let p = |s: i64, t: i64, dy: i64| gp(c[0] + s * u[0] + t * v[0], c[1] + s * u[1] + t * v[1] + dy, c[2] + s * u[2] + t * v[2]);
         let (a, b, d, e) = (p(0, 0, 0), p(1, 0, 0), p(1, 1, bend), p(0, 1, 0));
         let triangle = |x: GridPoint, y: GridPoint, z: GridPoint| ConvexPolygon::from_grid_points(&[x, y, z], 0).ok();
