@@ -352,12 +352,7 @@ impl Grid {
             } => {
                 // One rounding: `(g + origin) * mantissa` is an exact
                 // integer for grid points.
-                let n = (g + origin[axis]) * mantissa;
-                if exponent < 0 {
-                    n / POW10[exponent.unsigned_abs() as usize]
-                } else {
-                    n * POW10[exponent as usize]
-                }
+                times_pow10((g + origin[axis]) * mantissa, exponent)
             }
         }
     }
@@ -370,14 +365,7 @@ impl Grid {
             Step::Binary { .. } => units / self.scale,
             Step::Decimal {
                 mantissa, exponent, ..
-            } => {
-                let n = units * mantissa;
-                if exponent < 0 {
-                    n / POW10[exponent.unsigned_abs() as usize]
-                } else {
-                    n * POW10[exponent as usize]
-                }
-            }
+            } => times_pow10(units * mantissa, exponent),
         };
         units.abs() <= f64::from(GRID_LIMIT) && back == length
     }
@@ -386,6 +374,16 @@ impl Grid {
     fn holds(&self, axis: usize, v: f64) -> bool {
         let g = self.units(axis, v).round();
         g.abs() <= f64::from(GRID_LIMIT - 1) && self.world(axis, g) == v
+    }
+}
+
+/// `n * 10^exponent` in one rounding: a product or a quotient by an exact
+/// power of ten.
+fn times_pow10(n: f64, exponent: i32) -> f64 {
+    if exponent < 0 {
+        n / POW10[exponent.unsigned_abs() as usize]
+    } else {
+        n * POW10[exponent as usize]
     }
 }
 

@@ -128,44 +128,59 @@ fn decimal_fragments_lie_in_their_polygons_and_add_up_to_them() {
     }
 }
 
-/// Two boxes 0.3 apart; `update` moves the second by -0.1 three times and
-/// must end touching the first, as the scene file with the boxes touching
-/// does: one joint body, the floor shaded as under one 2 x 2 box (umbra
-/// 6). On a power-of-two grid three snapped steps of 0.1 overshot 0.3 by a
-/// grid step and the boxes overlapped instead.
-#[test]
-fn update_by_decimal_steps_closes_a_decimal_gap() {
-    let apart = boxes_under_a_side_light(&[
+/// A box and a second one `[-1, 4, lo]..[1, 5, lo + 1]` beside it along z.
+fn two_boxes(lo: f64) -> String {
+    boxes_under_a_side_light(&[
         ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
-        ([-1.0, 4.0, 0.3], [1.0, 5.0, 1.3]),
-    ]);
-    let touching = boxes_under_a_side_light(&[
-        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
-        ([-1.0, 4.0, 0.0], [1.0, 5.0, 1.0]),
-    ]);
-    let dir = folder(&[("apart.toml", &apart), ("touching.toml", &touching)]);
+        ([-1.0, 4.0, lo], [1.0, 5.0, lo + 1.0]),
+    ])
+}
+
+/// `umbra update` of [`two_boxes`]`(start)` moving the second box by
+/// `by` along z in `steps` steps, and `umbra dm` of `two_boxes(end)`:
+/// the two meshes written.
+fn moved_and_built(start: f64, by: f64, steps: u32, end: f64) -> (OutputMesh, OutputMesh) {
+    let (start, end) = (two_boxes(start), two_boxes(end));
+    let dir = folder(&[("start.toml", &start), ("end.toml", &end)]);
+    let (by, steps) = (format!("0,0,{by}"), steps.to_string());
     let args = [
         "update",
-        "apart.toml",
+        "start.toml",
         "--move",
         "box1",
         "--by",
-        "0,0,-0.1",
+        &by,
         "--steps",
-        "3",
+        &steps,
         "-o",
         "moved.ply",
     ];
     let run = umbra(dir.path(), &args);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let run = umbra(dir.path(), &["dm", "touching.toml", "-o", "built.ply"]);
+    let run = umbra(dir.path(), &["dm", "end.toml", "-o", "built.ply"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    let moved = floor_classes(&load_ply(&dir.path().join("moved.ply")).unwrap());
-    let built = floor_classes(&load_ply(&dir.path().join("built.ply")).unwrap());
+    let load = |name: &str| load_ply(&dir.path().join(name)).unwrap();
+    (load("moved.ply"), load("built.ply"))
+}
+
+/// Moved to touch the first box, the second ends where the scene file
+/// with the boxes touching puts it: one joint body, the floor shaded as
+/// under one 2 x 2 box (umbra 6).
+fn assert_moved_into_contact(start: f64, by: f64, steps: u32) {
+    let (moved, built) = moved_and_built(start, by, steps, 0.0);
+    let (moved, built) = (floor_classes(&moved), floor_classes(&built));
     assert!((built[2] - 6.0).abs() < 1e-9, "{built:?}");
     for k in 0..3 {
         assert!((moved[k] - built[k]).abs() < 1e-9, "{moved:?} vs {built:?}");
     }
+}
+
+/// Two boxes 0.3 apart; `update` moves the second by -0.1 three times
+/// into contact. On a power-of-two grid three snapped steps of 0.1
+/// overshot 0.3 by a grid step and the boxes overlapped instead.
+#[test]
+fn update_by_decimal_steps_closes_a_decimal_gap() {
+    assert_moved_into_contact(0.3, -0.1, 3);
 }
 
 /// Steps that no grid holds (a third) still end where the scene file puts
@@ -173,38 +188,7 @@ fn update_by_decimal_steps_closes_a_decimal_gap() {
 /// rounded thirds of the gap fell one grid step short of the first box.
 #[test]
 fn update_steps_round_the_whole_way_once() {
-    let apart = boxes_under_a_side_light(&[
-        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
-        ([-1.0, 4.0, 1.0], [1.0, 5.0, 2.0]),
-    ]);
-    let touching = boxes_under_a_side_light(&[
-        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
-        ([-1.0, 4.0, 0.0], [1.0, 5.0, 1.0]),
-    ]);
-    let dir = folder(&[("apart.toml", &apart), ("touching.toml", &touching)]);
-    let by = format!("0,0,{}", -1.0 / 3.0);
-    let args = [
-        "update",
-        "apart.toml",
-        "--move",
-        "box1",
-        "--by",
-        by.as_str(),
-        "--steps",
-        "3",
-        "-o",
-        "moved.ply",
-    ];
-    let run = umbra(dir.path(), &args);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    let run = umbra(dir.path(), &["dm", "touching.toml", "-o", "built.ply"]);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    let moved = floor_classes(&load_ply(&dir.path().join("moved.ply")).unwrap());
-    let built = floor_classes(&load_ply(&dir.path().join("built.ply")).unwrap());
-    assert!((built[2] - 6.0).abs() < 1e-9, "{built:?}");
-    for k in 0..3 {
-        assert!((moved[k] - built[k]).abs() < 1e-9, "{moved:?} vs {built:?}");
-    }
+    assert_moved_into_contact(1.0, -1.0 / 3.0, 3);
 }
 
 /// A scene on a binary lattice moved by a decimal step: the step counts
@@ -213,33 +197,7 @@ fn update_steps_round_the_whole_way_once() {
 /// the binary grid it ended up to half a grid step off, 1e-7).
 #[test]
 fn update_of_a_dyadic_scene_by_a_decimal_step_is_exact() {
-    let start = boxes_under_a_side_light(&[
-        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
-        ([-1.0, 4.0, 0.5], [1.0, 5.0, 1.5]),
-    ]);
-    let end = boxes_under_a_side_light(&[
-        ([-1.0, 4.0, -1.0], [1.0, 5.0, 0.0]),
-        ([-1.0, 4.0, 0.3], [1.0, 5.0, 1.3]),
-    ]);
-    let dir = folder(&[("start.toml", &start), ("end.toml", &end)]);
-    let args = [
-        "update",
-        "start.toml",
-        "--move",
-        "box1",
-        "--by",
-        "0,0,-0.1",
-        "--steps",
-        "2",
-        "-o",
-        "moved.ply",
-    ];
-    let run = umbra(dir.path(), &args);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    let run = umbra(dir.path(), &["dm", "end.toml", "-o", "built.ply"]);
-    assert_eq!(run.code, 0, "{}", run.stderr);
-    let moved = load_ply(&dir.path().join("moved.ply")).unwrap();
-    let built = load_ply(&dir.path().join("built.ply")).unwrap();
+    let (moved, built) = moved_and_built(0.5, -0.1, 2, 0.3);
     let (a, b) = (floor_classes(&moved), floor_classes(&built));
     for k in 0..3 {
         assert!((a[k] - b[k]).abs() < 1e-12 * 400.0, "{a:?} vs {b:?}");

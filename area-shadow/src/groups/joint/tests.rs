@@ -78,17 +78,21 @@ fn a_small_box_on_a_big_one_or_apart_makes_none() {
     assert!(unions(&[([0, 0, 0], [10, 10, 10]), ([11, 0, 0], [21, 10, 10])]).is_empty());
 }
 
+/// The rectangle `[x0, x0 + w] x [z0, z0 + d]` in the plane at height `y`,
+/// facing up.
+fn panel(y: i32, x0: i32, z0: i32, w: i32, d: i32) -> ConvexPolygon {
+    let g = |x, z| GridPoint { x, y, z };
+    let corners = [g(x0, z0), g(x0, z0 + d), g(x0 + w, z0 + d), g(x0 + w, z0)];
+    ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+}
+
 /// A 20 x 10 panel as a 10 x 10 quad beside two 10 x 5 halves: the
 /// quad's edge runs past the halves' common corner (a T-junction), so no
 /// whole edge joins it to them; the three still cover one convex polygon.
 #[test]
 fn panels_meeting_in_a_t_junction_make_one_flat_group() {
-    let g = |x, y, z| GridPoint { x, y, z };
-    let rect = |x0: i32, z0: i32, x1: i32, z1: i32| {
-        let corners = [g(x0, 5, z0), g(x0, 5, z1), g(x1, 5, z1), g(x1, 5, z0)];
-        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
-    };
-    let pieces = vec![rect(0, 0, 10, 10), rect(10, 0, 20, 5), rect(10, 5, 20, 10)];
+    let rect = |x0: i32, z0: i32, w: i32, d: i32| panel(5, x0, z0, w, d);
+    let pieces = vec![rect(0, 0, 10, 10), rect(10, 0, 10, 5), rect(10, 5, 10, 5)];
     // One object: one flat group of the three, in place of the halves'.
     let groups = convex_groups(&pieces, &[Some(0); 3]);
     assert_eq!(groups.len(), 1);
@@ -100,7 +104,7 @@ fn panels_meeting_in_a_t_junction_make_one_flat_group() {
     assert_eq!(groups[0].pieces, vec![0, 1, 2]);
     assert!(unions.is_empty());
     // The halves shifted off the quad's edge: no T-junction, only theirs.
-    let apart = vec![rect(0, 0, 10, 10), rect(11, 0, 21, 5), rect(11, 5, 21, 10)];
+    let apart = vec![rect(0, 0, 10, 10), rect(11, 0, 10, 5), rect(11, 5, 10, 5)];
     let groups = convex_groups(&apart, &[Some(0); 3]);
     assert_eq!(groups.len(), 1);
     assert_eq!(groups[0].pieces, vec![1, 2]);
@@ -149,16 +153,7 @@ fn coplanar_panels_of_several_objects_join() {
 
 #[test]
 fn far_coplanar_panels_change_no_flat_joint() {
-    let g = |x, y, z| GridPoint { x, y, z };
-    let rect = |x0: i32, z0: i32, w: i32, d: i32| {
-        let corners = [
-            g(x0, 5, z0),
-            g(x0, 5, z0 + d),
-            g(x0 + w, 5, z0 + d),
-            g(x0 + w, 5, z0),
-        ];
-        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
-    };
+    let rect = |x0: i32, z0: i32, w: i32, d: i32| panel(5, x0, z0, w, d);
     // An L of two panels meeting in a T-junction (the short one's
     // corner on the long one's edge), then 80 panels far off in the
     // plane, each its own object: more than the T-junction search
@@ -176,16 +171,7 @@ fn far_coplanar_panels_change_no_flat_joint() {
 
 #[test]
 fn edge_contact_is_a_shared_corner_or_a_corner_on_an_edge() {
-    let g = |x, y, z| GridPoint { x, y, z };
-    let rect = |x0: i32, z0: i32, w: i32, d: i32| {
-        let corners = [
-            g(x0, 0, z0),
-            g(x0, 0, z0 + d),
-            g(x0 + w, 0, z0 + d),
-            g(x0 + w, 0, z0),
-        ];
-        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
-    };
+    let rect = |x0: i32, z0: i32, w: i32, d: i32| panel(0, x0, z0, w, d);
     let floor = rect(-100, -100, 200, 200);
     // A box's bottom inside the floor: no contact (the floor's pieces
     // and the boxes' bottoms stay apart).
