@@ -53,6 +53,7 @@
 //! ```
 
 mod conform;
+pub mod dark;
 mod error;
 mod gridding;
 mod groups;
@@ -68,7 +69,7 @@ pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
 pub use groups::{
-    ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, edge_contact,
+    Blocker, ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, edge_contact,
     flat_joints, flat_unions, one_way,
 };
 pub use merge_pieces::{merge_pair, merge_same_class};

@@ -76,6 +76,27 @@ impl Plane {
         Some(Self::normalized(a, b, c, d))
     }
 
+    /// [`Self::through`] without dividing out the coefficients' common
+    /// factor: the same oriented plane, with the same sides, for planes
+    /// made for a few side tests and dropped (the common factor is most of
+    /// the cost of making one). Its coefficients are within the kernel's
+    /// bounds all the same; it may compare unequal to the reduced plane.
+    pub fn through_unreduced(p: GridPoint, q: GridPoint, r: GridPoint) -> Option<Self> {
+        let normal = crate::predicates::cross_of_differences(p, q, r);
+        if normal == [0, 0, 0] {
+            return None;
+        }
+        let [px, py, pz] = p.to_i64();
+        let d = -(i128::from(normal[0]) * i128::from(px)
+            + i128::from(normal[1]) * i128::from(py)
+            + i128::from(normal[2]) * i128::from(pz));
+        Some(Self {
+            normal,
+            approx_offset: d as f64,
+            offset: SplitI128::new(d),
+        })
+    }
+
     /// The plane with the given normal through the grid point `p`.
     ///
     /// The normal must have components within [`NORMAL_LIMIT`] for the

@@ -84,6 +84,15 @@ pub use joint::{convex_unions, edge_contact, flat_joints, one_way};
 /// 16k-triangle sphere.
 pub const MAX_SOLID_WORK: usize = 1 << 26;
 
+/// What a [`ConvexGroup`] blocks light as ([`ConvexGroup::blocker`]).
+#[derive(Debug, Clone)]
+pub enum Blocker<'a> {
+    /// A convex polygon (coplanar pieces covering it once).
+    Polygon(&'a ConvexPolygon),
+    /// A convex body, its boundary made of the pieces (and open faces).
+    Body(crate::dark::Body),
+}
+
 /// Pieces that block light together as one convex body.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConvexGroup {
@@ -162,6 +171,24 @@ impl ConvexGroup {
                 part
             })
             .collect()
+    }
+
+    /// What the group blocks light as, for joint-umbra proofs
+    /// ([`crate::dark`]): a flat group's convex polygon, or a solid's
+    /// body (`None` for a body the grid's rounding moved in). `pieces`
+    /// are those the group's indices refer to.
+    pub fn blocker(&self, pieces: &[ConvexPolygon]) -> Option<Blocker<'_>> {
+        match &self.shape {
+            Shape::Flat(polygon) => Some(Blocker::Polygon(polygon)),
+            Shape::Solid(solid) => {
+                let surface: Vec<&ConvexPolygon> = self
+                    .pieces
+                    .iter()
+                    .map(|&k| pieces.get(k as usize))
+                    .collect::<Option<_>>()?;
+                solid.blocking_body(&surface).map(Blocker::Body)
+            }
+        }
     }
 
     /// The planes of a solid group's faces, each with the body behind it

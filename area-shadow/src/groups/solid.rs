@@ -45,6 +45,9 @@ pub(super) struct Solid {
     /// Those faces' planes, facing out, when more than one (then the
     /// light must lie on one side of them all, see [`Self::umbra_parts`]).
     caps: Vec<Plane>,
+    /// The planes of all the faces that closed an open surface, facing
+    /// out (no occluder lies there).
+    open: Vec<Plane>,
     /// The pieces (outline, support) of the surface it was made from,
     /// without the faces that closed it; empty for a hull.
     surface: Vec<(Vec<GridPoint>, Plane)>,
@@ -158,9 +161,14 @@ impl Solid {
             } else {
                 Vec::new()
             };
+            let open = polygons
+                .iter()
+                .map(|p| solid.outward(p.support()))
+                .collect();
             Some(Self {
                 capped: true,
                 caps,
+                open,
                 surface: outlines
                     .iter()
                     .zip(supports)
@@ -178,6 +186,17 @@ impl Solid {
         let sides: Vec<SourceSide> = self.caps.iter().map(|c| light.side_of(c)).collect();
         !sides.iter().all(|s| *s == SourceSide::Back)
             && !sides.iter().all(|s| *s == SourceSide::Front)
+    }
+
+    /// The body as a blocker for joint-umbra proofs
+    /// ([`crate::dark::Body`]), its boundary covered by `surface` but for
+    /// the faces that closed it: only a surface's own solid (not moved in,
+    /// which blocks less than the surface but not only through it).
+    pub(super) fn blocking_body(&self, surface: &[&ConvexPolygon]) -> Option<crate::dark::Body> {
+        if !self.exact {
+            return None;
+        }
+        crate::dark::Body::new(self.faces.clone(), self.open.clone(), surface)
     }
 
     /// Whether the body closes an open surface ([`Self::of_open_surface`]).
@@ -292,6 +311,7 @@ impl Solid {
             faces_in: false,
             capped: false,
             caps: Vec::new(),
+            open: Vec::new(),
             surface: Vec::new(),
         })
     }

@@ -1,0 +1,695 @@
+//! Proofs that a region of a receiver sees none of an area light where no
+//! single occluder hides all of it: the joint umbra of several occluders.
+//!
+//! The umbra of one convex occluder (or convex body) is bounded by planes;
+//! that of several together is bounded by quadric (EEE) surfaces in
+//! general, which no plane-bounded cell follows. Cells wholly inside such a
+//! joint umbra are still penumbra for the volumes, yet see nothing.
+//! [`sees_none`] proves it, exactly, or says it could not:
+//!
+//! - Every segment from a point of the region `K` to a point of the light
+//!   `L` must meet some occluder. For one convex polygon `O` and fixed `k`,
+//!   the points `l` whose segment `kl` crosses `O` form a convex set (the
+//!   shadow cone of `O` seen from `k`), and the same holds with `k` and `l`
+//!   swapped. So `O` blocks all of `K x L` as soon as it blocks the segments
+//!   between their corners ([`Occluder::blocks`]).
+//! - Where no occluder blocks all of `K x L`, the light or the region is
+//!   halved and each half proven on its own: the light into rectangles with
+//!   grid corners (lights in an axis-aligned plane only, so that every
+//!   corner stays a grid point), the region by axis-aligned grid planes
+//!   (its corners are implicit points, as every cell's). Parts of the light
+//!   a one-sided receiver has behind it need no occluder.
+//! - The halving stops at a depth and a node budget: a region next to the
+//!   true (curved) boundary of the joint umbra is never proven, and stays
+//!   penumbra. Only what is proven is dark: the test is sound, not complete.
+//!
+//! Every side decision is one of `bsp-core`'s exact predicates: a grid or
+//! implicit point against a plane through three grid points.
+
+use crate::AreaSource;
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{ConvexPolygon, GridPoint, Plane, Split};
+use smallvec::SmallVec;
+
+mod shaft;
+pub use shaft::Shaft;
+
+/// A point counts as dark for a light, in floating point, when it gets at
+/// most this fraction of what all of the light would give there: rounding
+/// leaves a point that sees nothing a trace of light (1e-18 of it, say).
+/// (Only to choose which regions to try to prove dark.)
+pub const DARK_FRACTION: f64 = 1e-9;
+
+/// How many times the light and the region are halved, at most, along one
+/// path of the proof.
+const MAX_DEPTH: u32 = 12;
+
+/// How many halvings one proof may make in all before it gives up.
+const NODE_BUDGET: usize = 300;
+
+/// Whether every point of `region` (a convex part of a receiver, its
+/// support plane the receiver's front) sees none of `light` past
+/// `occluders`; `false` when that could not be proven.
+///
+/// `two_sided`: the receiver takes light on both sides (else light behind
+/// its plane never reaches it). Occluders whose corners are not all grid
+/// points are left out (which can only make a proof fail).
+pub fn sees_none(
+    region: &ConvexPolygon,
+    two_sided: bool,
+    light: &AreaSource,
+    occluders: &[&ConvexPolygon],
+    bodies: &[&Body],
+) -> bool {
+    let occluders: Vec<Occluder> = occluders.iter().filter_map(|o| Occluder::new(o)).collect();
+    if occluders.is_empty() && bodies.is_empty() {
+        return false;
+    }
+    let prover = Prover {
+        occluders,
+        bodies,
+        receiver: region.support(),
+        two_sided,
+        light,
+        light_axes: light_axes(light.support()),
+    };
+    let whole = LightPiece {
+        corners: light.vertices().collect(),
+        rectangle: None,
+    };
+    let mut search = Search {
+        budget: NODE_BUDGET,
+        refuted: false,
+    };
+    let near = Near {
+        occluders: (0..prover.occluders.len() as u32).collect(),
+        bodies: (0..prover.bodies.len() as u32).collect(),
+    };
+    prover.prove(region, &whole, &near, MAX_DEPTH, &mut search)
+}
+
+/// A convex occluder polygon by its grid corners (counter-clockwise about
+/// its support plane's normal).
+#[derive(Debug, Clone, PartialEq)]
+struct Occluder {
+    support: Plane,
+    corners: SmallVec<[GridPoint; 8]>,
+    /// The corners in floating point, for the shaft's cull.
+    points: SmallVec<[[f64; 3]; 8]>,
+}
+
+/// A box around points (grid units), low and high corners.
+type Bounds = [[f64; 3]; 2];
+
+fn bounds(points: impl IntoIterator<Item = [f64; 3]>) -> Bounds {
+    let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+    for p in points {
+        for k in 0..3 {
+            b[0][k] = b[0][k].min(p[k]);
+            b[1][k] = b[1][k].max(p[k]);
+        }
+    }
+    b
+}
+
+impl Occluder {
+    fn new(polygon: &ConvexPolygon) -> Option<Self> {
+        let corners = (0..polygon.len())
+            .map(|i| polygon.vertex_grid_point(i))
+            .collect::<Option<SmallVec<_>>>()?;
+        Some(Self {
+            support: *polygon.support(),
+            points: corners.iter().map(|p: &GridPoint| p.to_f64()).collect(),
+            corners,
+        })
+    }
+
+    /// For each corner pair (light corner `j`, region corner `i`, at
+    /// `j * region.len() + i`), whether its segment crosses this polygon
+    /// (closed) strictly between its ends; and whether the region and the
+    /// light lie strictly on opposite sides of its plane. When every pair
+    /// crosses, every segment from `region` to `light` does (see the
+    /// module's docs).
+    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> (Pairs, bool) {
+        let region_sides: SmallVec<[Side; 8]> = (0..region.len())
+            .map(|i| region.vertex_side(i, &self.support))
+            .collect();
+        let mut pairs = Pairs::new();
+        let mut opposite = true;
+        for &l in light {
+            let l_side = side_of_point(&self.support, l);
+            let test: SmallVec<[bool; 8]> = region_sides
+                .iter()
+                .map(|&k| l_side != Side::On && k == l_side.flipped())
+                .collect();
+            opposite &= test.iter().all(|&t| t);
+            if test.contains(&true) {
+                pairs.extend(self.crossings(region, l, &test));
+            } else {
+                pairs.extend(test);
+            }
+        }
+        (pairs, opposite)
+    }
+
+    /// For each region corner `i` with `test[i]` (on the side of the plane
+    /// strictly opposite that of `l`), whether the segment from it to `l`
+    /// crosses the polygon there (false for the others).
+    fn crossings(
+        &self,
+        region: &ConvexPolygon,
+        l: GridPoint,
+        test: &[bool],
+    ) -> SmallVec<[bool; 8]> {
+        // The segment k-l crosses the plane at x. For an edge a-b, the plane
+        // H through a, b, l meets the support in the edge's line, and x lies
+        // between k and l with l on H: x is on the polygon's side of the
+        // line exactly when k is on the side of H of the polygon's other
+        // corners.
+        let mut inside: SmallVec<[bool; 8]> = test.iter().copied().collect();
+        let m = self.corners.len();
+        for e in 0..m {
+            if !inside.contains(&true) {
+                break;
+            }
+            let (a, b, inner) = (
+                self.corners[e],
+                self.corners[(e + 1) % m],
+                self.corners[(e + 2) % m],
+            );
+            let Some(h) = Plane::through_unreduced(a, b, l) else {
+                inside.fill(false);
+                break;
+            };
+            let outer = side_of_point(&h, inner).flipped();
+            for (i, keep) in inside.iter_mut().enumerate() {
+                *keep = *keep && outer != Side::On && region.vertex_side(i, &h) != outer;
+            }
+        }
+        inside
+    }
+}
+
+/// A convex body whose boundary is made of occluders, but for some *open*
+/// faces (the caps that close a bent quad into a thin tetrahedron, say).
+///
+/// From a point outside the body that is behind (or on) every open face,
+/// the faces it sees are occluders, so a segment from it that meets the
+/// body crosses one of them; and for a fixed end, the ends whose segment
+/// meets a convex body form a convex set. So when the corners of `K` (or
+/// of `L`) are all outside the body and behind every open face, and every
+/// segment between corners crosses one of the body's occluders, so does
+/// every segment from `K` to `L`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// The box around the corners.
+    bounds: Bounds,
+    /// Each face's plane, the body behind it (planes may repeat).
+    faces: Vec<Plane>,
+    /// The open faces' planes, the body behind them.
+    open: Vec<Plane>,
+    /// The occluders on the body's boundary.
+    surface: Vec<Occluder>,
+}
+
+impl Body {
+    /// The body with face planes `faces` and `open` (each with the body
+    /// behind it) whose boundary, but for the open faces, the polygons
+    /// `surface` cover. `None` when one of them has a corner that is no
+    /// grid point.
+    pub fn new(faces: Vec<Plane>, open: Vec<Plane>, surface: &[&ConvexPolygon]) -> Option<Self> {
+        let surface: Vec<Occluder> = surface
+            .iter()
+            .map(|p| Occluder::new(p))
+            .collect::<Option<_>>()?;
+        Some(Self {
+            bounds: bounds(
+                surface
+                    .iter()
+                    .flat_map(|o| o.corners.iter().map(|p| p.to_f64())),
+            ),
+            faces,
+            open,
+            surface,
+        })
+    }
+
+    /// Whether the body is closed (it has no open faces).
+    pub fn is_closed(&self) -> bool {
+        self.open.is_empty()
+    }
+
+    /// As [`Occluder::pair_crossings`], a pair crossing when it crosses
+    /// one of the body's occluders; and whether the corners of the region
+    /// or those of the light may enter the body (see the type's docs). When
+    /// they may and every pair crosses, every segment from `region` to
+    /// `light` crosses the body's occluders.
+    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> (Pairs, bool) {
+        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            (0..region.len())
+                .map(|i| region.vertex_side(i, plane))
+                .collect()
+        };
+        let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            light.iter().map(|&p| side_of_point(plane, p)).collect()
+        };
+        let enters = self.enters_from(region_sides) || self.enters_from(light_sides);
+        let sides = self.surface_sides(region, light);
+        let pairs = light
+            .iter()
+            .enumerate()
+            .flat_map(|(j, &l)| self.crossings(region, l, j, &sides))
+            .collect();
+        (pairs, enters)
+    }
+
+    /// The sides of the region's and the light's corners for each surface
+    /// polygon's plane.
+    fn surface_sides(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Vec<CornerSides> {
+        self.surface
+            .iter()
+            .map(|o| {
+                (
+                    (0..region.len())
+                        .map(|i| region.vertex_side(i, &o.support))
+                        .collect(),
+                    light
+                        .iter()
+                        .map(|&p| side_of_point(&o.support, p))
+                        .collect(),
+                )
+            })
+            .collect()
+    }
+
+    /// For each region corner, whether the segment from it to light corner
+    /// `l` (number `j`) crosses a surface polygon.
+    fn crossings(
+        &self,
+        region: &ConvexPolygon,
+        l: GridPoint,
+        j: usize,
+        sides: &[CornerSides],
+    ) -> SmallVec<[bool; 8]> {
+        let mut crossed: SmallVec<[bool; 8]> = smallvec::smallvec![false; region.len()];
+        for (o, (ks, ls)) in self.surface.iter().zip(sides) {
+            if ls[j] == Side::On {
+                continue;
+            }
+            let test: SmallVec<[bool; 8]> = (0..region.len())
+                .map(|i| !crossed[i] && ks[i] == ls[j].flipped())
+                .collect();
+            if !test.contains(&true) {
+                continue;
+            }
+            for (c, now) in crossed.iter_mut().zip(o.crossings(region, l, &test)) {
+                *c |= now;
+            }
+            if !crossed.contains(&false) {
+                break;
+            }
+        }
+        crossed
+    }
+
+    /// Whether the corners whose sides of a plane `sides` gives are all
+    /// strictly outside the body (in front of one face) and behind or on
+    /// every open face.
+    fn enters_from<S: IntoIterator<Item = Side>>(&self, sides: impl Fn(&Plane) -> S) -> bool {
+        self.open
+            .iter()
+            .all(|f| sides(f).into_iter().all(|s| s != Side::Front))
+            && self
+                .faces
+                .iter()
+                .any(|f| sides(f).into_iter().all(|s| s == Side::Front))
+    }
+}
+
+/// One flag per pair of a light corner and a region corner.
+type Pairs = SmallVec<[bool; 32]>;
+
+/// The sides of a region's corners and of a light's corners of a plane.
+type CornerSides = (SmallVec<[Side; 8]>, SmallVec<[Side; 8]>);
+
+/// A part of the light: the light itself, or a rectangle with grid corners
+/// in its (axis-aligned) plane covering part of it.
+struct LightPiece {
+    corners: SmallVec<[GridPoint; 8]>,
+    /// The rectangle's low and high corners along the light's two in-plane
+    /// axes; `None` for the light itself.
+    rectangle: Option<[[i64; 2]; 2]>,
+}
+
+/// For a light in a plane of constant coordinate `n`: its two other axes,
+/// and that coordinate.
+#[derive(Clone, Copy)]
+struct LightAxes {
+    in_plane: [usize; 2],
+    normal: usize,
+    offset: i64,
+}
+
+impl LightAxes {
+    /// A point's coordinates along the two in-plane axes.
+    fn coords(&self, p: &GridPoint) -> [f64; 2] {
+        let c = p.to_f64();
+        [c[self.in_plane[0]], c[self.in_plane[1]]]
+    }
+
+    /// For a plane of constant coordinate along one of the light's
+    /// in-plane axes: that axis (0 or 1) and the coordinate.
+    fn receiver_cut(&self, plane: &Plane) -> Option<(usize, i64)> {
+        let axes = light_axes(plane)?;
+        let side = self.in_plane.iter().position(|&k| k == axes.normal)?;
+        Some((side, axes.offset))
+    }
+}
+
+fn light_axes(support: &Plane) -> Option<LightAxes> {
+    let normal = support.normal();
+    let n = (0..3).find(|&k| normal[k] != 0)?;
+    if (0..3).any(|k| k != n && normal[k] != 0) {
+        return None;
+    }
+    // a * x_n + d = 0 with a grid coordinate: d is a multiple of a.
+    let (a, d) = (i128::from(normal[n]), support.offset());
+    if d % a != 0 {
+        return None;
+    }
+    let offset = i64::try_from(-d / a).ok()?;
+    Some(LightAxes {
+        in_plane: [(n + 1) % 3, (n + 2) % 3],
+        normal: n,
+        offset,
+    })
+}
+
+struct Prover<'a> {
+    occluders: Vec<Occluder>,
+    bodies: &'a [&'a Body],
+    receiver: &'a Plane,
+    two_sided: bool,
+    light: &'a AreaSource,
+    light_axes: Option<LightAxes>,
+}
+
+/// The blockers a node of a proof looks at: indices into the prover's
+/// occluders and bodies.
+struct Near {
+    occluders: SmallVec<[u32; 16]>,
+    bodies: SmallVec<[u32; 16]>,
+}
+
+/// The state of one proof: how many halvings it may still make, and whether
+/// it is refuted (a corner of a part of the region sees a point of the
+/// light past every blocker).
+struct Search {
+    budget: usize,
+    refuted: bool,
+}
+
+impl Prover<'_> {
+    /// Whether every segment from `region` to `light` crosses a blocker,
+    /// of those `near` (indices into the occluders and the bodies) that
+    /// reach into the shaft between them.
+    fn prove(
+        &self,
+        region: &ConvexPolygon,
+        light: &LightPiece,
+        near: &Near,
+        depth: u32,
+        search: &mut Search,
+    ) -> bool {
+        if search.refuted {
+            return false;
+        }
+        if self.needs_no_occluder(light) {
+            return true;
+        }
+        // Parts of the region and of the light are parts of their parent's:
+        // each keeps fewer blockers.
+        let light_points: SmallVec<[[f64; 3]; 8]> =
+            light.corners.iter().map(|p| p.to_f64()).collect();
+        let shaft = Shaft::new(&region.vertices_f64(), &light_points);
+        let near = Near {
+            occluders: near
+                .occluders
+                .iter()
+                .copied()
+                .filter(|&k| !shaft.misses(&self.occluders[k as usize].points))
+                .collect(),
+            bodies: near
+                .bodies
+                .iter()
+                .copied()
+                .filter(|&k| !shaft.misses_box(&self.bodies[k as usize].bounds))
+                .collect(),
+        };
+        let occluders = near
+            .occluders
+            .iter()
+            .map(|&k| self.occluders[k as usize].pair_crossings(region, &light.corners));
+        let bodies = near
+            .bodies
+            .iter()
+            .map(|&k| self.bodies[k as usize].pair_crossings(region, &light.corners));
+        // Which corner pairs some blocker crosses, and the pairs of the
+        // blockers that may hide all of the light from all of the region.
+        let mut crossed: Pairs = smallvec::smallvec![false; region.len() * light.corners.len()];
+        let mut candidates: Vec<Pairs> = Vec::new();
+        for (pairs, candidate) in occluders.chain(bodies) {
+            if candidate && !pairs.contains(&false) {
+                return true;
+            }
+            for (c, &p) in crossed.iter_mut().zip(&pairs) {
+                *c |= p;
+            }
+            if candidate {
+                candidates.push(pairs);
+            }
+        }
+        // A corner pair no blocker crosses stays a corner pair of some
+        // part however the region and the light are halved, and no part
+        // with it is ever proven: the proof has failed.
+        if self.pair_sees_past_all(region.len(), light, &crossed) {
+            search.refuted = true;
+            return false;
+        }
+        if depth == 0 || search.budget == 0 {
+            return false;
+        }
+        search.budget -= 1;
+        // Where a blocker hides the light from some corner pairs and not
+        // others, cut between them: the pieces on each side then have one
+        // blocker more or less to care about. Else alternate: a joint
+        // umbra is most often one occluder hiding one part of the light and
+        // another the rest, each over all of the region.
+        let (light_side, region_axis) = self.guide(region, light, &candidates);
+        let light_first = light_side.is_some() || (region_axis.is_none() && depth % 2 == 0);
+        for split_light in [light_first, !light_first] {
+            if split_light {
+                if let Some([a, b]) = self.halve_light(light, light_side) {
+                    return self.prove(region, &a, &near, depth - 1, search)
+                        && self.prove(region, &b, &near, depth - 1, search);
+                }
+            } else if let Some((a, b)) = halve_region(region, region_axis) {
+                return self.prove(&a, light, &near, depth - 1, search)
+                    && self.prove(&b, light, &near, depth - 1, search);
+            }
+        }
+        false
+    }
+
+    /// Whether a pair of a region corner and a light corner that is a
+    /// point of the light shining on the receiver is crossed by no blocker.
+    fn pair_sees_past_all(
+        &self,
+        region_corners: usize,
+        light: &LightPiece,
+        crossed: &Pairs,
+    ) -> bool {
+        light.corners.iter().enumerate().any(|(j, &l)| {
+            let shines = self.two_sided || side_of_point(self.receiver, l) == Side::Front;
+            let on_light = light.rectangle.is_none()
+                || self
+                    .light
+                    .polygon()
+                    .edges()
+                    .all(|edge| side_of_point(edge, l) != Side::Front);
+            shines
+                && on_light
+                && crossed[j * region_corners..(j + 1) * region_corners].contains(&false)
+        })
+    }
+
+    /// The light piece's side (0 or 1, of its in-plane axes) or else the
+    /// region's axis across which a blocker (its corner pairs `candidates`)
+    /// turns from hiding the light to not.
+    fn guide(
+        &self,
+        region: &ConvexPolygon,
+        light: &LightPiece,
+        candidates: &[Pairs],
+    ) -> (Option<usize>, Option<usize>) {
+        let (nk, nl) = (region.len(), light.corners.len());
+        let mut region_axis = None;
+        for m in candidates {
+            let by_light: SmallVec<[bool; 8]> =
+                (0..nl).map(|j| (0..nk).all(|i| m[j * nk + i])).collect();
+            if let Some(side) = self.light_axes.and_then(|axes| {
+                separating_axis(light.corners.iter().map(|p| axes.coords(p)), &by_light)
+            }) {
+                return (Some(side), None);
+            }
+            if region_axis.is_none() {
+                let by_region: SmallVec<[bool; 8]> =
+                    (0..nk).map(|i| (0..nl).all(|j| m[j * nk + i])).collect();
+                region_axis = separating_axis(region.vertices_f64(), &by_region);
+            }
+        }
+        (None, region_axis)
+    }
+
+    /// Whether no light of the piece reaches the receiver: it lies behind a
+    /// one-sided receiver, or outside the light (a covering rectangle's
+    /// part beyond one of its edges).
+    fn needs_no_occluder(&self, light: &LightPiece) -> bool {
+        let behind = |p: &GridPoint| side_of_point(self.receiver, *p) != Side::Front;
+        if !self.two_sided && light.corners.iter().all(behind) {
+            return true;
+        }
+        light.rectangle.is_some()
+            && self.light.polygon().edges().any(|edge| {
+                light
+                    .corners
+                    .iter()
+                    .all(|&p| side_of_point(edge, p) != Side::Back)
+            })
+    }
+
+    /// The piece's bounding rectangle halved across its longer side, or
+    /// `None` (a light not in an axis-aligned plane, or a rectangle one grid
+    /// step wide).
+    fn halve_light(&self, light: &LightPiece, side: Option<usize>) -> Option<[LightPiece; 2]> {
+        let axes = self.light_axes?;
+        let [lo, hi] = light.rectangle.unwrap_or_else(|| {
+            let coords = |k: usize| light.corners.iter().map(move |p| p.to_i64()[k]);
+            let [u, v] = axes.in_plane;
+            [
+                [coords(u).min().unwrap_or(0), coords(v).min().unwrap_or(0)],
+                [coords(u).max().unwrap_or(0), coords(v).max().unwrap_or(0)],
+            ]
+        });
+        // A receiver whose plane is a grid plane across the piece cuts it
+        // there first: each side then has its own occluders (or none,
+        // behind a one-sided receiver).
+        let across = axes
+            .receiver_cut(self.receiver)
+            .filter(|&(side, at)| lo[side] < at && at < hi[side]);
+        let (side, mid) = match across {
+            Some(cut) => cut,
+            None => {
+                let longer = if hi[0] - lo[0] >= hi[1] - lo[1] { 0 } else { 1 };
+                let side = side.unwrap_or(longer);
+                if hi[side] - lo[side] < 2 {
+                    return None;
+                }
+                (side, lo[side] + (hi[side] - lo[side]) / 2)
+            }
+        };
+        let (mut low_hi, mut high_lo) = (hi, lo);
+        low_hi[side] = mid;
+        high_lo[side] = mid;
+        Some([
+            self.rectangle(axes, [lo, low_hi])?,
+            self.rectangle(axes, [high_lo, hi])?,
+        ])
+    }
+
+    fn rectangle(&self, axes: LightAxes, [lo, hi]: [[i64; 2]; 2]) -> Option<LightPiece> {
+        let [u, v] = axes.in_plane;
+        let corner = |cu: i64, cv: i64| {
+            let mut c = [0_i64; 3];
+            c[u] = cu;
+            c[v] = cv;
+            c[axes.normal] = axes.offset;
+            GridPoint::new(c[0], c[1], c[2]).ok()
+        };
+        Some(LightPiece {
+            corners: [
+                corner(lo[0], lo[1])?,
+                corner(hi[0], lo[1])?,
+                corner(hi[0], hi[1])?,
+                corner(lo[0], hi[1])?,
+            ]
+            .into_iter()
+            .collect(),
+            rectangle: Some([lo, hi]),
+        })
+    }
+}
+
+/// The axis along which the points marked `true` lie all on one side of
+/// those marked `false` (the widest such gap), if some do.
+fn separating_axis<const N: usize>(
+    points: impl IntoIterator<Item = [f64; N]>,
+    marks: &[bool],
+) -> Option<usize> {
+    if !marks.contains(&true) || !marks.contains(&false) {
+        return None;
+    }
+    let points: SmallVec<[[f64; N]; 8]> = points.into_iter().collect();
+    let range = |axis: usize, mark: bool| {
+        let values = points
+            .iter()
+            .zip(marks)
+            .filter(|(_, m)| **m == mark)
+            .map(|(p, _)| p[axis]);
+        values.fold([f64::INFINITY, f64::NEG_INFINITY], |[lo, hi], v| {
+            [lo.min(v), hi.max(v)]
+        })
+    };
+    (0..N)
+        .filter_map(|axis| {
+            let (a, b) = (range(axis, true), range(axis, false));
+            let gap = (a[0] - b[1]).max(b[0] - a[1]);
+            (gap > 0.0).then_some((axis, gap))
+        })
+        .max_by(|x, y| x.1.total_cmp(&y.1))
+        .map(|(axis, _)| axis)
+}
+
+/// The region cut in two by the grid plane across the middle of its extent
+/// along `axis` (by default its longest), or `None` when no such plane cuts
+/// it.
+fn halve_region(
+    region: &ConvexPolygon,
+    axis: Option<usize>,
+) -> Option<(ConvexPolygon, ConvexPolygon)> {
+    let corners = region.vertices_f64();
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for c in &corners {
+        for k in 0..3 {
+            lo[k] = lo[k].min(c[k]);
+            hi[k] = hi[k].max(c[k]);
+        }
+    }
+    let axis =
+        axis.or_else(|| (0..3).max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b]))))?;
+    let mid = ((lo[axis] + hi[axis]) / 2.0).round();
+    if !(mid > lo[axis] && mid < hi[axis]) {
+        return None;
+    }
+    let mut normal = [0_i64; 3];
+    normal[axis] = 1;
+    let mut at = [0_i64; 3];
+    at[axis] = mid as i64;
+    let plane = Plane::with_normal_through(normal, GridPoint::new(at[0], at[1], at[2]).ok()?)?;
+    match region.split(&plane) {
+        Split::Both(back, front) => Some((back, front)),
+        _ => None,
+    }
+}
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,244 @@
+//! Tests of joint-umbra proofs: cases worked out by hand, and random
+//! panels against segments sampled between the region and the light.
+
+use super::*;
+use crate::convex_groups;
+use rand::{Rng, SeedableRng};
+use rand_pcg::Pcg64;
+
+fn g(x: i64, y: i64, z: i64) -> GridPoint {
+    GridPoint::new(x, y, z).unwrap()
+}
+
+/// The square light `x, z` in `[lo, hi]` at height `y`, facing down.
+fn light(lo: i64, hi: i64, y: i64) -> AreaSource {
+    AreaSource::from_grid_points(&[g(lo, y, lo), g(hi, y, lo), g(hi, y, hi), g(lo, y, hi)]).unwrap()
+}
+
+/// The rectangle `x` in `x`, `z` in `z` at height `y`, facing down.
+fn panel(x: [i64; 2], y: i64, z: [i64; 2]) -> ConvexPolygon {
+    let corners = [
+        g(x[0], y, z[0]),
+        g(x[1], y, z[0]),
+        g(x[1], y, z[1]),
+        g(x[0], y, z[1]),
+    ];
+    ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+}
+
+/// The floor square of half-width `r` around `(x, 0, z)`, facing up.
+fn floor(x: i64, z: i64, r: i64) -> ConvexPolygon {
+    let corners = [
+        g(x - r, 0, z - r),
+        g(x - r, 0, z + r),
+        g(x + r, 0, z + r),
+        g(x + r, 0, z - r),
+    ];
+    let square = ConvexPolygon::from_grid_points(&corners, 0).unwrap();
+    assert!(square.support().normal()[1] > 0);
+    square
+}
+
+/// The six faces of the box from `lo` to `hi`, facing out.
+fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
+    let ([a, b, c], [d, e, f]) = (lo, hi);
+    let faces = [
+        [g(a, b, c), g(a, e, c), g(d, e, c), g(d, b, c)],
+        [g(a, b, f), g(d, b, f), g(d, e, f), g(a, e, f)],
+        [g(a, b, c), g(d, b, c), g(d, b, f), g(a, b, f)],
+        [g(a, e, c), g(a, e, f), g(d, e, f), g(d, e, c)],
+        [g(a, b, c), g(a, b, f), g(a, e, f), g(a, e, c)],
+        [g(d, b, c), g(d, e, c), g(d, e, f), g(d, b, f)],
+    ];
+    faces
+        .iter()
+        .map(|f| ConvexPolygon::from_grid_points(f, 0).unwrap())
+        .collect()
+}
+
+/// Two panels at different heights that overlap seen from below: one
+/// hides the light's low `x`, the other its high `x`, from the floor
+/// around `x = 2000`; through the slanted gap between them the floor
+/// around `x = 1500` sees some of it.
+#[test]
+fn two_panels_hide_a_light_neither_hides_alone() {
+    let source = light(0, 4000, 10_000);
+    let high = panel([-20_000, 2500], 6000, [-20_000, 20_000]);
+    let low = panel([2200, 20_000], 3000, [-20_000, 20_000]);
+    let both = [&high, &low];
+    let dark = floor(2000, 2000, 20);
+    assert!(sees_none(&dark, false, &source, &both, &[]));
+    assert!(!sees_none(&dark, false, &source, &[&high], &[]));
+    assert!(!sees_none(&dark, false, &source, &[&low], &[]));
+    assert!(!sees_none(
+        &floor(1500, 2000, 20),
+        false,
+        &source,
+        &both,
+        &[]
+    ));
+}
+
+/// A slab and a panel: the light the panel leaves the floor near
+/// `x = 3000` goes through the slab (in by its bottom or its side, out by
+/// its top). The slab as one closed body proves it, as its faces do.
+#[test]
+fn a_closed_body_blocks_what_its_faces_do() {
+    let source = light(0, 4000, 10_000);
+    let slab = cuboid([-20_000, 5000, -20_000], [2500, 7000, 20_000]);
+    let groups = convex_groups(&slab, &vec![Some(0); slab.len()]);
+    let [group] = &groups[..] else {
+        panic!("the slab is one group")
+    };
+    let Some(crate::Blocker::Body(body)) = group.blocker(&slab) else {
+        panic!("the slab is a body")
+    };
+    assert!(body.is_closed());
+    let low = panel([2700, 20_000], 3000, [-20_000, 20_000]);
+    let region = floor(3000, 2000, 20);
+    let mut faces: Vec<&ConvexPolygon> = slab.iter().collect();
+    faces.push(&low);
+    assert!(sees_none(&region, false, &source, &faces, &[]));
+    assert!(sees_none(&region, false, &source, &[&low], &[&body]));
+    // Without the panel, the light's high `x` reaches the region.
+    assert!(!sees_none(&region, false, &source, &[], &[&body]));
+    assert!(!sees_none(&region, false, &source, &[&low], &[]));
+}
+
+/// A quad bent along its diagonal (two triangles in a valley) hides a
+/// small light from the floor under the diagonal: each ray crosses one
+/// triangle or the other, changing over along the diagonal's shadow, so no
+/// triangle alone hides a part of the light from a part of the floor
+/// around it. As one body (closed by its other two triangles, which face
+/// away from the floor) it does.
+#[test]
+fn a_bent_quad_hides_light_as_one_body() {
+    let source = light(-200, 200, 10_000);
+    let [a, b, c, d] = [
+        g(-2000, 5000, -2000),
+        g(2000, 5500, -2000),
+        g(2000, 5000, 2000),
+        g(-2000, 5500, 2000),
+    ];
+    let triangles = vec![
+        ConvexPolygon::from_grid_points(&[a, b, c], 0).unwrap(),
+        ConvexPolygon::from_grid_points(&[a, c, d], 0).unwrap(),
+    ];
+    let groups = convex_groups(&triangles, &[Some(0), Some(0)]);
+    let [group] = &groups[..] else {
+        panic!("the bent quad is one group")
+    };
+    let Some(crate::Blocker::Body(body)) = group.blocker(&triangles) else {
+        panic!("the bent quad is a body")
+    };
+    assert!(!body.is_closed());
+    let region = floor(0, 0, 20);
+    let faces: Vec<&ConvexPolygon> = triangles.iter().collect();
+    assert!(!sees_none(&region, false, &source, &faces, &[]));
+    assert!(sees_none(&region, false, &source, &[], &[&body]));
+}
+
+/// A wall in `x = 0` facing `+x` under a light across its plane: a
+/// one-sided wall takes only the part of the light in front, and a panel
+/// hides that part; two-sided, the part behind reaches it too.
+#[test]
+fn a_light_across_a_one_sided_receiver_counts_in_front_only() {
+    let source = light(-2000, 2000, 10_000);
+    let corners = [
+        g(0, 100, 100),
+        g(0, 100, 140),
+        g(0, 140, 140),
+        g(0, 140, 100),
+    ];
+    let mut wall = ConvexPolygon::from_grid_points(&corners, 0).unwrap();
+    if wall.support().normal()[0] < 0 {
+        wall = wall.flipped();
+    }
+    let roof = panel([0, 20_000], 5000, [-20_000, 20_000]);
+    assert!(sees_none(&wall, false, &source, &[&roof], &[]));
+    assert!(!sees_none(&wall, true, &source, &[&roof], &[]));
+}
+
+/// Whether the segment from `k` to `l` crosses the horizontal rectangle
+/// `(x, y, z)`, `None` when it passes within `margin` of its border (too
+/// close to tell in floating point).
+fn crosses(
+    k: [f64; 3],
+    l: [f64; 3],
+    (x, y, z): ([f64; 2], f64, [f64; 2]),
+    margin: f64,
+) -> Option<bool> {
+    if (k[1] - y) * (l[1] - y) > 0.0 || k[1] == l[1] {
+        return Some(false);
+    }
+    let t = (y - k[1]) / (l[1] - k[1]);
+    let at = [k[0] + t * (l[0] - k[0]), k[2] + t * (l[2] - k[2])];
+    let inside = |v: f64, [lo, hi]: [f64; 2]| (v - lo).min(hi - v);
+    let depth = inside(at[0], x).min(inside(at[1], z));
+    if depth.abs() <= margin {
+        None
+    } else {
+        Some(depth > 0.0)
+    }
+}
+
+/// Random panels over random floor squares (seeded): whatever is proven
+/// dark is dark, every sampled segment from the region to the light
+/// crossing a panel (or passing too close to a border to tell); and the
+/// proofs do find joint umbrae (regions no one panel hides).
+#[test]
+fn proven_dark_regions_see_no_light() {
+    let mut rng = Pcg64::seed_from_u64(8);
+    let source = light(-500, 500, 10_000);
+    let (mut proven, mut joint) = (0, 0);
+    for _ in 0..1000 {
+        let panels: Vec<([i64; 2], i64, [i64; 2])> = (0..rng.random_range(3..8))
+            .map(|_| {
+                let (x, z) = (rng.random_range(-2500..1500), rng.random_range(-2500..1500));
+                let (w, d) = (rng.random_range(300..2500), rng.random_range(300..2500));
+                ([x, x + w], rng.random_range(2000..8000), [z, z + d])
+            })
+            .collect();
+        let polygons: Vec<ConvexPolygon> = panels.iter().map(|&(x, y, z)| panel(x, y, z)).collect();
+        let refs: Vec<&ConvexPolygon> = polygons.iter().collect();
+        let (cx, cz, r) = (
+            rng.random_range(-1000..1000),
+            rng.random_range(-1000..1000),
+            rng.random_range(5..100),
+        );
+        let region = floor(cx, cz, r);
+        if !sees_none(&region, false, &source, &refs, &[]) {
+            continue;
+        }
+        proven += 1;
+        if refs
+            .iter()
+            .all(|p| !sees_none(&region, false, &source, &[*p], &[]))
+        {
+            joint += 1;
+        }
+        let rects: Vec<([f64; 2], f64, [f64; 2])> = panels
+            .iter()
+            .map(|&(x, y, z)| (x.map(|v| v as f64), y as f64, z.map(|v| v as f64)))
+            .collect();
+        for _ in 0..256 {
+            let k = [
+                (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+                0.0,
+                (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+            ];
+            let l = [
+                -500.0 + rng.random::<f64>() * 1000.0,
+                10_000.0,
+                -500.0 + rng.random::<f64>() * 1000.0,
+            ];
+            assert!(
+                rects
+                    .iter()
+                    .any(|&rect| crosses(k, l, rect, 1e-6) != Some(false)),
+                "segment {k:?} -> {l:?} passes every panel of {panels:?}"
+            );
+        }
+    }
+    assert!(proven >= 50 && joint >= 8, "proven {proven}, joint {joint}");
+}
