@@ -438,9 +438,10 @@ fn dm_options(outer_only: bool, deletion: DeletionArg, overlap: OverlapArg) -> D
 /// Writes a DM run's PLY and, if asked, its statistics, together.
 fn save_dm(run: &DmRun, output: &Path, ascii: bool, stats: Option<&Path>) -> Result<()> {
     let mut outputs = Outputs::default();
-    stage_ply(&mut outputs, output, &run.mesh(), encoding(ascii))?;
+    let (mesh, figures) = run.output();
+    stage_ply(&mut outputs, output, &mesh, encoding(ascii))?;
     if let Some(stats) = stats {
-        run.stats.stage(&mut outputs, stats)?;
+        figures.stage(&mut outputs, stats)?;
     }
     outputs.commit()
 }

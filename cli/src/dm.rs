@@ -5,7 +5,7 @@
 
 use std::time::Instant;
 
-use area_shadow::AreaSource;
+use area_shadow::{AreaSource, ShadowGroups};
 use bsp_core::{ConvexPolygon, GridPoint, VertexKey};
 use dm_mesh::{CellClass, DmLight, DmOptions, DmScene, IllumStats, ObjectId, PieceId};
 use rayon::prelude::*;
@@ -14,6 +14,7 @@ use slotmap::SecondaryMap;
 use svbsp::PieceFlags;
 
 use crate::atomic::Outputs;
+use crate::dark::{DarkCandidate, Occluders, proven_dark_past};
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh};
@@ -123,6 +124,15 @@ impl FreshDm {
     }
 }
 
+/// What the joint-umbra proofs of the output's cells need
+/// ([`crate::dark`]).
+struct DarkContext<'a> {
+    areas: &'a [Option<&'a AreaSource>],
+    occluders: &'a Occluders<'a>,
+    /// The object (index into [`DmRun::objects`]) of each piece.
+    object_of: &'a SecondaryMap<PieceId, u32>,
+}
+
 /// A scene's DM-trees, built.
 pub struct DmRun {
     /// The scene on the grid.
@@ -228,8 +238,31 @@ impl DmRun {
         run
     }
 
+    /// The output mesh and the statistics, their cell counts per class
+    /// those of the mesh (joint umbrae proven as it is made turn penumbra
+    /// cells umbra, see [`Self::mesh`]).
+    pub fn output(&self) -> (OutputMesh, DmStats) {
+        let mesh = self.mesh();
+        let mut stats = self.stats.clone();
+        for (i, light) in stats.stats.lights.iter_mut().enumerate() {
+            let bit = 1 << i;
+            light.lit = mesh.faces.iter().filter(|f| f.lit_mask & bit != 0).count() as u64;
+            light.umbra = mesh
+                .faces
+                .iter()
+                .filter(|f| f.umbra_mask & bit != 0)
+                .count() as u64;
+            light.penumbra = mesh.faces.len() as u64 - light.lit - light.umbra;
+        }
+        (mesh, stats)
+    }
+
     /// The cells as an output mesh (world units; one face per cell), the
-    /// receivers in scene order.
+    /// receivers in scene order. A cell that the DM-tree leaves in
+    /// penumbra, but whose corners all see none of a light, is umbra for it
+    /// when proven to see none of it past the occluders it lists
+    /// ([`crate::dark`]: a joint umbra of several occluders, which no
+    /// one volume bounds).
     pub fn mesh(&self) -> OutputMesh {
         let receivers: Vec<(usize, PieceId)> = self
             .objects
@@ -240,12 +273,40 @@ impl DmRun {
             })
             .flatten()
             .collect();
+        let mut objects = vec![0_u32; self.pieces.polygons.len()];
+        for (o, (_, ks)) in self.objects.iter().enumerate() {
+            for &k in ks {
+                objects[k] = o as u32;
+            }
+        }
+        let flags: Vec<PieceFlags> = (0..objects.len())
+            .map(|k| PieceFlags {
+                casts_shadows: self.pieces.casts_shadows[k],
+                two_sided: self.pieces.two_sided[k],
+                closed_surface: false,
+            })
+            .collect();
+        let groups = ShadowGroups::of_objects(&self.pieces.polygons, &flags, &objects);
+        let occluders = Occluders::new(&self.pieces, &groups, &objects);
+        let mut object_of: SecondaryMap<PieceId, u32> = SecondaryMap::new();
+        for (o, (id, _)) in self.objects.iter().enumerate() {
+            for &piece in self.dm.object_pieces(*id).unwrap_or(&[]) {
+                object_of.insert(piece, o as u32);
+            }
+        }
+        let areas: Vec<Option<&AreaSource>> =
+            self.dm.lights().iter().map(|l| Some(l.source())).collect();
+        let context = DarkContext {
+            areas: &areas,
+            occluders: &occluders,
+            object_of: &object_of,
+        };
         // Each receiver's part on its own (in parallel: millions of cells
         // on a big scene), then joined in order.
         let parts: Vec<OutputMesh> = receivers
             .par_iter()
             .with_max_len(1)
-            .map(|&(k, piece)| self.receiver_mesh(k, piece))
+            .map(|&(k, piece)| self.receiver_mesh(k, piece, &context))
             .collect();
         let mut mesh = OutputMesh {
             vertices: Vec::with_capacity(parts.iter().map(|p| p.vertices.len()).sum()),
@@ -264,17 +325,21 @@ impl DmRun {
 
     /// The cells of one receiver (`piece`, of scene piece `k`), its
     /// vertices numbered from 0 as first met.
-    fn receiver_mesh(&self, k: usize, piece: PieceId) -> OutputMesh {
+    fn receiver_mesh(&self, k: usize, piece: PieceId, dark: &DarkContext<'_>) -> OutputMesh {
         let mut mesh = OutputMesh::default();
         let Some(receiver) = self.dm.receiver(piece) else {
             return mesh;
         };
         let lights = self.dm.lights().len();
+        let two_sided = self.pieces.two_sided[k];
         let mut index: SecondaryMap<VertexKey, u32> = SecondaryMap::new();
         for (face, cell) in receiver.cells() {
             let corners = receiver.mesh().face_vertices(face);
             let mut vertices = Vec::with_capacity(corners.len());
+            // The lights every corner gets nothing from.
+            let mut dark_corners = u32::MAX;
             for v in corners {
+                dark_corners &= self.dm.vertex_dark_lights(piece, v).unwrap_or(0);
                 let slot = match index.get(v) {
                     Some(&slot) => slot,
                     None => {
@@ -289,12 +354,33 @@ impl DmRun {
                 };
                 vertices.push(slot);
             }
-            let (mut lit_mask, mut umbra_mask) = (0, 0);
+            let (mut lit_mask, mut umbra_mask, mut penumbra_mask) = (0, 0, 0);
             for i in 0..lights {
                 match receiver.class(cell, i) {
                     CellClass::Lit => lit_mask |= 1 << i,
                     CellClass::Umbra => umbra_mask |= 1 << i,
-                    CellClass::Penumbra => {}
+                    CellClass::Penumbra => penumbra_mask |= 1 << i,
+                }
+            }
+            // Cells in a joint umbra: penumbra for the volumes, every corner
+            // dark, and proven to see none of the light.
+            if penumbra_mask & dark_corners != 0 {
+                if let Ok(region) = receiver.mesh().face_polygon(face, 0) {
+                    let candidate = DarkCandidate {
+                        region: &region,
+                        two_sided,
+                        lights: penumbra_mask & dark_corners,
+                    };
+                    let mut objects: Vec<u32> = cell
+                        .entries()
+                        .iter()
+                        .filter_map(|e| receiver.unit_source(e.unit))
+                        .filter_map(|(occluder, _)| dark.object_of.get(occluder).copied())
+                        .collect();
+                    objects.sort_unstable();
+                    objects.dedup();
+                    umbra_mask |=
+                        proven_dark_past(&candidate, dark.areas, dark.occluders, &objects);
                 }
             }
             mesh.faces.push(OutputFace {

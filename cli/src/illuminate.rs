@@ -127,6 +127,28 @@ impl<'a> Illuminator<'a> {
             .collect()
     }
 
+    /// Irradiance at each vertex of `polygon` (a part of piece
+    /// `polygon.source()`) from area light `i` past the occluders, and
+    /// what all of the light would give there, computed as iterated.
+    pub fn corner_irradiance(
+        &self,
+        i: usize,
+        polygon: &ConvexPolygon,
+    ) -> impl Iterator<Item = (f64, f64)> {
+        let piece = polygon.source() as usize;
+        polygon
+            .vertices_f64()
+            .into_iter()
+            .enumerate()
+            .map(move |(k, p)| {
+                let exact = MeshPoint::vertex(polygon, k);
+                (
+                    self.value(i, Value::Visible, (&exact, p), piece),
+                    self.value(i, Value::Whole, (&exact, p), piece),
+                )
+            })
+    }
+
     /// Irradiance at every vertex of `fragment` from each light by its
     /// class (no sharing: for adaptive subdivision), summed over lights.
     pub fn fragment_irradiance(&self, fragment: &Fragment) -> Vec<f64> {

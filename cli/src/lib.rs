@@ -46,6 +46,7 @@
 
 mod atomic;
 mod csg;
+mod dark;
 mod decompose;
 mod demo;
 mod demo_dm;

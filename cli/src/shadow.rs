@@ -4,13 +4,16 @@
 use std::collections::HashMap;
 use std::time::Instant;
 
+use area_shadow::dark::{DARK_FRACTION, sees_none};
 use area_shadow::{
     AreaSource, Class, LightFigures, SceneLight, ShadowGroups, conform_fragments, grid_fragments,
     subdivide_adaptive,
 };
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
-use svbsp::{LightSource, PieceFlags};
+use rayon::prelude::*;
+use svbsp::{Fragment, LightSource, PieceFlags};
 
+use crate::dark::Occluders;
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
 use crate::illuminate::{IllumLight, Illuminator, illuminate};
@@ -77,7 +80,8 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     let pieces = Pieces::from_scene(scene)?;
     let lights = scene_lights(scene, &pieces)?;
     let flags = piece_flags(scene, &pieces);
-    let groups = ShadowGroups::of_objects(&pieces.polygons, &flags, &piece_objects(scene, &pieces));
+    let objects = piece_objects(scene, &pieces);
+    let groups = ShadowGroups::of_objects(&pieces.polygons, &flags, &objects);
     let out = area_shadow::compute_shadows_with_groups(
         &pieces.polygons,
         &flags,
@@ -123,8 +127,17 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
             |f| illuminator.fragment_irradiance(f),
         );
     }
+    let dark_started = Instant::now();
+    mark_joint_umbra(
+        &mut fragments,
+        &illuminator,
+        &lights,
+        &pieces,
+        &Occluders::new(&pieces, &groups, &objects),
+    );
+    let dark_seconds = dark_started.elapsed().as_secs_f64();
     let (fragments, conforming) = conform_fragments(fragments, MAX_FACE_CORNERS);
-    let grid = grid_started.elapsed().as_secs_f64();
+    let grid = grid_started.elapsed().as_secs_f64() - dark_seconds;
 
     let illum_started = Instant::now();
     let lit = illuminate(&illuminator, &fragments, &conforming);
@@ -157,7 +170,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
         output_fragments: mesh.faces.len() as u64,
         seconds: Seconds {
             bsp: out.bsp_seconds,
-            shadow: out.shadow_seconds,
+            shadow: out.shadow_seconds + dark_seconds,
             grid,
             illum,
             total: started.elapsed().as_secs_f64(),
@@ -241,6 +254,48 @@ fn scene_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<SceneLight>> {
         });
     }
     Ok(lights)
+}
+
+/// Marks umbra, for an area light, each penumbra fragment that sees none
+/// of it: every corner dark (in floating point, [`DARK_FRACTION`]) and the
+/// whole fragment proven dark past the blockers between it and the light
+/// ([`area_shadow::dark::sees_none`]). These are the joint umbrae of
+/// occluders that hide the light only together; a joint umbra ends along a
+/// curve, which fragments follow as finely as `--grid` or `--adaptive` cut
+/// them. Fragments are worked on in parallel, each on its own.
+fn mark_joint_umbra(
+    fragments: &mut [Fragment],
+    illuminator: &Illuminator<'_>,
+    lights: &[SceneLight],
+    pieces: &Pieces,
+    occluders: &Occluders<'_>,
+) {
+    let areas: Vec<(usize, &AreaSource)> = lights
+        .iter()
+        .enumerate()
+        .filter_map(|(i, l)| match l {
+            SceneLight::Area(source) => Some((i, source)),
+            SceneLight::Svbsp(_) => None,
+        })
+        .collect();
+    fragments.par_iter_mut().for_each(|fragment| {
+        for &(i, light) in &areas {
+            // (The corners go first, each stopping at the first lit one:
+            // most penumbra fragments have one.)
+            if Class::of(fragment, i as u32) != Class::Penumbra
+                || !illuminator
+                    .corner_irradiance(i, &fragment.polygon)
+                    .all(|(seen, whole)| seen <= DARK_FRACTION * whole)
+            {
+                continue;
+            }
+            let (polygons, bodies) = occluders.near(&fragment.polygon, light);
+            let two_sided = pieces.two_sided[fragment.polygon.source() as usize];
+            if sees_none(&fragment.polygon, two_sided, light, &polygons, &bodies) {
+                fragment.umbra_mask |= 1 << i;
+            }
+        }
+    });
 }
 
 /// Per piece, the index of its object in the scene file.

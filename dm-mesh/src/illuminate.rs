@@ -27,6 +27,7 @@ use crate::cell::Cell;
 use crate::hash::{KeyMap, KeySet};
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
 use crate::tree::ReceiverDm;
+use area_shadow::dark::DARK_FRACTION;
 use bsp_core::{Side, VertexKey, VertexPosition};
 use illum::{Sidedness, VisiblePart, visible_irradiance};
 use rayon::prelude::*;
@@ -56,6 +57,8 @@ enum Cover {
 struct VertexValue {
     covers: SmallVec<[Cover; 2]>,
     irradiance: f64,
+    /// Bit `i`: light `i` gives the vertex nothing.
+    dark: u32,
 }
 
 /// A receiver's vertex irradiance cache.
@@ -230,6 +233,13 @@ impl DmScene {
             .get(vertex)
             .map(|v| v.irradiance)
     }
+
+    /// The lights that give a vertex of a receiver's mesh no irradiance,
+    /// or at most [`DARK_FRACTION`] of what all of the light would give, a
+    /// trace that rounding leaves (bit `i` for light `i`), once [`illuminate`](Self::illuminate) ran.
+    pub fn vertex_dark_lights(&self, receiver: PieceId, vertex: VertexKey) -> Option<u32> {
+        self.illum.get(receiver)?.values.get(vertex).map(|v| v.dark)
+    }
 }
 
 /// [`DmScene::illuminate`] on one receiver.
@@ -308,10 +318,15 @@ pub(crate) fn illuminate_receiver(
         if values.get(v).is_some_and(|value| value.covers == covers) {
             return None;
         }
-        let (irradiance, comparisons) = evaluate(
+        let (irradiance, dark, comparisons) = evaluate(
             lights, pieces, dm, &position, normal, sided, &covers, scratch,
         );
-        Some((v, VertexValue { covers, irradiance }, comparisons))
+        let value = VertexValue {
+            covers,
+            irradiance,
+            dark,
+        };
+        Some((v, value, comparisons))
     };
     let results: Vec<_> = if vertices.len() >= PARALLEL_VERTICES {
         vertices
@@ -337,8 +352,9 @@ pub(crate) fn illuminate_receiver(
 }
 
 /// The irradiance at a vertex at `position` (receiver normal `normal`)
-/// with the covers `covers` of the lights, and the number of occluder
-/// polygons clipped against a light for it.
+/// with the covers `covers` of the lights, the lights that give it nothing
+/// (bit `i` for light `i`), and the number of occluder polygons clipped
+/// against a light for it.
 #[allow(clippy::too_many_arguments)] // (the receiver's fixed context, and the vertex)
 fn evaluate(
     lights: &[DmLight],
@@ -349,12 +365,13 @@ fn evaluate(
     sided: Sidedness,
     covers: &[Cover],
     scratch: &mut VisiblePart,
-) -> (f64, usize) {
+) -> (f64, u32, usize) {
     let p = position.to_f64();
     let mut irradiance = 0.0;
+    let mut dark = 0;
     let mut comparisons = 0;
     for (i, (light, cover)) in lights.iter().zip(covers).enumerate() {
-        irradiance += match cover {
+        let value = match cover {
             Cover::Dark => 0.0,
             Cover::Free => light.illum.irradiance(p, normal, sided),
             Cover::Occluders(units) => {
@@ -366,6 +383,15 @@ fn evaluate(
                 visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
             }
         };
+        // Rounding leaves a vertex that sees nothing a trace of light
+        // (1e-18 of it, say): dark below a billionth of the whole light.
+        if value == 0.0
+            || (matches!(cover, Cover::Occluders(_))
+                && value <= DARK_FRACTION * light.illum.irradiance(p, normal, sided))
+        {
+            dark |= 1 << i;
+        }
+        irradiance += value;
     }
-    (irradiance, comparisons)
+    (irradiance, dark, comparisons)
 }

@@ -4,7 +4,7 @@
 
 use crate::common::{TestScene, class_areas, floor, scene, scene_with, triangulated_cuboid};
 use crate::oracle::{hidden, interior_samples};
-use area_shadow::{Class, SceneLight, compute_shadows};
+use area_shadow::{Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
 use bsp_core::BuildOptions;
 use dm_mesh::{CellClass, DmOptions, OverlapKind};
 use proptest::prelude::*;
@@ -31,8 +31,24 @@ pub fn check_against_area_shadow_with(
         .enumerate()
         .map(|(k, p)| p.clone().with_source(k as u32))
         .collect();
+    // Bodies form per object in both pipelines (and join across objects
+    // where they touch), as `umbra shadow` and `umbra dm` group them.
+    let objects: Vec<u32> = t
+        .objects
+        .iter()
+        .enumerate()
+        .flat_map(|(o, (ps, _))| std::iter::repeat_n(o as u32, ps.len()))
+        .collect();
+    let groups = ShadowGroups::of_objects(&numbered, &flags, &objects);
     let light = SceneLight::Area(t.light.clone());
-    let out = compute_shadows(&numbered, &flags, &[light], &BuildOptions::default()).unwrap();
+    let out = compute_shadows_with_groups(
+        &numbered,
+        &flags,
+        &groups,
+        &[light],
+        &BuildOptions::default(),
+    )
+    .unwrap();
     let mut truth = vec![[0.0; 3]; polygons.len()];
     for f in &out.fragments {
         let k = match Class::of(f, 0) {

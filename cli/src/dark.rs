@@ -1,0 +1,395 @@
+//! Joint umbra in the output: a penumbra face whose corners all see none of
+//! an area light is handed to [`area_shadow::dark::sees_none`] with the
+//! occluders between it and the light, and turns umbra for that light when
+//! proven dark.
+//!
+//! `umbra shadow` finds those occluders with a uniform grid of their boxes
+//! (and cuts fragments to follow a joint umbra that ends inside them,
+//! [`area_shadow::dark::dark_parts`]); `umbra dm` (and `update`) takes the
+//! objects its cell lists name, and keeps its cells whole.
+
+use std::collections::HashMap;
+
+use area_shadow::dark::{Body, sees_none};
+use area_shadow::{AreaSource, Blocker, ShadowGroups};
+use bsp_core::ConvexPolygon;
+
+use crate::decompose::Pieces;
+
+/// Cells of the uniform grid along each axis.
+const GRID_CELLS: usize = 32;
+
+/// Blockers spanning more grid cells than this are checked for every
+/// query (a floor), and queries spanning more look at every blocker.
+const MAX_SPAN: usize = 4096;
+
+/// The shadow-casting pieces of a scene and the convex groups they make
+/// (flat polygons and bodies), with their bounding boxes (grid units), to
+/// find those between a face and a light.
+pub(crate) struct Occluders<'a> {
+    polygons: Vec<(&'a ConvexPolygon, Bounds)>,
+    bodies: Vec<(Body, Bounds)>,
+    /// Per object: its polygons and bodies (indices).
+    by_object: Vec<(Vec<usize>, Vec<usize>)>,
+    index: GridIndex,
+}
+
+type Bounds = ([f64; 3], [f64; 3]);
+
+/// A blocker: polygon `k` or body `k`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+enum Item {
+    Polygon(usize),
+    Body(usize),
+}
+
+impl<'a> Occluders<'a> {
+    /// The pieces that cast shadows, and the convex groups they make;
+    /// `objects[k]` is piece `k`'s object.
+    pub(crate) fn new(pieces: &'a Pieces, groups: &'a ShadowGroups, objects: &[u32]) -> Self {
+        let object_count = objects.iter().map(|&o| o as usize + 1).max().unwrap_or(0);
+        let mut by_object = vec![(Vec::new(), Vec::new()); object_count];
+        let (mut polygons, mut bodies) = (Vec::new(), Vec::new());
+        // Pieces on a closed body or in a flat group block nothing the
+        // group does not.
+        let mut covered = vec![false; pieces.polygons.len()];
+        for group in groups.bodies.iter().chain(&groups.joint_bodies) {
+            let corners: Vec<[f64; 3]> = group
+                .pieces
+                .iter()
+                .flat_map(|&k| pieces.polygons[k as usize].vertices_f64())
+                .collect();
+            let mut members: Vec<u32> = group.pieces.iter().map(|&k| objects[k as usize]).collect();
+            members.sort_unstable();
+            members.dedup();
+            let covers = match group.blocker(&pieces.polygons) {
+                Some(Blocker::Body(body)) => {
+                    let closed = body.is_closed();
+                    for &o in &members {
+                        by_object[o as usize].1.push(bodies.len());
+                    }
+                    bodies.push((body, bounds(&corners)));
+                    closed
+                }
+                Some(Blocker::Polygon(polygon)) => {
+                    for &o in &members {
+                        by_object[o as usize].0.push(polygons.len());
+                    }
+                    polygons.push((polygon, bounds(&corners)));
+                    true
+                }
+                None => false,
+            };
+            if covers {
+                for &k in &group.pieces {
+                    covered[k as usize] = true;
+                }
+            }
+        }
+        for (k, p) in pieces.polygons.iter().enumerate() {
+            if pieces.casts_shadows[k] && !covered[k] {
+                by_object[objects[k] as usize].0.push(polygons.len());
+                polygons.push((p, bounds(&p.vertices_f64())));
+            }
+        }
+        let boxes = polygons
+            .iter()
+            .enumerate()
+            .map(|(k, (_, b))| (Item::Polygon(k), *b))
+            .chain(
+                bodies
+                    .iter()
+                    .enumerate()
+                    .map(|(k, (_, b))| (Item::Body(k), *b)),
+            );
+        let index = GridIndex::new(boxes.collect());
+        Self {
+            polygons,
+            bodies,
+            by_object,
+            index,
+        }
+    }
+
+    /// The blockers whose boxes meet the box around `region` and `light`:
+    /// every one a segment between them can cross.
+    pub(crate) fn near(
+        &self,
+        region: &ConvexPolygon,
+        light: &AreaSource,
+    ) -> (Vec<&ConvexPolygon>, Vec<&Body>) {
+        let (around, shaft) = between(region, light);
+        let items = self.index.meeting(&around);
+        self.resolve(items.into_iter(), &around, &shaft)
+    }
+
+    /// The blockers of `objects` whose boxes meet the box around `region`
+    /// and `light`.
+    fn of_objects(
+        &self,
+        objects: &[u32],
+        region: &ConvexPolygon,
+        light: &AreaSource,
+    ) -> (Vec<&ConvexPolygon>, Vec<&Body>) {
+        let (around, shaft) = between(region, light);
+        let mut items: Vec<Item> = objects
+            .iter()
+            .filter_map(|&o| self.by_object.get(o as usize))
+            .flat_map(|(ps, bs)| {
+                ps.iter()
+                    .map(|&k| Item::Polygon(k))
+                    .chain(bs.iter().map(|&k| Item::Body(k)))
+            })
+            .collect();
+        items.sort_unstable();
+        items.dedup();
+        self.resolve(items.into_iter(), &around, &shaft)
+    }
+
+    /// The items whose boxes meet `around` and that reach into the shaft
+    /// between `region` and `light`.
+    fn resolve(
+        &self,
+        items: impl Iterator<Item = Item>,
+        around: &Bounds,
+        shaft: &Shaft,
+    ) -> (Vec<&ConvexPolygon>, Vec<&Body>) {
+        let (mut polygons, mut bodies) = (Vec::new(), Vec::new());
+        for item in items {
+            match item {
+                Item::Polygon(k) => {
+                    let (polygon, b) = &self.polygons[k];
+                    if meet(b, around) && !shaft.misses(&polygon.vertices_f64()) {
+                        polygons.push(*polygon);
+                    }
+                }
+                Item::Body(k) => {
+                    let (body, b) = &self.bodies[k];
+                    let corners: [[f64; 3]; 8] = std::array::from_fn(|c| {
+                        std::array::from_fn(|a| if c >> a & 1 == 0 { b.0[a] } else { b.1[a] })
+                    });
+                    if meet(b, around) && !shaft.misses(&corners) {
+                        bodies.push(body);
+                    }
+                }
+            }
+        }
+        (polygons, bodies)
+    }
+}
+
+/// The convex hull of a region and a light, by the planes through an edge
+/// of one and a corner of the other that have both on one side: a
+/// blocker wholly beyond one of them (by a safe margin) meets no segment
+/// between the two.
+struct Shaft {
+    /// Unit normals and offsets, the hull behind.
+    planes: Vec<([f64; 3], f64)>,
+    margin: f64,
+}
+
+impl Shaft {
+    fn new(region: &[[f64; 3]], light: &[[f64; 3]]) -> Self {
+        let all: Vec<[f64; 3]> = region.iter().chain(light).copied().collect();
+        let extent = all
+            .iter()
+            .flat_map(|p| p.iter().map(|c| c.abs()))
+            .fold(1.0, f64::max);
+        let margin = 1e-6 * extent;
+        let mut planes = Vec::new();
+        for (edges, corners) in [(region, light), (light, region)] {
+            for (i, &a) in edges.iter().enumerate() {
+                let b = edges[(i + 1) % edges.len()];
+                for &c in corners {
+                    let n = cross(sub(b, a), sub(c, a));
+                    let length = dot(n, n).sqrt();
+                    if length == 0.0 {
+                        continue;
+                    }
+                    let n = n.map(|x| x / length);
+                    let d = -dot(n, a);
+                    let sides = all.iter().map(|&p| dot(n, p) + d);
+                    if sides.clone().all(|v| v <= margin) {
+                        planes.push((n, d));
+                    } else if sides.clone().all(|v| v >= -margin) {
+                        planes.push((n.map(|x| -x), -d));
+                    }
+                }
+            }
+        }
+        Self { planes, margin }
+    }
+
+    /// Whether the points lie all beyond one of the hull's planes.
+    fn misses(&self, points: &[[f64; 3]]) -> bool {
+        self.planes
+            .iter()
+            .any(|(n, d)| points.iter().all(|&p| dot(*n, p) + d > 4.0 * self.margin))
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|k| a[k] - b[k])
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The box around a region and a light, and the shaft between them.
+fn between(region: &ConvexPolygon, light: &AreaSource) -> (Bounds, Shaft) {
+    let corners = region.vertices_f64();
+    let source: Vec<[f64; 3]> = light.vertices().map(|p| p.to_f64()).collect();
+    let around = bounds(&corners.iter().chain(&source).copied().collect::<Vec<_>>());
+    (around, Shaft::new(&corners, &source))
+}
+
+fn meet((a, b): &Bounds, (lo, hi): &Bounds) -> bool {
+    (0..3).all(|k| a[k] <= hi[k] && b[k] >= lo[k])
+}
+
+fn bounds(points: &[[f64; 3]]) -> Bounds {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Boxes in a uniform grid of cells over their union, to find those that
+/// may meet a query box without looking at all.
+struct GridIndex {
+    origin: [f64; 3],
+    cell: [f64; 3],
+    cells: HashMap<[usize; 3], Vec<Item>>,
+    /// Boxes spanning too many cells: checked for every query.
+    wide: Vec<Item>,
+    all: Vec<Item>,
+}
+
+impl GridIndex {
+    fn new(boxes: Vec<(Item, Bounds)>) -> Self {
+        let whole = bounds(
+            &boxes
+                .iter()
+                .flat_map(|(_, (a, b))| [*a, *b])
+                .collect::<Vec<_>>(),
+        );
+        let origin = whole.0;
+        let cell =
+            std::array::from_fn(|k| ((whole.1[k] - whole.0[k]) / GRID_CELLS as f64).max(1.0));
+        let mut index = Self {
+            origin,
+            cell,
+            cells: HashMap::new(),
+            wide: Vec::new(),
+            all: boxes.iter().map(|(item, _)| *item).collect(),
+        };
+        for (item, b) in boxes {
+            let [lo, hi] = index.span(&b);
+            if (0..3).map(|k| hi[k] - lo[k] + 1).product::<usize>() > MAX_SPAN {
+                index.wide.push(item);
+                continue;
+            }
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        index.cells.entry([x, y, z]).or_default().push(item);
+                    }
+                }
+            }
+        }
+        index
+    }
+
+    /// The cells a box covers, low and high (clamped to the grid).
+    fn span(&self, (a, b): &Bounds) -> [[usize; 3]; 2] {
+        let at = |v: f64, k: usize| {
+            (((v - self.origin[k]) / self.cell[k]).floor().max(0.0) as usize).min(GRID_CELLS)
+        };
+        [
+            std::array::from_fn(|k| at(a[k], k)),
+            std::array::from_fn(|k| at(b[k], k)),
+        ]
+    }
+
+    /// The items whose cells meet the box (a superset of those whose boxes
+    /// do), each once, in order.
+    fn meeting(&self, around: &Bounds) -> Vec<Item> {
+        let [lo, hi] = self.span(around);
+        if (0..3).map(|k| hi[k] - lo[k] + 1).product::<usize>() > MAX_SPAN {
+            return self.all.clone();
+        }
+        let mut items = self.wide.clone();
+        for x in lo[0]..=hi[0] {
+            for y in lo[1]..=hi[1] {
+                for z in lo[2]..=hi[2] {
+                    if let Some(list) = self.cells.get(&[x, y, z]) {
+                        items.extend_from_slice(list);
+                    }
+                }
+            }
+        }
+        items.sort_unstable();
+        items.dedup();
+        items
+    }
+}
+
+/// A face to look at: its region, whether its receiver is two-sided, and
+/// the lights (bit `i` for `lights[i]`) it is penumbra for with every
+/// corner dark.
+pub(crate) struct DarkCandidate<'a> {
+    pub region: &'a ConvexPolygon,
+    pub two_sided: bool,
+    pub lights: u32,
+}
+
+/// The lights of the candidate's bits proven to be hidden from all of its
+/// region, past the occluders of `objects` (those a DM cell lists).
+pub(crate) fn proven_dark_past(
+    candidate: &DarkCandidate<'_>,
+    lights: &[Option<&AreaSource>],
+    occluders: &Occluders<'_>,
+    objects: &[u32],
+) -> u32 {
+    dark_lights(candidate, lights, |light| {
+        occluders.of_objects(objects, candidate.region, light)
+    })
+}
+
+fn dark_lights<'o>(
+    candidate: &DarkCandidate<'_>,
+    lights: &[Option<&AreaSource>],
+    blockers: impl Fn(&AreaSource) -> (Vec<&'o ConvexPolygon>, Vec<&'o Body>),
+) -> u32 {
+    let mut dark = 0;
+    for (i, light) in lights.iter().enumerate() {
+        let Some(light) = light.filter(|_| candidate.lights & (1 << i) != 0) else {
+            continue;
+        };
+        let (polygons, bodies) = blockers(light);
+        if sees_none(
+            candidate.region,
+            candidate.two_sided,
+            light,
+            &polygons,
+            &bodies,
+        ) {
+            dark |= 1 << i;
+        }
+    }
+    dark
+}
