@@ -10,7 +10,7 @@
 
 use std::collections::HashMap;
 
-use area_shadow::dark::{Body, sees_none};
+use area_shadow::dark::{Body, Shaft, sees_none};
 use area_shadow::{AreaSource, Blocker, ShadowGroups};
 use bsp_core::ConvexPolygon;
 
@@ -165,10 +165,7 @@ impl<'a> Occluders<'a> {
                 }
                 Item::Body(k) => {
                     let (body, b) = &self.bodies[k];
-                    let corners: [[f64; 3]; 8] = std::array::from_fn(|c| {
-                        std::array::from_fn(|a| if c >> a & 1 == 0 { b.0[a] } else { b.1[a] })
-                    });
-                    if meet(b, around) && !shaft.misses(&corners) {
+                    if meet(b, around) && !shaft.misses_box(&[b.0, b.1]) {
                         bodies.push(body);
                     }
                 }
@@ -176,72 +173,6 @@ impl<'a> Occluders<'a> {
         }
         (polygons, bodies)
     }
-}
-
-/// The convex hull of a region and a light, by the planes through an edge
-/// of one and a corner of the other that have both on one side: a
-/// blocker wholly beyond one of them (by a safe margin) meets no segment
-/// between the two.
-struct Shaft {
-    /// Unit normals and offsets, the hull behind.
-    planes: Vec<([f64; 3], f64)>,
-    margin: f64,
-}
-
-impl Shaft {
-    fn new(region: &[[f64; 3]], light: &[[f64; 3]]) -> Self {
-        let all: Vec<[f64; 3]> = region.iter().chain(light).copied().collect();
-        let extent = all
-            .iter()
-            .flat_map(|p| p.iter().map(|c| c.abs()))
-            .fold(1.0, f64::max);
-        let margin = 1e-6 * extent;
-        let mut planes = Vec::new();
-        for (edges, corners) in [(region, light), (light, region)] {
-            for (i, &a) in edges.iter().enumerate() {
-                let b = edges[(i + 1) % edges.len()];
-                for &c in corners {
-                    let n = cross(sub(b, a), sub(c, a));
-                    let length = dot(n, n).sqrt();
-                    if length == 0.0 {
-                        continue;
-                    }
-                    let n = n.map(|x| x / length);
-                    let d = -dot(n, a);
-                    let sides = all.iter().map(|&p| dot(n, p) + d);
-                    if sides.clone().all(|v| v <= margin) {
-                        planes.push((n, d));
-                    } else if sides.clone().all(|v| v >= -margin) {
-                        planes.push((n.map(|x| -x), -d));
-                    }
-                }
-            }
-        }
-        Self { planes, margin }
-    }
-
-    /// Whether the points lie all beyond one of the hull's planes.
-    fn misses(&self, points: &[[f64; 3]]) -> bool {
-        self.planes
-            .iter()
-            .any(|(n, d)| points.iter().all(|&p| dot(*n, p) + d > 4.0 * self.margin))
-    }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|k| a[k] - b[k])
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 /// The box around a region and a light, and the shaft between them.

@@ -64,7 +64,7 @@ fn light_quadrature(p: [f64; 3], blocked: impl Fn([f64; 3], [f64; 3]) -> bool) -
     e
 }
 
-fn face_points(mesh: &OutputMesh, f: usize) -> Vec<[f64; 3]> {
+pub(crate) fn face_points(mesh: &OutputMesh, f: usize) -> Vec<[f64; 3]> {
     mesh.faces[f]
         .vertices
         .iter()

@@ -8,6 +8,7 @@ mod decomposition;
 mod demos;
 mod dm;
 mod errors;
+mod joint_umbra;
 mod joints;
 mod order;
 mod ply_files;

@@ -1,0 +1,128 @@
+//! Joint umbrae: two panels at different heights, each hiding only part of
+//! a square light from a strip of the floor, together all of it. No one
+//! shadow volume bounds such a strip; both commands prove its faces dark
+//! and mark them umbra, and a sampling oracle checks every umbra face.
+
+use crate::area::{face_points, floor_classes};
+use crate::{folder, umbra};
+use umbra::{OutputMesh, load_ply};
+
+/// A 20 x 20 floor, a 2 x 2 light at y = 10 above the origin, and the
+/// panels: `high` over x <= `a` at y = 6, `low` over x >= `b` at y = 3,
+/// both |z| <= 6 (either may be left out).
+fn panels(a: Option<f64>, b: Option<f64>) -> String {
+    let mut scene = String::from(
+        "[[object]]\nname = \"floor\"\npolygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]\n\n",
+    );
+    if let Some(a) = a {
+        scene += &format!(
+            "[[object]]\nname = \"high\"\npolygons = [[[-6, 6, 6], [{a}, 6, 6], [{a}, 6, -6], [-6, 6, -6]]]\n\n"
+        );
+    }
+    if let Some(b) = b {
+        scene += &format!(
+            "[[object]]\nname = \"low\"\npolygons = [[[{b}, 3, 6], [6, 3, 6], [6, 3, -6], [{b}, 3, -6]]]\n\n"
+        );
+    }
+    scene
+        + "[[light]]\ntype = \"area\"\nvertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]\n"
+}
+
+/// Whether the segment from `p` to `l` crosses the panel at height `y`
+/// over `x` in `[x0, x1]`, |z| <= 6.
+fn crosses(p: [f64; 3], l: [f64; 3], y: f64, [x0, x1]: [f64; 2]) -> bool {
+    let t = (y - p[1]) / (l[1] - p[1]);
+    let x = p[0] + t * (l[0] - p[0]);
+    let z = p[2] + t * (l[2] - p[2]);
+    (x0..=x1).contains(&x) && z.abs() <= 6.0
+}
+
+/// Checks that from points inside every umbra floor face (its centre, and
+/// halfway from it to each corner) the panels hide each of 21 x 21 points
+/// of the light.
+fn assert_umbra_sees_nothing(mesh: &OutputMesh, a: f64, b: f64, what: &str) {
+    let light: Vec<[f64; 3]> = (0..21 * 21)
+        .map(|k| {
+            [
+                -1.0 + 0.1 * (k % 21) as f64,
+                10.0,
+                -1.0 + 0.1 * (k / 21) as f64,
+            ]
+        })
+        .collect();
+    for (f, face) in mesh.faces.iter().enumerate() {
+        if face.source != 0 || face.umbra_mask & 1 == 0 {
+            continue;
+        }
+        let corners = face_points(mesh, f);
+        let n = corners.len() as f64;
+        let centre: [f64; 3] =
+            std::array::from_fn(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
+        let samples = corners
+            .iter()
+            .map(|c| std::array::from_fn(|k| 0.5 * (c[k] + centre[k])))
+            .chain([centre]);
+        for p in samples {
+            for &l in &light {
+                assert!(
+                    crosses(p, l, 6.0, [-6.0, a]) || crosses(p, l, 3.0, [b, 6.0]),
+                    "{what}: umbra face {f} sees the light from {p:?} at {l:?}"
+                );
+            }
+        }
+    }
+}
+
+/// Runs `command` (with `args`) on the scene and returns the output mesh.
+fn run(scene: &str, command: &str, args: &[&str]) -> OutputMesh {
+    let dir = folder(&[("scene.toml", scene)]);
+    let mut all = vec![command, "scene.toml", "-o", "out.ply"];
+    all.extend_from_slice(args);
+    let run = umbra(dir.path(), &all);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    load_ply(&dir.path().join("out.ply")).unwrap()
+}
+
+/// High panel to x = 0.2, low from x = -0.6: from the strip -1 <= x <=
+/// -3/7 between their umbrae the high panel hides the light's part x <=
+/// 0.6 and the low one its part x >= 1/3, together all of it. The strip is
+/// bounded by volume planes (and DM edges); where both panels span every
+/// ray's z (|z| <= 57/7, the low panel's umbra in z) it sees nothing: 4/7
+/// x 114/7 more umbra than the panels give one by one.
+#[test]
+fn two_panels_hide_a_strip_neither_hides_alone() {
+    let (a, b) = (0.2, -0.6);
+    let strip = 4.0 / 7.0 * 114.0 / 7.0;
+    for command in ["shadow", "dm"] {
+        let both = run(&panels(Some(a), Some(b)), command, &[]);
+        let [_, _, joint] = floor_classes(&both);
+        let [_, _, high] = floor_classes(&run(&panels(Some(a), None), command, &[]));
+        let [_, _, low] = floor_classes(&run(&panels(None, Some(b)), command, &[]));
+        assert!(
+            joint >= high + low + strip - 1e-6,
+            "{command}: umbra {joint} with both panels, {high} + {low} one by one, strip {strip}"
+        );
+        assert_umbra_sees_nothing(&both, a, b, command);
+    }
+}
+
+/// High panel to x = 0.2, low from x = -0.2: the joint umbra -0.6 <= x <
+/// 1/7 ends along a plane that no volume has, across a fragment. Gridded,
+/// `shadow` proves the cells inside it (all but those it crosses).
+#[test]
+fn gridded_cells_follow_a_joint_umbra_across_a_fragment() {
+    let (a, b) = (0.2, -0.2);
+    let strip = (1.0 / 7.0 + 0.6) * 114.0 / 7.0;
+    let both = run(&panels(Some(a), Some(b)), "shadow", &["--grid", "40"]);
+    let [_, _, joint] = floor_classes(&both);
+    let [_, _, high] = floor_classes(&run(&panels(Some(a), None), "shadow", &["--grid", "40"]));
+    let [_, _, low] = floor_classes(&run(&panels(None, Some(b)), "shadow", &["--grid", "40"]));
+    // Penumbra cells are 0.25 wide: the column the boundary crosses, and
+    // the cells past |z| = 57/7, may stay penumbra.
+    let lost = 0.25 * 114.0 / 7.0;
+    assert!(
+        joint >= high + low + strip - lost,
+        "umbra {joint} with both panels, {high} + {low} one by one, strip {strip}"
+    );
+    assert_umbra_sees_nothing(&both, a, b, "gridded shadow");
+}
