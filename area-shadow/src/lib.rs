@@ -21,6 +21,10 @@
 //! Closed convex bodies that touch face to face and make one convex body
 //! together, whatever their objects (two boxes side by side, a stack),
 //! add that body's umbra ([`convex_unions`]).
+//! Where occluders hide the light only together and not as one convex
+//! body, the umbra they make is bounded by curved surfaces no volume has:
+//! [`dark::sees_none`] proves a region inside it dark, exactly, for the
+//! callers to mark umbra.
 //! [`compute_shadows`] runs point, directional and area lights together,
 //! one mask bit each.
 //!

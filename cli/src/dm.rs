@@ -124,8 +124,7 @@ impl FreshDm {
     }
 }
 
-/// What the joint-umbra proofs of the output's cells need
-/// ([`crate::dark`]).
+/// What the joint-umbra proofs of the output's cells need (`cli::dark`).
 struct DarkContext<'a> {
     areas: &'a [Option<&'a AreaSource>],
     occluders: &'a Occluders<'a>,
@@ -261,7 +260,7 @@ impl DmRun {
     /// receivers in scene order. A cell that the DM-tree leaves in
     /// penumbra, but whose corners all see none of a light, is umbra for it
     /// when proven to see none of it past the occluders it lists
-    /// ([`crate::dark`]: a joint umbra of several occluders, which no
+    /// (`cli::dark`: a joint umbra of several occluders, which no
     /// one volume bounds).
     pub fn mesh(&self) -> OutputMesh {
         let receivers: Vec<(usize, PieceId)> = self

@@ -12,19 +12,56 @@
 //!   the points `l` whose segment `kl` crosses `O` form a convex set (the
 //!   shadow cone of `O` seen from `k`), and the same holds with `k` and `l`
 //!   swapped. So `O` blocks all of `K x L` as soon as it blocks the segments
-//!   between their corners ([`Occluder::blocks`]).
+//!   between their corners (`Occluder::pair_crossings`).
 //! - Where no occluder blocks all of `K x L`, the light or the region is
 //!   halved and each half proven on its own: the light into rectangles with
 //!   grid corners (lights in an axis-aligned plane only, so that every
 //!   corner stays a grid point), the region by axis-aligned grid planes
 //!   (its corners are implicit points, as every cell's). Parts of the light
 //!   a one-sided receiver has behind it need no occluder.
+//!   Halving keeps every corner a corner of some part, so a corner pair
+//!   that no blocker crosses ends the proof at once: it has failed.
 //! - The halving stops at a depth and a node budget: a region next to the
 //!   true (curved) boundary of the joint umbra is never proven, and stays
-//!   penumbra. Only what is proven is dark: the test is sound, not complete.
+//!   penumbra. So is one that reaches where two occluders' hidden parts of
+//!   the light meet with no overlap (a joint umbra that meets one
+//!   occluder's umbra at the light's edge, say): no cut of the light then
+//!   suits all of a part of it. Only what is proven is dark: the test is
+//!   sound, not complete.
+//! - Each step looks only at the blockers in the [`Shaft`] between its
+//!   parts of the region and of the light (a floating-point cull: a wrong
+//!   one could only fail a proof).
 //!
 //! Every side decision is one of `bsp-core`'s exact predicates: a grid or
 //! implicit point against a plane through three grid points.
+//!
+//! # Example
+//!
+//! ```
+//! use area_shadow::AreaSource;
+//! use area_shadow::dark::sees_none;
+//! use bsp_core::{ConvexPolygon, GridPoint};
+//!
+//! let g = |x: i64, y: i64, z: i64| GridPoint::new(x, y, z).unwrap();
+//! let rect = |x: [i64; 2], y: i64, z: [i64; 2]| {
+//!     let c = [g(x[0], y, z[0]), g(x[1], y, z[0]), g(x[1], y, z[1]), g(x[0], y, z[1])];
+//!     ConvexPolygon::from_grid_points(&c, 0).unwrap()
+//! };
+//! // A light over x, z in [0, 40] at height 100, facing down; two panels,
+//! // one at height 60 to x = 25, one at height 30 from x = 22.
+//! let light = AreaSource::from_grid_points(&[g(0, 100, 0), g(40, 100, 0), g(40, 100, 40), g(0, 100, 40)]).unwrap();
+//! let high = rect([-200, 25], 60, [-200, 200]);
+//! let low = rect([22, 200], 30, [-200, 200]);
+//! // A bit of floor (facing up): x in [20, 22], z in [19, 21]. (From
+//! // x = 19 down the floor sees the light between the panels.)
+//! let c = [g(20, 0, 19), g(20, 0, 21), g(22, 0, 21), g(22, 0, 19)];
+//! let floor = ConvexPolygon::from_grid_points(&c, 1).unwrap();
+//! // The high panel hides the light's low x from it, the low one the
+//! // rest: together, all of it.
+//! assert!(sees_none(&floor, false, &light, &[&high, &low], &[]));
+//! assert!(!sees_none(&floor, false, &light, &[&high], &[]));
+//! assert!(!sees_none(&floor, false, &light, &[&low], &[]));
+//! ```
 
 use crate::AreaSource;
 use bsp_core::predicates::{Side, side_of_point};
