@@ -128,8 +128,8 @@ impl FreshDm {
 struct DarkContext<'a> {
     areas: &'a [Option<&'a AreaSource>],
     occluders: &'a Occluders<'a>,
-    /// The object (index into [`DmRun::objects`]) of each piece.
-    object_of: &'a SecondaryMap<PieceId, u32>,
+    /// The index into [`DmRun::objects`] of each object.
+    object_of: &'a SecondaryMap<ObjectId, u32>,
 }
 
 /// A scene's DM-trees, built.
@@ -287,11 +287,9 @@ impl DmRun {
             .collect();
         let groups = ShadowGroups::of_objects(&self.pieces.polygons, &flags, &objects);
         let occluders = Occluders::new(&self.pieces, &groups, &objects);
-        let mut object_of: SecondaryMap<PieceId, u32> = SecondaryMap::new();
+        let mut object_of: SecondaryMap<ObjectId, u32> = SecondaryMap::new();
         for (o, (id, _)) in self.objects.iter().enumerate() {
-            for &piece in self.dm.object_pieces(*id).unwrap_or(&[]) {
-                object_of.insert(piece, o as u32);
-            }
+            object_of.insert(*id, o as u32);
         }
         let areas: Vec<Option<&AreaSource>> =
             self.dm.lights().iter().map(|l| Some(l.source())).collect();
@@ -374,7 +372,8 @@ impl DmRun {
                         .entries()
                         .iter()
                         .filter_map(|e| receiver.unit_source(e.unit))
-                        .filter_map(|(occluder, _)| dark.object_of.get(occluder).copied())
+                        .filter_map(|(occluder, _)| self.dm.piece_object(occluder))
+                        .filter_map(|id| dark.object_of.get(id).copied())
                         .collect();
                     objects.sort_unstable();
                     objects.dedup();

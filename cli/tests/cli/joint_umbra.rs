@@ -37,10 +37,32 @@ fn crosses(p: [f64; 3], l: [f64; 3], y: f64, [x0, x1]: [f64; 2]) -> bool {
     (x0..=x1).contains(&x) && z.abs() <= 6.0
 }
 
+/// Whether the segment from `p` to `l` meets the box `[lo, hi]`.
+fn meets_box(p: [f64; 3], l: [f64; 3], lo: [f64; 3], hi: [f64; 3]) -> bool {
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for k in 0..3 {
+        let d = l[k] - p[k];
+        if d == 0.0 {
+            if p[k] < lo[k] || p[k] > hi[k] {
+                return false;
+            }
+            continue;
+        }
+        let (a, b) = ((lo[k] - p[k]) / d, (hi[k] - p[k]) / d);
+        t0 = t0.max(a.min(b));
+        t1 = t1.min(a.max(b));
+    }
+    t0 <= t1
+}
+
 /// Checks that from points inside every umbra floor face (its centre, and
-/// halfway from it to each corner) the panels hide each of 21 x 21 points
-/// of the light.
-fn assert_umbra_sees_nothing(mesh: &OutputMesh, a: f64, b: f64, what: &str) {
+/// halfway from it to each corner) `hidden` holds for each of 21 x 21
+/// points of the light.
+fn assert_umbra_sees_nothing(
+    mesh: &OutputMesh,
+    hidden: impl Fn([f64; 3], [f64; 3]) -> bool,
+    what: &str,
+) {
     let light: Vec<[f64; 3]> = (0..21 * 21)
         .map(|k| {
             [
@@ -65,12 +87,17 @@ fn assert_umbra_sees_nothing(mesh: &OutputMesh, a: f64, b: f64, what: &str) {
         for p in samples {
             for &l in &light {
                 assert!(
-                    crosses(p, l, 6.0, [-6.0, a]) || crosses(p, l, 3.0, [b, 6.0]),
+                    hidden(p, l),
                     "{what}: umbra face {f} sees the light from {p:?} at {l:?}"
                 );
             }
         }
     }
+}
+
+/// Whether the panels of [`panels`] hide `l` from `p`.
+fn panels_hide(a: f64, b: f64) -> impl Fn([f64; 3], [f64; 3]) -> bool {
+    move |p, l| crosses(p, l, 6.0, [-6.0, a]) || crosses(p, l, 3.0, [b, 6.0])
 }
 
 /// Runs `command` (with `args`) on the scene and returns the output mesh.
@@ -102,7 +129,7 @@ fn two_panels_hide_a_strip_neither_hides_alone() {
             joint >= high + low + strip - 1e-6,
             "{command}: umbra {joint} with both panels, {high} + {low} one by one, strip {strip}"
         );
-        assert_umbra_sees_nothing(&both, a, b, command);
+        assert_umbra_sees_nothing(&both, panels_hide(a, b), command);
     }
 }
 
@@ -124,5 +151,40 @@ fn gridded_cells_follow_a_joint_umbra_across_a_fragment() {
         joint >= high + low + strip - lost,
         "umbra {joint} with both panels, {high} + {low} one by one, strip {strip}"
     );
-    assert_umbra_sees_nothing(&both, a, b, "gridded shadow");
+    assert_umbra_sees_nothing(&both, panels_hide(a, b), "gridded shadow");
+}
+
+/// The panels of [`two_panels_hide_a_strip_neither_hides_alone`] as slabs
+/// 0.2 thick (each a closed convex body, one object; the high slab's
+/// bottom is the high panel, the low slab's top the low panel). Between
+/// their umbrae (x = -1 from the high slab's bottom edge, x = -4/9 from the
+/// low slab's bottom edge) and where the low slab's bottom spans every
+/// ray's z (|z| <= 5.72 / 0.72), the floor sees nothing: both commands
+/// prove that strip past the bodies (a DM cell lists a body as one
+/// occluder of its object; `shadow` gridded, as its fragment runs on to
+/// the floor's edge).
+#[test]
+fn two_slabs_hide_a_strip_as_bodies() {
+    let (a, b) = (0.2, -0.6);
+    let high = ([-6.0, 6.0, -6.0], [a, 6.2, 6.0]);
+    let low = ([b, 2.8, -6.0], [6.0, 3.0, 6.0]);
+    let scene = |boxes: &[([f64; 3], [f64; 3])]| {
+        crate::joints::boxes_under_a_side_light(boxes).replace(
+            "vertices = [[2, 10, -1], [4, 10, -1], [4, 10, 1], [2, 10, 1]]",
+            "vertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]",
+        )
+    };
+    let strip = (1.0 - 4.0 / 9.0) * 2.0 * 5.72 / 0.72;
+    let hidden = |p, l| meets_box(p, l, high.0, high.1) || meets_box(p, l, low.0, low.1);
+    for (command, args) in [("shadow", &["--grid", "40"][..]), ("dm", &[][..])] {
+        let both = run(&scene(&[high, low]), command, args);
+        let [_, _, joint] = floor_classes(&both);
+        let [_, _, by_high] = floor_classes(&run(&scene(&[high]), command, args));
+        let [_, _, by_low] = floor_classes(&run(&scene(&[low]), command, args));
+        assert!(
+            joint >= by_high + by_low + strip - 1e-6,
+            "{command}: umbra {joint} under both slabs, {by_high} + {by_low} one by one, strip {strip}"
+        );
+        assert_umbra_sees_nothing(&both, hidden, command);
+    }
 }
