@@ -330,6 +330,8 @@ impl DmRun {
         let lights = self.dm.lights().len();
         let two_sided = self.pieces.two_sided[k];
         let mut index: SecondaryMap<VertexKey, u32> = SecondaryMap::new();
+        // Faces to prove dark: face, region, lights, objects to look past.
+        let mut candidates: Vec<(usize, ConvexPolygon, u32, Vec<u32>)> = Vec::new();
         for (face, cell) in receiver.cells() {
             let corners = receiver.mesh().face_vertices(face);
             let mut vertices = Vec::with_capacity(corners.len());
@@ -360,26 +362,21 @@ impl DmRun {
                 }
             }
             // Cells in a joint umbra: penumbra for the volumes, every corner
-            // dark, and proven to see none of the light.
-            if penumbra_mask & dark_corners != 0 {
-                if let Ok(region) = receiver.mesh().face_polygon(face, 0) {
-                    let candidate = DarkCandidate {
-                        region: &region,
-                        two_sided,
-                        lights: penumbra_mask & dark_corners,
-                    };
-                    let mut objects: Vec<u32> = cell
-                        .entries()
-                        .iter()
-                        .filter_map(|e| receiver.unit_source(e.unit))
-                        .filter_map(|(occluder, _)| self.dm.piece_object(occluder))
-                        .filter_map(|id| dark.object_of.get(id).copied())
-                        .collect();
-                    objects.sort_unstable();
-                    objects.dedup();
-                    umbra_mask |=
-                        proven_dark_past(&candidate, dark.areas, dark.occluders, &objects);
-                }
+            // dark, and proven to see none of the light (below).
+            if penumbra_mask & dark_corners != 0
+                && let Ok(region) = receiver.mesh().face_polygon(face, 0)
+            {
+                let mut objects: Vec<u32> = cell
+                    .entries()
+                    .iter()
+                    .filter_map(|e| receiver.unit_source(e.unit))
+                    .filter_map(|(occluder, _)| self.dm.piece_object(occluder))
+                    .filter_map(|id| dark.object_of.get(id).copied())
+                    .collect();
+                objects.sort_unstable();
+                objects.dedup();
+                let lights = penumbra_mask & dark_corners;
+                candidates.push((mesh.faces.len(), region, lights, objects));
             }
             mesh.faces.push(OutputFace {
                 vertices,
@@ -387,6 +384,22 @@ impl DmRun {
                 lit_mask,
                 umbra_mask,
             });
+        }
+        // The proofs in parallel too: one receiver (a floor) may hold most
+        // of the cells.
+        let proven: Vec<u32> = candidates
+            .par_iter()
+            .map(|(_, region, lights, objects)| {
+                let candidate = DarkCandidate {
+                    region,
+                    two_sided,
+                    lights: *lights,
+                };
+                proven_dark_past(&candidate, dark.areas, dark.occluders, objects)
+            })
+            .collect();
+        for ((f, ..), dark) in candidates.iter().zip(proven) {
+            mesh.faces[*f].umbra_mask |= dark;
         }
         mesh
     }

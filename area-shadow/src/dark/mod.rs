@@ -68,6 +68,7 @@ use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane, Split};
 use smallvec::SmallVec;
 
+mod leak;
 mod shaft;
 pub use shaft::Shaft;
 
@@ -79,7 +80,11 @@ pub const DARK_FRACTION: f64 = 1e-9;
 
 /// How many times the light and the region are halved, at most, along one
 /// path of the proof.
-const MAX_DEPTH: u32 = 12;
+const MAX_DEPTH: u32 = 10;
+
+/// Blockers few enough that a step of a proof keeps them all rather than
+/// cull them by its shaft.
+const FEW_BLOCKERS: usize = 4;
 
 /// How many halvings one proof may make in all before it gives up.
 const NODE_BUDGET: usize = 300;
@@ -100,6 +105,21 @@ pub fn sees_none(
 ) -> bool {
     let occluders: Vec<Occluder> = occluders.iter().filter_map(|o| Occluder::new(o)).collect();
     if occluders.is_empty() && bodies.is_empty() {
+        return false;
+    }
+    let light_points: Vec<[f64; 3]> = light.vertices().map(|p| p.to_f64()).collect();
+    let receiver_normal = (!two_sided).then(|| region.support().normal().map(|c| c as f64));
+    let outlines = occluders.iter().map(|o| &o.points[..]).chain(
+        bodies
+            .iter()
+            .flat_map(|b| b.surface.iter().map(|o| &o.points[..])),
+    );
+    if leak::sees_light(
+        &region.vertices_f64(),
+        &light_points,
+        receiver_normal,
+        outlines,
+    ) {
         return false;
     }
     let prover = Prover {
@@ -159,6 +179,28 @@ impl Occluder {
             points: corners.iter().map(|p: &GridPoint| p.to_f64()).collect(),
             corners,
         })
+    }
+
+    /// Whether every corner pair's segment crosses this polygon (see
+    /// [`Self::pair_crossings`]), stopping at the first that does not.
+    fn blocks(&self, region: &ConvexPolygon, light: &[GridPoint]) -> bool {
+        let Some(&first) = light.first() else {
+            return false;
+        };
+        let light_side = side_of_point(&self.support, first);
+        if light_side == Side::On
+            || light[1..]
+                .iter()
+                .any(|&l| side_of_point(&self.support, l) != light_side)
+            || (0..region.len())
+                .any(|i| region.vertex_side(i, &self.support) != light_side.flipped())
+        {
+            return false;
+        }
+        let all: SmallVec<[bool; 8]> = smallvec::smallvec![true; region.len()];
+        light
+            .iter()
+            .all(|&l| !self.crossings(region, l, &all).contains(&false))
     }
 
     /// For each corner pair (light corner `j`, region corner `i`, at
@@ -247,6 +289,18 @@ pub struct Body {
     open: Vec<Plane>,
     /// The occluders on the body's boundary.
     surface: Vec<Occluder>,
+    /// Per surface occluder: its support's front, in or out of the body
+    /// (`Some(true)`: out), or `None` if the body is on both sides.
+    outward: Vec<Option<bool>>,
+}
+
+/// Which end of a segment is outside the body, for segments that enter it
+/// through a face that end sees (see [`Body::crossings`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Entry {
+    Light,
+    Region,
+    Either,
 }
 
 impl Body {
@@ -259,7 +313,27 @@ impl Body {
             .iter()
             .map(|p| Occluder::new(p))
             .collect::<Option<_>>()?;
+        let outward = surface
+            .iter()
+            .map(|o| {
+                let sides = surface
+                    .iter()
+                    .flat_map(|other| other.corners.iter())
+                    .map(|&p| side_of_point(&o.support, p));
+                let (mut front, mut back) = (false, false);
+                for side in sides {
+                    front |= side == Side::Front;
+                    back |= side == Side::Back;
+                }
+                match (front, back) {
+                    (false, true) => Some(true),
+                    (true, false) => Some(false),
+                    _ => None,
+                }
+            })
+            .collect();
         Some(Self {
+            outward,
             bounds: bounds(
                 surface
                     .iter()
@@ -276,6 +350,32 @@ impl Body {
         self.open.is_empty()
     }
 
+    /// Whether the corners may enter the body and every corner pair's
+    /// segment crosses one of its occluders (see [`Self::pair_crossings`]),
+    /// stopping at the first that does not.
+    fn blocks(&self, region: &ConvexPolygon, light: &[GridPoint]) -> bool {
+        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            (0..region.len())
+                .map(|i| region.vertex_side(i, plane))
+                .collect()
+        };
+        let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            light.iter().map(|&p| side_of_point(plane, p)).collect()
+        };
+        let entry = if self.enters_from(light_sides) {
+            Entry::Light
+        } else if self.enters_from(region_sides) {
+            Entry::Region
+        } else {
+            return false;
+        };
+        let sides = self.surface_sides(region, light);
+        light
+            .iter()
+            .enumerate()
+            .all(|(j, &l)| !self.crossings(region, l, j, &sides, entry).contains(&false))
+    }
+
     /// As [`Occluder::pair_crossings`], a pair crossing when it crosses
     /// one of the body's occluders; and whether the corners of the region
     /// or those of the light may enter the body (see the type's docs). When
@@ -290,14 +390,22 @@ impl Body {
         let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
             light.iter().map(|&p| side_of_point(plane, p)).collect()
         };
-        let enters = self.enters_from(region_sides) || self.enters_from(light_sides);
+        let entry = if self.enters_from(light_sides) {
+            Some(Entry::Light)
+        } else if self.enters_from(region_sides) {
+            Some(Entry::Region)
+        } else {
+            None
+        };
         let sides = self.surface_sides(region, light);
         let pairs = light
             .iter()
             .enumerate()
-            .flat_map(|(j, &l)| self.crossings(region, l, j, &sides))
+            .flat_map(|(j, &l)| {
+                self.crossings(region, l, j, &sides, entry.unwrap_or(Entry::Either))
+            })
             .collect();
-        (pairs, enters)
+        (pairs, entry.is_some())
     }
 
     /// The sides of the region's and the light's corners for each surface
@@ -320,21 +428,37 @@ impl Body {
     }
 
     /// For each region corner, whether the segment from it to light corner
-    /// `l` (number `j`) crosses a surface polygon.
+    /// `l` (number `j`) crosses a surface polygon. A segment from outside
+    /// the body that meets it enters through a face its outer end sees, so
+    /// with that end known (`entry`) only those faces are tried.
     fn crossings(
         &self,
         region: &ConvexPolygon,
         l: GridPoint,
         j: usize,
         sides: &[CornerSides],
+        entry: Entry,
     ) -> SmallVec<[bool; 8]> {
         let mut crossed: SmallVec<[bool; 8]> = smallvec::smallvec![false; region.len()];
-        for (o, (ks, ls)) in self.surface.iter().zip(sides) {
+        for ((o, (ks, ls)), outward) in self.surface.iter().zip(sides).zip(&self.outward) {
             if ls[j] == Side::On {
                 continue;
             }
+            // The side a face's outer end must be on.
+            let seen_from = match outward {
+                Some(true) => Some(Side::Front),
+                Some(false) => Some(Side::Back),
+                None => None,
+            };
+            if entry == Entry::Light && seen_from.is_some_and(|s| ls[j] != s) {
+                continue;
+            }
             let test: SmallVec<[bool; 8]> = (0..region.len())
-                .map(|i| !crossed[i] && ks[i] == ls[j].flipped())
+                .map(|i| {
+                    !crossed[i]
+                        && ks[i] == ls[j].flipped()
+                        && !(entry == Entry::Region && seen_from.is_some_and(|s| ks[i] != s))
+                })
                 .collect();
             if !test.contains(&true) {
                 continue;
@@ -433,6 +557,7 @@ struct Prover<'a> {
 
 /// The blockers a node of a proof looks at: indices into the prover's
 /// occluders and bodies.
+#[derive(Clone)]
 struct Near {
     occluders: SmallVec<[u32; 16]>,
     bodies: SmallVec<[u32; 16]>,
@@ -465,24 +590,42 @@ impl Prover<'_> {
             return true;
         }
         // Parts of the region and of the light are parts of their parent's:
-        // each keeps fewer blockers.
-        let light_points: SmallVec<[[f64; 3]; 8]> =
-            light.corners.iter().map(|p| p.to_f64()).collect();
-        let shaft = Shaft::new(&region.vertices_f64(), &light_points);
-        let near = Near {
-            occluders: near
-                .occluders
-                .iter()
-                .copied()
-                .filter(|&k| !shaft.misses(&self.occluders[k as usize].points))
-                .collect(),
-            bodies: near
+        // each keeps fewer blockers. (With a few left, culling costs more
+        // than it saves.)
+        let near = if near.occluders.len() + near.bodies.len() <= FEW_BLOCKERS {
+            near.clone()
+        } else {
+            let light_points: SmallVec<[[f64; 3]; 8]> =
+                light.corners.iter().map(|p| p.to_f64()).collect();
+            let shaft = Shaft::new(&region.vertices_f64(), &light_points);
+            Near {
+                occluders: near
+                    .occluders
+                    .iter()
+                    .copied()
+                    .filter(|&k| !shaft.misses(&self.occluders[k as usize].points))
+                    .collect(),
+                bodies: near
+                    .bodies
+                    .iter()
+                    .copied()
+                    .filter(|&k| !shaft.misses_box(&self.bodies[k as usize].bounds))
+                    .collect(),
+            }
+        };
+        // First whether one blocker hides it all, each test stopping at the
+        // first pair it does not cross.
+        if near
+            .occluders
+            .iter()
+            .any(|&k| self.occluders[k as usize].blocks(region, &light.corners))
+            || near
                 .bodies
                 .iter()
-                .copied()
-                .filter(|&k| !shaft.misses_box(&self.bodies[k as usize].bounds))
-                .collect(),
-        };
+                .any(|&k| self.bodies[k as usize].blocks(region, &light.corners))
+        {
+            return true;
+        }
         let occluders = near
             .occluders
             .iter()
@@ -496,9 +639,6 @@ impl Prover<'_> {
         let mut crossed: Pairs = smallvec::smallvec![false; region.len() * light.corners.len()];
         let mut candidates: Vec<Pairs> = Vec::new();
         for (pairs, candidate) in occluders.chain(bodies) {
-            if candidate && !pairs.contains(&false) {
-                return true;
-            }
             for (c, &p) in crossed.iter_mut().zip(&pairs) {
                 *c |= p;
             }
