@@ -8,11 +8,14 @@
 //! exactly, that sample points of a lit fragment (its centroid and points
 //! near its vertices) see points inside the light near
 //! each vertex and its centroid and an umbra fragment's see none of them (segments
-//! tested against the triangles with Shewchuk's exact orientation), and
-//! that the conforming mesh has no T-vertex.
+//! tested against the triangles with Shewchuk's exact orientation), that
+//! a penumbra fragment proven dark ([`area_shadow::dark::sees_none`], the
+//! joint umbra of several triangles) sees none of them either, and that
+//! the conforming mesh has no T-vertex.
 
 use crate::scene::{check_partition, crosses, floor_and, gp, samples};
 use arbitrary::{Arbitrary, Unstructured};
+use area_shadow::dark::sees_none;
 use area_shadow::{AreaSource, Class, SceneLight, compute_shadows, conform_fragments};
 use bsp_core::{BuildOptions, ConvexPolygon};
 use svbsp::PieceFlags;
@@ -129,10 +132,18 @@ pub fn check_area(case: &AreaCase) -> Result<(), String> {
         })
         .collect();
     targets.push(centre);
+    let occluders: Vec<&ConvexPolygon> = pieces.iter().skip(1).collect();
     for f in &out.fragments {
-        let class = Class::of(f, 0);
-        if class == Class::Penumbra || f.polygon.area() < 1e-3 {
+        let mut class = Class::of(f, 0);
+        if f.polygon.area() < 1e-3 {
             continue;
+        }
+        if class == Class::Penumbra {
+            let two_sided = flags[f.polygon.source() as usize].two_sided;
+            if !sees_none(&f.polygon, two_sided, &light, &occluders, &[]) {
+                continue;
+            }
+            class = Class::Umbra;
         }
         let own = pieces[f.polygon.source() as usize].support();
         if own.is_coincident(light.support()) {
