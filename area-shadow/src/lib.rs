@@ -65,6 +65,8 @@ mod merge_pieces;
 mod pass;
 mod pipeline;
 mod source;
+#[cfg(test)]
+mod test_shapes;
 mod tree;
 mod volumes;
 

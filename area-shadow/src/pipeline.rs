@@ -18,6 +18,20 @@ pub enum SceneLight {
     Area(AreaSource),
 }
 
+impl SceneLight {
+    /// The area lights among `lights`, each with its index (its mask bit).
+    pub fn areas(lights: &[SceneLight]) -> Vec<(usize, &AreaSource)> {
+        lights
+            .iter()
+            .enumerate()
+            .filter_map(|(i, l)| match l {
+                SceneLight::Area(source) => Some((i, source)),
+                SceneLight::Svbsp(_) => None,
+            })
+            .collect()
+    }
+}
+
 /// Figures of one light's pass.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LightFigures {
@@ -145,14 +159,7 @@ pub fn compute_shadows_with_groups(
     let started = Instant::now();
     // Each area light's trees depend only on the pieces: build them side by
     // side, then let each light refine the fragments in turn.
-    let area_lights: Vec<(usize, &AreaSource)> = lights
-        .iter()
-        .enumerate()
-        .filter_map(|(i, l)| match l {
-            SceneLight::Area(source) => Some((i, source)),
-            SceneLight::Svbsp(_) => None,
-        })
-        .collect();
+    let area_lights = SceneLight::areas(lights);
     let trees: Vec<AreaTrees> = area_lights
         .par_iter()
         .map(|(_, source)| AreaTrees::build_with_groups(&originals, flags, groups, source))

@@ -270,14 +270,7 @@ fn mark_joint_umbra(
     pieces: &Pieces,
     occluders: &Occluders<'_>,
 ) {
-    let areas: Vec<(usize, &AreaSource)> = lights
-        .iter()
-        .enumerate()
-        .filter_map(|(i, l)| match l {
-            SceneLight::Area(source) => Some((i, source)),
-            SceneLight::Svbsp(_) => None,
-        })
-        .collect();
+    let areas = SceneLight::areas(lights);
     fragments.par_iter_mut().for_each(|fragment| {
         for &(i, light) in &areas {
             // (The corners go first, each stopping at the first lit one:

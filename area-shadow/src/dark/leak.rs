@@ -5,6 +5,8 @@
 //! not tried; the exact proof decides all the rest. A segment that comes
 //! near a blocker counts as blocked: rounding can only let a proof run.
 
+use super::vector::{cross, dot, norm, sub};
+
 /// Unit normal and offset of a plane, and a polygon's corners.
 struct Outline<'a> {
     normal: [f64; 3],
@@ -110,26 +112,6 @@ fn centre(points: &[[f64; 3]]) -> [f64; 3] {
 
 fn mid(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|k| 0.5 * (a[k] + b[k]))
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|k| a[k] - b[k])
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn norm(a: [f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 #[cfg(test)]

@@ -70,6 +70,7 @@ use smallvec::SmallVec;
 
 mod leak;
 mod shaft;
+mod vector;
 pub use shaft::Shaft;
 
 /// A point counts as dark for a light, in floating point, when it gets at
@@ -354,19 +355,7 @@ impl Body {
     /// segment crosses one of its occluders (see [`Self::pair_crossings`]),
     /// stopping at the first that does not.
     fn blocks(&self, region: &ConvexPolygon, light: &[GridPoint]) -> bool {
-        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
-            (0..region.len())
-                .map(|i| region.vertex_side(i, plane))
-                .collect()
-        };
-        let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
-            light.iter().map(|&p| side_of_point(plane, p)).collect()
-        };
-        let entry = if self.enters_from(light_sides) {
-            Entry::Light
-        } else if self.enters_from(region_sides) {
-            Entry::Region
-        } else {
+        let Some(entry) = self.entry(region, light) else {
             return false;
         };
         let sides = self.surface_sides(region, light);
@@ -376,12 +365,9 @@ impl Body {
             .all(|(j, &l)| !self.crossings(region, l, j, &sides, entry).contains(&false))
     }
 
-    /// As [`Occluder::pair_crossings`], a pair crossing when it crosses
-    /// one of the body's occluders; and whether the corners of the region
-    /// or those of the light may enter the body (see the type's docs). When
-    /// they may and every pair crosses, every segment from `region` to
-    /// `light` crosses the body's occluders.
-    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> (Pairs, bool) {
+    /// Which corners are all outside the body and may enter it (see the
+    /// type's docs): the light's, else the region's, else none.
+    fn entry(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Option<Entry> {
         let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
             (0..region.len())
                 .map(|i| region.vertex_side(i, plane))
@@ -390,13 +376,22 @@ impl Body {
         let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
             light.iter().map(|&p| side_of_point(plane, p)).collect()
         };
-        let entry = if self.enters_from(light_sides) {
+        if self.enters_from(light_sides) {
             Some(Entry::Light)
         } else if self.enters_from(region_sides) {
             Some(Entry::Region)
         } else {
             None
-        };
+        }
+    }
+
+    /// As [`Occluder::pair_crossings`], a pair crossing when it crosses
+    /// one of the body's occluders; and whether the corners of the region
+    /// or those of the light may enter the body (see the type's docs). When
+    /// they may and every pair crosses, every segment from `region` to
+    /// `light` crosses the body's occluders.
+    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> (Pairs, bool) {
+        let entry = self.entry(region, light);
         let sides = self.surface_sides(region, light);
         let pairs = light
             .iter()

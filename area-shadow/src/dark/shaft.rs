@@ -5,6 +5,8 @@
 //! fail, never make one succeed, so the test need not be exact (its margin
 //! keeps blockers that touch the shaft).
 
+use super::vector::{cross, dot, sub};
+
 /// The convex hull of two convex polygons, by the planes through an edge
 /// of one and a corner of the other that have both on one side.
 #[derive(Debug, Clone)]
@@ -79,22 +81,6 @@ impl Shaft {
         });
         self.misses(&corners)
     }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|k| a[k] - b[k])
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 
 use super::*;
 use crate::convex_groups;
+use crate::test_shapes::cuboid;
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
 
@@ -37,23 +38,6 @@ fn floor(x: i64, z: i64, r: i64) -> ConvexPolygon {
     let square = ConvexPolygon::from_grid_points(&corners, 0).unwrap();
     assert!(square.support().normal()[1] > 0);
     square
-}
-
-/// The six faces of the box from `lo` to `hi`, facing out.
-fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
-    let ([a, b, c], [d, e, f]) = (lo, hi);
-    let faces = [
-        [g(a, b, c), g(a, e, c), g(d, e, c), g(d, b, c)],
-        [g(a, b, f), g(d, b, f), g(d, e, f), g(a, e, f)],
-        [g(a, b, c), g(d, b, c), g(d, b, f), g(a, b, f)],
-        [g(a, e, c), g(a, e, f), g(d, e, f), g(d, e, c)],
-        [g(a, b, c), g(a, b, f), g(a, e, f), g(a, e, c)],
-        [g(d, b, c), g(d, e, c), g(d, e, f), g(d, b, f)],
-    ];
-    faces
-        .iter()
-        .map(|f| ConvexPolygon::from_grid_points(f, 0).unwrap())
-        .collect()
 }
 
 /// Two panels at different heights that overlap seen from below: one

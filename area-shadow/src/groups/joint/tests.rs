@@ -3,24 +3,7 @@
 
 use super::super::convex_groups;
 use super::*;
-
-/// The six faces of the box from `lo` to `hi`, facing out.
-fn cuboid(lo: [i32; 3], hi: [i32; 3]) -> Vec<ConvexPolygon> {
-    let g = |x, y, z| GridPoint { x, y, z };
-    let ([a, b, c], [d, e, f]) = (lo, hi);
-    let faces = [
-        [g(a, b, c), g(a, e, c), g(d, e, c), g(d, b, c)],
-        [g(a, b, f), g(d, b, f), g(d, e, f), g(a, e, f)],
-        [g(a, b, c), g(d, b, c), g(d, b, f), g(a, b, f)],
-        [g(a, e, c), g(a, e, f), g(d, e, f), g(d, e, c)],
-        [g(a, b, c), g(a, b, f), g(a, e, f), g(a, e, c)],
-        [g(d, b, c), g(d, e, c), g(d, e, f), g(d, b, f)],
-    ];
-    faces
-        .iter()
-        .map(|f| ConvexPolygon::from_grid_points(f, 0).unwrap())
-        .collect()
-}
+use crate::test_shapes::cuboid;
 
 /// The bodies of `boxes`, each box its own object.
 fn unions(boxes: &[([i32; 3], [i32; 3])]) -> Vec<Vec<usize>> {
