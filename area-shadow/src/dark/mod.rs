@@ -138,6 +138,7 @@ pub fn sees_none(
     let mut search = Search {
         budget: NODE_BUDGET,
         refuted: false,
+        at_root: true,
     };
     let near = Near {
         occluders: (0..prover.occluders.len() as u32).collect(),
@@ -182,12 +183,11 @@ impl Occluder {
         })
     }
 
-    /// Whether every corner pair's segment crosses this polygon (see
-    /// [`Self::pair_crossings`]), stopping at the first that does not.
-    fn blocks(&self, region: &ConvexPolygon, light: &[GridPoint]) -> bool {
-        let Some(&first) = light.first() else {
-            return false;
-        };
+    /// When the light and the region lie strictly on opposite sides of
+    /// the polygon's plane, which corner pairs cross it (as
+    /// [`Self::pair_crossings`]); `None` otherwise.
+    fn candidate_pairs(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Option<Pairs> {
+        let &first = light.first()?;
         let light_side = side_of_point(&self.support, first);
         if light_side == Side::On
             || light[1..]
@@ -196,40 +196,39 @@ impl Occluder {
             || (0..region.len())
                 .any(|i| region.vertex_side(i, &self.support) != light_side.flipped())
         {
-            return false;
+            return None;
         }
         let all: SmallVec<[bool; 8]> = smallvec::smallvec![true; region.len()];
-        light
-            .iter()
-            .all(|&l| !self.crossings(region, l, &all).contains(&false))
+        Some(
+            light
+                .iter()
+                .flat_map(|&l| self.crossings(region, l, &all))
+                .collect(),
+        )
     }
 
     /// For each corner pair (light corner `j`, region corner `i`, at
     /// `j * region.len() + i`), whether its segment crosses this polygon
-    /// (closed) strictly between its ends; and whether the region and the
-    /// light lie strictly on opposite sides of its plane. When every pair
-    /// crosses, every segment from `region` to `light` does (see the
-    /// module's docs).
-    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> (Pairs, bool) {
+    /// (closed) strictly between its ends. When every pair crosses, every
+    /// segment from `region` to `light` does (see the module's docs).
+    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Pairs {
         let region_sides: SmallVec<[Side; 8]> = (0..region.len())
             .map(|i| region.vertex_side(i, &self.support))
             .collect();
         let mut pairs = Pairs::new();
-        let mut opposite = true;
         for &l in light {
             let l_side = side_of_point(&self.support, l);
             let test: SmallVec<[bool; 8]> = region_sides
                 .iter()
                 .map(|&k| l_side != Side::On && k == l_side.flipped())
                 .collect();
-            opposite &= test.iter().all(|&t| t);
             if test.contains(&true) {
                 pairs.extend(self.crossings(region, l, &test));
             } else {
                 pairs.extend(test);
             }
         }
-        (pairs, opposite)
+        pairs
     }
 
     /// For each region corner `i` with `test[i]` (on the side of the plane
@@ -351,18 +350,19 @@ impl Body {
         self.open.is_empty()
     }
 
-    /// Whether the corners may enter the body and every corner pair's
-    /// segment crosses one of its occluders (see [`Self::pair_crossings`]),
-    /// stopping at the first that does not.
-    fn blocks(&self, region: &ConvexPolygon, light: &[GridPoint]) -> bool {
-        let Some(entry) = self.entry(region, light) else {
-            return false;
-        };
+    /// When the corners of the light or of the region may enter the body
+    /// (see the type's docs), which corner pairs cross one of its
+    /// occluders (as [`Self::pair_crossings`]); `None` otherwise.
+    fn candidate_pairs(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Option<Pairs> {
+        let entry = self.entry(region, light)?;
         let sides = self.surface_sides(region, light);
-        light
-            .iter()
-            .enumerate()
-            .all(|(j, &l)| !self.crossings(region, l, j, &sides, entry).contains(&false))
+        Some(
+            light
+                .iter()
+                .enumerate()
+                .flat_map(|(j, &l)| self.crossings(region, l, j, &sides, entry))
+                .collect(),
+        )
     }
 
     /// Which corners are all outside the body and may enter it (see the
@@ -386,21 +386,18 @@ impl Body {
     }
 
     /// As [`Occluder::pair_crossings`], a pair crossing when it crosses
-    /// one of the body's occluders; and whether the corners of the region
-    /// or those of the light may enter the body (see the type's docs). When
-    /// they may and every pair crosses, every segment from `region` to
-    /// `light` crosses the body's occluders.
-    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> (Pairs, bool) {
-        let entry = self.entry(region, light);
+    /// one of the body's occluders. When the corners of the region or
+    /// those of the light may enter the body (see the type's docs) and
+    /// every pair crosses, every segment from `region` to `light` crosses
+    /// the body's occluders.
+    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Pairs {
+        let entry = self.entry(region, light).unwrap_or(Entry::Either);
         let sides = self.surface_sides(region, light);
-        let pairs = light
+        light
             .iter()
             .enumerate()
-            .flat_map(|(j, &l)| {
-                self.crossings(region, l, j, &sides, entry.unwrap_or(Entry::Either))
-            })
-            .collect();
-        (pairs, entry.is_some())
+            .flat_map(|(j, &l)| self.crossings(region, l, j, &sides, entry))
+            .collect()
     }
 
     /// The sides of the region's and the light's corners for each surface
@@ -564,6 +561,8 @@ struct Near {
 struct Search {
     budget: usize,
     refuted: bool,
+    /// Whether the next step is the first.
+    at_root: bool,
 }
 
 impl Prover<'_> {
@@ -608,45 +607,48 @@ impl Prover<'_> {
                     .collect(),
             }
         };
-        // First whether one blocker hides it all, each test stopping at the
-        // first pair it does not cross.
-        if near
-            .occluders
-            .iter()
-            .any(|&k| self.occluders[k as usize].blocks(region, &light.corners))
-            || near
-                .bodies
-                .iter()
-                .any(|&k| self.bodies[k as usize].blocks(region, &light.corners))
-        {
-            return true;
-        }
+        // The blockers that may hide all of the light from all of the
+        // region (strictly between them, or a body they may enter), each
+        // with the corner pairs it crosses: one that crosses them all hides
+        // it all, and the others guide the halving.
+        let mut candidates: Vec<Pairs> = Vec::new();
         let occluders = near
             .occluders
             .iter()
-            .map(|&k| self.occluders[k as usize].pair_crossings(region, &light.corners));
+            .filter_map(|&k| self.occluders[k as usize].candidate_pairs(region, &light.corners));
         let bodies = near
             .bodies
             .iter()
-            .map(|&k| self.bodies[k as usize].pair_crossings(region, &light.corners));
-        // Which corner pairs some blocker crosses, and the pairs of the
-        // blockers that may hide all of the light from all of the region.
-        let mut crossed: Pairs = smallvec::smallvec![false; region.len() * light.corners.len()];
-        let mut candidates: Vec<Pairs> = Vec::new();
-        for (pairs, candidate) in occluders.chain(bodies) {
-            for (c, &p) in crossed.iter_mut().zip(&pairs) {
-                *c |= p;
+            .filter_map(|&k| self.bodies[k as usize].candidate_pairs(region, &light.corners));
+        for pairs in occluders.chain(bodies) {
+            if !pairs.contains(&false) {
+                return true;
             }
-            if candidate {
-                candidates.push(pairs);
-            }
+            candidates.push(pairs);
         }
         // A corner pair no blocker crosses stays a corner pair of some
         // part however the region and the light are halved, and no part
-        // with it is ever proven: the proof has failed.
-        if self.pair_sees_past_all(region.len(), light, &crossed) {
-            search.refuted = true;
-            return false;
+        // with it is ever proven: the proof has failed. (Looked for once:
+        // it takes every blocker's pairs.)
+        if std::mem::take(&mut search.at_root) {
+            let mut crossed: Pairs = smallvec::smallvec![false; region.len() * light.corners.len()];
+            let occluders = near
+                .occluders
+                .iter()
+                .map(|&k| self.occluders[k as usize].pair_crossings(region, &light.corners));
+            let bodies = near
+                .bodies
+                .iter()
+                .map(|&k| self.bodies[k as usize].pair_crossings(region, &light.corners));
+            for pairs in occluders.chain(bodies) {
+                for (c, &p) in crossed.iter_mut().zip(&pairs) {
+                    *c |= p;
+                }
+            }
+            if self.pair_sees_past_all(region.len(), light, &crossed) {
+                search.refuted = true;
+                return false;
+            }
         }
         if depth == 0 || search.budget == 0 {
             return false;
