@@ -66,8 +66,10 @@
 use crate::AreaSource;
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane, Split};
+use lattice::Lattice;
 use smallvec::SmallVec;
 
+mod lattice;
 mod leak;
 mod shaft;
 mod vector;
@@ -129,7 +131,10 @@ pub fn sees_none(
         receiver: region.support(),
         two_sided,
         light,
-        light_axes: light_axes(light.support()),
+        lattice: light
+            .vertices()
+            .next()
+            .and_then(|on| Lattice::of(light.support(), on)),
     };
     let whole = LightPiece {
         corners: light.vertices().collect(),
@@ -485,57 +490,13 @@ type Pairs = SmallVec<[bool; 32]>;
 /// The sides of a region's corners and of a light's corners of a plane.
 type CornerSides = (SmallVec<[Side; 8]>, SmallVec<[Side; 8]>);
 
-/// A part of the light: the light itself, or a rectangle with grid corners
-/// in its (axis-aligned) plane covering part of it.
+/// A part of the light: the light itself, or a parallelogram of its
+/// plane's lattice, grid points at its corners, covering part of it.
 struct LightPiece {
     corners: SmallVec<[GridPoint; 8]>,
-    /// The rectangle's low and high corners along the light's two in-plane
-    /// axes; `None` for the light itself.
+    /// The parallelogram's low and high lattice coordinates; `None` for
+    /// the light itself.
     rectangle: Option<[[i64; 2]; 2]>,
-}
-
-/// For a light in a plane of constant coordinate `n`: its two other axes,
-/// and that coordinate.
-#[derive(Clone, Copy)]
-struct LightAxes {
-    in_plane: [usize; 2],
-    normal: usize,
-    offset: i64,
-}
-
-impl LightAxes {
-    /// A point's coordinates along the two in-plane axes.
-    fn coords(&self, p: &GridPoint) -> [f64; 2] {
-        let c = p.to_f64();
-        [c[self.in_plane[0]], c[self.in_plane[1]]]
-    }
-
-    /// For a plane of constant coordinate along one of the light's
-    /// in-plane axes: that axis (0 or 1) and the coordinate.
-    fn receiver_cut(&self, plane: &Plane) -> Option<(usize, i64)> {
-        let axes = light_axes(plane)?;
-        let side = self.in_plane.iter().position(|&k| k == axes.normal)?;
-        Some((side, axes.offset))
-    }
-}
-
-fn light_axes(support: &Plane) -> Option<LightAxes> {
-    let normal = support.normal();
-    let n = (0..3).find(|&k| normal[k] != 0)?;
-    if (0..3).any(|k| k != n && normal[k] != 0) {
-        return None;
-    }
-    // a * x_n + d = 0 with a grid coordinate: d is a multiple of a.
-    let (a, d) = (i128::from(normal[n]), support.offset());
-    if d % a != 0 {
-        return None;
-    }
-    let offset = i64::try_from(-d / a).ok()?;
-    Some(LightAxes {
-        in_plane: [(n + 1) % 3, (n + 2) % 3],
-        normal: n,
-        offset,
-    })
 }
 
 struct Prover<'a> {
@@ -544,7 +505,7 @@ struct Prover<'a> {
     receiver: &'a Plane,
     two_sided: bool,
     light: &'a AreaSource,
-    light_axes: Option<LightAxes>,
+    lattice: Option<Lattice>,
 }
 
 /// The blockers a node of a proof looks at: indices into the prover's
@@ -711,8 +672,12 @@ impl Prover<'_> {
         for m in candidates {
             let by_light: SmallVec<[bool; 8]> =
                 (0..nl).map(|j| (0..nk).all(|i| m[j * nk + i])).collect();
-            if let Some(side) = self.light_axes.and_then(|axes| {
-                separating_axis(light.corners.iter().map(|p| axes.coords(p)), &by_light)
+            if let Some(side) = self.lattice.and_then(|lattice| {
+                let coords = light
+                    .corners
+                    .iter()
+                    .map(|&p| lattice.coords(p).map(|c| c as f64));
+                separating_axis(coords, &by_light)
             }) {
                 return (Some(side), None);
             }
@@ -742,24 +707,25 @@ impl Prover<'_> {
             })
     }
 
-    /// The piece's bounding rectangle halved across its longer side, or
-    /// `None` (a light not in an axis-aligned plane, or a rectangle one grid
-    /// step wide).
+    /// The piece's bounding lattice parallelogram halved across its
+    /// longer side (in lattice steps), or `None` (a light whose lattice
+    /// is out of range, or a parallelogram one step wide).
     fn halve_light(&self, light: &LightPiece, side: Option<usize>) -> Option<[LightPiece; 2]> {
-        let axes = self.light_axes?;
+        let lattice = self.lattice?;
         let [lo, hi] = light.rectangle.unwrap_or_else(|| {
-            let coords = |k: usize| light.corners.iter().map(move |p| p.to_i64()[k]);
-            let [u, v] = axes.in_plane;
+            let coords: SmallVec<[[i64; 2]; 8]> =
+                light.corners.iter().map(|&p| lattice.coords(p)).collect();
+            let along = |k: usize| coords.iter().map(move |c| c[k]);
             [
-                [coords(u).min().unwrap_or(0), coords(v).min().unwrap_or(0)],
-                [coords(u).max().unwrap_or(0), coords(v).max().unwrap_or(0)],
+                [along(0).min().unwrap_or(0), along(1).min().unwrap_or(0)],
+                [along(0).max().unwrap_or(0), along(1).max().unwrap_or(0)],
             ]
         });
-        // A receiver whose plane is a grid plane across the piece cuts it
-        // there first: each side then has its own occluders (or none,
-        // behind a one-sided receiver).
-        let across = axes
-            .receiver_cut(self.receiver)
+        // A receiver whose plane meets the light's in a lattice line
+        // across the piece cuts it there first: each side then has its own
+        // occluders (or none, behind a one-sided receiver).
+        let across = lattice
+            .line_of(self.receiver)
             .filter(|&(side, at)| lo[side] < at && at < hi[side]);
         let (side, mid) = match across {
             Some(cut) => cut,
@@ -776,26 +742,18 @@ impl Prover<'_> {
         low_hi[side] = mid;
         high_lo[side] = mid;
         Some([
-            self.rectangle(axes, [lo, low_hi])?,
-            self.rectangle(axes, [high_lo, hi])?,
+            Self::parallelogram(&lattice, [lo, low_hi])?,
+            Self::parallelogram(&lattice, [high_lo, hi])?,
         ])
     }
 
-    fn rectangle(&self, axes: LightAxes, [lo, hi]: [[i64; 2]; 2]) -> Option<LightPiece> {
-        let [u, v] = axes.in_plane;
-        let corner = |cu: i64, cv: i64| {
-            let mut c = [0_i64; 3];
-            c[u] = cu;
-            c[v] = cv;
-            c[axes.normal] = axes.offset;
-            GridPoint::new(c[0], c[1], c[2]).ok()
-        };
+    fn parallelogram(lattice: &Lattice, [lo, hi]: [[i64; 2]; 2]) -> Option<LightPiece> {
         Some(LightPiece {
             corners: [
-                corner(lo[0], lo[1])?,
-                corner(hi[0], lo[1])?,
-                corner(hi[0], hi[1])?,
-                corner(lo[0], hi[1])?,
+                lattice.point([lo[0], lo[1]])?,
+                lattice.point([hi[0], lo[1]])?,
+                lattice.point([hi[0], hi[1]])?,
+                lattice.point([lo[0], hi[1]])?,
             ]
             .into_iter()
             .collect(),

@@ -63,6 +63,34 @@ fn two_panels_hide_a_light_neither_hides_alone() {
     ));
 }
 
+/// The two panels' joint umbra under a light tilted across the panels'
+/// edges (its plane 4y = x + 40000): halved in its plane's lattice, the
+/// light is hidden from the floor near `x = 2000` by the high panel up to
+/// about `x = 2890`, by the low one from about `x = 2710`.
+#[test]
+fn two_panels_hide_a_tilted_light_neither_hides_alone() {
+    let source = tilted_light(1000);
+    let high = panel([-20_000, 2500], 6000, [-20_000, 20_000]);
+    let low = panel([2200, 20_000], 3000, [-20_000, 20_000]);
+    let dark = floor(2000, 2000, 20);
+    assert!(sees_none(&dark, false, &source, &[&high, &low], &[]));
+    assert!(!sees_none(&dark, false, &source, &[&high], &[]));
+    assert!(!sees_none(&dark, false, &source, &[&low], &[]));
+}
+
+/// The light over `x, z` in `[0, 4000]`, rising by `rise` from `x = 0`
+/// (at height 10000) to `x = 4000`, facing down.
+fn tilted_light(rise: i64) -> AreaSource {
+    let y = 10_000;
+    AreaSource::from_grid_points(&[
+        g(0, y, 0),
+        g(4000, y + rise, 0),
+        g(4000, y + rise, 4000),
+        g(0, y, 4000),
+    ])
+    .unwrap()
+}
+
 /// A slab and a panel: the light the panel leaves the floor near
 /// `x = 3000` goes through the slab (in by its bottom or its side, out by
 /// its top). The slab as one closed body proves it, as its faces do.
@@ -166,14 +194,30 @@ fn crosses(
     }
 }
 
-/// Random panels over random floor squares (seeded): whatever is proven
-/// dark is dark, every sampled segment from the region to the light
-/// crossing a panel (or passing too close to a border to tell); and the
-/// proofs do find joint umbrae (regions no one panel hides).
+/// Random panels over random floor squares (seeded), under a level light
+/// and a tilted one: whatever is proven dark is dark, every sampled
+/// segment from the region to the light crossing a panel (or passing too
+/// close to a border to tell); and the proofs do find joint umbrae
+/// (regions no one panel hides).
 #[test]
 fn proven_dark_regions_see_no_light() {
+    for rise in [0, 1300] {
+        proven_dark_regions_see_no_light_under(rise);
+    }
+}
+
+/// [`proven_dark_regions_see_no_light`] under the light over `x, z` in
+/// `[-500, 500]` rising by `rise` from height 10000 at `x = -500`.
+fn proven_dark_regions_see_no_light_under(rise: i64) {
     let mut rng = Pcg64::seed_from_u64(8);
-    let source = light(-500, 500, 10_000);
+    let y = 10_000;
+    let source = AreaSource::from_grid_points(&[
+        g(-500, y, -500),
+        g(500, y + rise, -500),
+        g(500, y + rise, 500),
+        g(-500, y, 500),
+    ])
+    .unwrap();
     let (mut proven, mut joint) = (0, 0);
     for _ in 0..1000 {
         let panels: Vec<([i64; 2], i64, [i64; 2])> = (0..rng.random_range(3..8))
@@ -211,9 +255,10 @@ fn proven_dark_regions_see_no_light() {
                 0.0,
                 (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
             ];
+            let s = rng.random::<f64>();
             let l = [
-                -500.0 + rng.random::<f64>() * 1000.0,
-                10_000.0,
+                -500.0 + s * 1000.0,
+                10_000.0 + s * rise as f64,
                 -500.0 + rng.random::<f64>() * 1000.0,
             ];
             assert!(
@@ -224,5 +269,8 @@ fn proven_dark_regions_see_no_light() {
             );
         }
     }
-    assert!(proven >= 50 && joint >= 8, "proven {proven}, joint {joint}");
+    assert!(
+        proven >= 50 && joint >= 8,
+        "rise {rise}: proven {proven}, joint {joint}"
+    );
 }
