@@ -14,11 +14,11 @@
 //!   swapped. So `O` blocks all of `K x L` as soon as it blocks the segments
 //!   between their corners (`Occluder::pair_crossings`).
 //! - Where no occluder blocks all of `K x L`, the light or the region is
-//!   halved and each half proven on its own: the light into rectangles with
-//!   grid corners (lights in an axis-aligned plane only, so that every
-//!   corner stays a grid point), the region by axis-aligned grid planes
-//!   (its corners are implicit points, as every cell's). Parts of the light
-//!   a one-sided receiver has behind it need no occluder.
+//!   halved and each half proven on its own: the light into parallelograms
+//!   of its plane's lattice of grid points (`lattice`: every corner stays
+//!   a grid point, whatever the light's tilt), the region by axis-aligned
+//!   grid planes (its corners are implicit points, as every cell's). Parts
+//!   of the light a one-sided receiver has behind it need no occluder.
 //!   Halving keeps every corner a corner of some part, so a corner pair
 //!   that no blocker crosses ends the proof at once: it has failed.
 //! - The halving stops at a depth and a node budget: a region next to the
