@@ -1,0 +1,132 @@
+//! Joint-umbra proofs (`area_shadow::dark::sees_none`) as the commands
+//! make them: of 2000 seeded cases of 3 to 7 panels over a patch of
+//! floor, those whose corners see none of the light (sampled in floating
+//! point), under a level square light and under the same light tilted
+//! (halved in its plane's lattice), timed as a batch; proofs that succeed
+//! and proofs that fail both count.
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
+
+use area_shadow::AreaSource;
+use area_shadow::dark::sees_none;
+use bsp_core::{ConvexPolygon, GridPoint};
+use criterion::{Criterion, criterion_group, criterion_main};
+use rand::Rng;
+use std::hint::black_box;
+use umbra_benches::random::rng;
+
+fn g(x: i64, y: i64, z: i64) -> GridPoint {
+    GridPoint::new(x, y, z).unwrap()
+}
+
+/// One case: a floor square, facing up, and the panels over it.
+struct Case {
+    region: ConvexPolygon,
+    panels: Vec<ConvexPolygon>,
+}
+
+fn cases(n: usize) -> Vec<Case> {
+    let mut rng = rng(8);
+    (0..n)
+        .map(|_| {
+            let panels = (0..rng.random_range(3..8))
+                .map(|_| {
+                    let (x, z) = (rng.random_range(-2500..1500), rng.random_range(-2500..1500));
+                    let (w, d) = (rng.random_range(300..2500), rng.random_range(300..2500));
+                    let y = rng.random_range(2000..8000);
+                    let c = [
+                        g(x, y, z),
+                        g(x + w, y, z),
+                        g(x + w, y, z + d),
+                        g(x, y, z + d),
+                    ];
+                    ConvexPolygon::from_grid_points(&c, 0).unwrap()
+                })
+                .collect();
+            let (cx, cz, r) = (
+                rng.random_range(-1000..1000),
+                rng.random_range(-1000..1000),
+                rng.random_range(5..100),
+            );
+            let c = [
+                g(cx - r, 0, cz - r),
+                g(cx - r, 0, cz + r),
+                g(cx + r, 0, cz + r),
+                g(cx + r, 0, cz - r),
+            ];
+            Case {
+                region: ConvexPolygon::from_grid_points(&c, 1).unwrap(),
+                panels,
+            }
+        })
+        .collect()
+}
+
+/// Whether the segment from `k` to `l` crosses the panel.
+fn crosses(k: [f64; 3], l: [f64; 3], panel: &ConvexPolygon) -> bool {
+    let c = panel.vertices_f64();
+    let y = c[0][1];
+    let t = (y - k[1]) / (l[1] - k[1]);
+    if !(0.0..=1.0).contains(&t) {
+        return false;
+    }
+    let (x, z) = (k[0] + t * (l[0] - k[0]), k[2] + t * (l[2] - k[2]));
+    let (lo, hi) = (c[0], c[2]);
+    (lo[0].min(hi[0])..=lo[0].max(hi[0])).contains(&x)
+        && (lo[2].min(hi[2])..=lo[2].max(hi[2])).contains(&z)
+}
+
+/// Whether every corner of the case's region sees none of 9 x 9 points of
+/// the light (its corners given).
+fn corners_dark(case: &Case, light: &[[f64; 3]; 4]) -> bool {
+    case.region.vertices_f64().iter().all(|&k| {
+        (0..81).all(|s| {
+            let (a, b) = ((s % 9) as f64 / 8.0, (s / 9) as f64 / 8.0);
+            let l: [f64; 3] = std::array::from_fn(|i| {
+                (1.0 - a) * (1.0 - b) * light[0][i]
+                    + a * (1.0 - b) * light[1][i]
+                    + a * b * light[2][i]
+                    + (1.0 - a) * b * light[3][i]
+            });
+            case.panels.iter().any(|p| crosses(k, l, p))
+        })
+    })
+}
+
+fn dark(c: &mut Criterion) {
+    let all = cases(2000);
+    for (name, rise) in [("dark_level_light", 0), ("dark_tilted_light", 1300)] {
+        let y = 10_000;
+        let light = AreaSource::from_grid_points(&[
+            g(-500, y, -500),
+            g(500, y + rise, -500),
+            g(500, y + rise, 500),
+            g(-500, y, 500),
+        ])
+        .unwrap();
+        let corners = [
+            [-500.0, y as f64, -500.0],
+            [500.0, (y + rise) as f64, -500.0],
+            [500.0, (y + rise) as f64, 500.0],
+            [-500.0, y as f64, 500.0],
+        ];
+        let tried: Vec<&Case> = all
+            .iter()
+            .filter(|case| corners_dark(case, &corners))
+            .collect();
+        let prove = || {
+            tried
+                .iter()
+                .filter(|case| {
+                    let panels: Vec<&ConvexPolygon> = case.panels.iter().collect();
+                    sees_none(&case.region, false, &light, &panels, &[])
+                })
+                .count()
+        };
+        eprintln!("{name}: {} cases tried, {} proven", tried.len(), prove());
+        c.bench_function(name, |b| b.iter(|| black_box(prove())));
+    }
+}
+
+criterion_group!(benches, dark);
+criterion_main!(benches);
