@@ -248,26 +248,29 @@ impl Occluder {
         // The segment k-l crosses the plane at x. For an edge a-b, the plane
         // H through a, b, l meets the support in the edge's line, and x lies
         // between k and l with l on H: x is on the polygon's side of the
-        // line exactly when k is on the side of H of the polygon's other
-        // corners.
+        // line exactly when k is on the side of H of the polygon's inside.
+        // With the corners counter-clockwise about the support's normal,
+        // that side is the one opposite the side of the support that l is
+        // on (the sign of the triple product (b - a) x (inside - a) . (l -
+        // a)), the same for every edge.
+        let outer = side_of_point(&self.support, l);
         let mut inside: SmallVec<[bool; 8]> = test.iter().copied().collect();
+        if outer == Side::On {
+            inside.fill(false);
+            return inside;
+        }
         let m = self.corners.len();
         for e in 0..m {
             if !inside.contains(&true) {
                 break;
             }
-            let (a, b, inner) = (
-                self.corners[e],
-                self.corners[(e + 1) % m],
-                self.corners[(e + 2) % m],
-            );
+            let (a, b) = (self.corners[e], self.corners[(e + 1) % m]);
             let Some(h) = Plane::through_unreduced(a, b, l) else {
                 inside.fill(false);
                 break;
             };
-            let outer = side_of_point(&h, inner).flipped();
             for (i, keep) in inside.iter_mut().enumerate() {
-                *keep = *keep && outer != Side::On && region.vertex_side(i, &h) != outer;
+                *keep = *keep && region.vertex_side(i, &h) != outer;
             }
         }
         inside
