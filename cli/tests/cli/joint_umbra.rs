@@ -188,3 +188,41 @@ fn two_slabs_hide_a_strip_as_bodies() {
         assert_umbra_sees_nothing(&both, hidden, command);
     }
 }
+
+/// [`two_panels_hide_a_strip_neither_hides_alone`] with the light tilted:
+/// its edge x = 1 raised to y = 10.25. Light corners at heights 10 and
+/// 10.25 bound the strip: the high panel's umbra ends at x = (0.2 - t) /
+/// (1 - t), t = 6 / 10.25 (the far corner); the low panel's starts at x =
+/// -3/7 (the near corner); both span every ray's z for |z| <= (6 - t') /
+/// (1 - t'), t' = 3 / 10.25. The proofs halve the tilted light in its
+/// plane's lattice; both commands add the whole strip.
+#[test]
+fn two_panels_hide_a_strip_from_a_tilted_light() {
+    let (a, b) = (0.2, -0.6);
+    let tilt = |scene: String| {
+        scene.replace(
+            "vertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]",
+            "vertices = [[-1, 10, -1], [1, 10.25, -1], [1, 10.25, 1], [-1, 10, 1]]",
+        )
+    };
+    let t = 6.0 / 10.25;
+    let t_low = 3.0 / 10.25;
+    let strip = (-3.0 / 7.0 - (0.2 - t) / (1.0 - t)) * 2.0 * (6.0 - t_low) / (1.0 - t_low);
+    for command in ["shadow", "dm"] {
+        let both = run(&tilt(panels(Some(a), Some(b))), command, &[]);
+        let [_, _, joint] = floor_classes(&both);
+        let [_, _, high] = floor_classes(&run(&tilt(panels(Some(a), None)), command, &[]));
+        let [_, _, low] = floor_classes(&run(&tilt(panels(None, Some(b))), command, &[]));
+        assert!(
+            joint >= high + low + strip - 1e-6,
+            "{command}: umbra {joint} with both panels, {high} + {low} one by one, strip {strip}"
+        );
+        let hidden = |p: [f64; 3], l: [f64; 3]| {
+            // The oracle's light samples lie in the plane y = 10: lift
+            // them onto the tilted light.
+            let l = [l[0], 10.0 + 0.125 * (l[0] + 1.0), l[2]];
+            panels_hide(a, b)(p, l)
+        };
+        assert_umbra_sees_nothing(&both, hidden, command);
+    }
+}
