@@ -110,21 +110,6 @@ pub fn sees_none(
     if occluders.is_empty() && bodies.is_empty() {
         return false;
     }
-    let light_points: Vec<[f64; 3]> = light.vertices().map(|p| p.to_f64()).collect();
-    let receiver_normal = (!two_sided).then(|| region.support().normal().map(|c| c as f64));
-    let outlines = occluders.iter().map(|o| &o.points[..]).chain(
-        bodies
-            .iter()
-            .flat_map(|b| b.surface.iter().map(|o| &o.points[..])),
-    );
-    if leak::sees_light(
-        &region.vertices_f64(),
-        &light_points,
-        receiver_normal,
-        outlines,
-    ) {
-        return false;
-    }
     let prover = Prover {
         occluders,
         bodies,
@@ -590,29 +575,14 @@ impl Prover<'_> {
             }
             candidates.push(pairs);
         }
-        // A corner pair no blocker crosses stays a corner pair of some
-        // part however the region and the light are halved, and no part
-        // with it is ever proven: the proof has failed. (Looked for once:
-        // it takes every blocker's pairs.)
-        if std::mem::take(&mut search.at_root) {
-            let mut crossed: Pairs = smallvec::smallvec![false; region.len() * light.corners.len()];
-            let occluders = near
-                .occluders
-                .iter()
-                .map(|&k| self.occluders[k as usize].pair_crossings(region, &light.corners));
-            let bodies = near
-                .bodies
-                .iter()
-                .map(|&k| self.bodies[k as usize].pair_crossings(region, &light.corners));
-            for pairs in occluders.chain(bodies) {
-                for (c, &p) in crossed.iter_mut().zip(&pairs) {
-                    *c |= p;
-                }
-            }
-            if self.pair_sees_past_all(region.len(), light, &crossed) {
-                search.refuted = true;
-                return false;
-            }
+        // No one blocker hides it all: before halving, once, look for what
+        // dooms the proof (a sampled segment that clearly passes every
+        // blocker, a corner pair none crosses).
+        if std::mem::take(&mut search.at_root)
+            && (self.leaks(region) || self.refuted(region, light, &near))
+        {
+            search.refuted = true;
+            return false;
         }
         if depth == 0 || search.budget == 0 {
             return false;
@@ -637,6 +607,47 @@ impl Prover<'_> {
             }
         }
         false
+    }
+
+    /// Whether a sampled segment from inside the region to the light
+    /// clearly passes every blocker ([`leak::sees_light`]): then no proof
+    /// can succeed.
+    fn leaks(&self, region: &ConvexPolygon) -> bool {
+        let light_points: Vec<[f64; 3]> = self.light.vertices().map(|p| p.to_f64()).collect();
+        let receiver_normal =
+            (!self.two_sided).then(|| region.support().normal().map(|c| c as f64));
+        let outlines = self.occluders.iter().map(|o| &o.points[..]).chain(
+            self.bodies
+                .iter()
+                .flat_map(|b| b.surface.iter().map(|o| &o.points[..])),
+        );
+        leak::sees_light(
+            &region.vertices_f64(),
+            &light_points,
+            receiver_normal,
+            outlines,
+        )
+    }
+
+    /// Whether a corner pair no blocker `near` crosses refutes the proof:
+    /// it stays a corner pair of some part however the region and the
+    /// light are halved, and no part with it is ever proven.
+    fn refuted(&self, region: &ConvexPolygon, light: &LightPiece, near: &Near) -> bool {
+        let mut crossed: Pairs = smallvec::smallvec![false; region.len() * light.corners.len()];
+        let occluders = near
+            .occluders
+            .iter()
+            .map(|&k| self.occluders[k as usize].pair_crossings(region, &light.corners));
+        let bodies = near
+            .bodies
+            .iter()
+            .map(|&k| self.bodies[k as usize].pair_crossings(region, &light.corners));
+        for pairs in occluders.chain(bodies) {
+            for (c, &p) in crossed.iter_mut().zip(&pairs) {
+                *c |= p;
+            }
+        }
+        self.pair_sees_past_all(region.len(), light, &crossed)
     }
 
     /// Whether a pair of a region corner and a light corner that is a
