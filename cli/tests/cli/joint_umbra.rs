@@ -100,14 +100,38 @@ fn panels_hide(a: f64, b: f64) -> impl Fn([f64; 3], [f64; 3]) -> bool {
     move |p, l| crosses(p, l, 6.0, [-6.0, a]) || crosses(p, l, 3.0, [b, 6.0])
 }
 
-/// Runs `command` (with `args`) on the scene and returns the output mesh.
+/// Runs `command` (with `args`) on the scene and returns the output mesh,
+/// checking that the statistics count each class as the mesh has it
+/// (proofs turn faces umbra after the volumes or DM-trees classed them).
 fn run(scene: &str, command: &str, args: &[&str]) -> OutputMesh {
     let dir = folder(&[("scene.toml", scene)]);
-    let mut all = vec![command, "scene.toml", "-o", "out.ply"];
+    let mut all = vec![command, "scene.toml", "-o", "out.ply", "--stats", "s.json"];
     all.extend_from_slice(args);
     let run = umbra(dir.path(), &all);
     assert_eq!(run.code, 0, "{}", run.stderr);
-    load_ply(&dir.path().join("out.ply")).unwrap()
+    let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+    let stats: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
+    let count = |class: fn(&umbra::OutputFace) -> bool| {
+        mesh.faces.iter().filter(|f| class(f)).count() as u64
+    };
+    let light = &stats["lights"][0];
+    assert_eq!(
+        light["lit"].as_u64(),
+        Some(count(|f| f.lit_mask & 1 != 0)),
+        "{command}"
+    );
+    assert_eq!(
+        light["umbra"].as_u64(),
+        Some(count(|f| f.umbra_mask & 1 != 0)),
+        "{command}"
+    );
+    assert_eq!(
+        light["penumbra"].as_u64(),
+        Some(count(|f| (f.lit_mask | f.umbra_mask) & 1 == 0)),
+        "{command}"
+    );
+    mesh
 }
 
 /// High panel to x = 0.2, low from x = -0.6: from the strip -1 <= x <=
