@@ -85,6 +85,10 @@ pub const DARK_FRACTION: f64 = 1e-9;
 /// path of the proof.
 const MAX_DEPTH: u32 = 10;
 
+/// How many times in a row a proof halves the light, at most, when the
+/// region could be halved too.
+const LIGHT_RUN: u32 = 6;
+
 /// Blockers few enough that a step of a proof keeps them all rather than
 /// cull them by its shaft.
 const FEW_BLOCKERS: usize = 4;
@@ -134,7 +138,7 @@ pub fn sees_none(
         occluders: (0..prover.occluders.len() as u32).collect(),
         bodies: (0..prover.bodies.len() as u32).collect(),
     };
-    prover.prove(region, &whole, &near, MAX_DEPTH, &mut search)
+    prover.prove(region, &whole, &near, MAX_DEPTH, 0, &mut search)
 }
 
 /// A convex occluder polygon by its grid corners (counter-clockwise about
@@ -524,6 +528,7 @@ impl Prover<'_> {
         light: &LightPiece,
         near: &Near,
         depth: u32,
+        light_run: u32,
         search: &mut Search,
     ) -> bool {
         if search.refuted {
@@ -593,17 +598,27 @@ impl Prover<'_> {
         // blocker more or less to care about. Else alternate: a joint
         // umbra is most often one occluder hiding one part of the light and
         // another the rest, each over all of the region.
-        let (light_side, region_axis) = self.guide(region, light, &candidates);
-        let light_first = light_side.is_some() || (region_axis.is_none() && depth % 2 == 0);
+        let (light_side, region_axis, seam_axis) = self.guide(region, light, &candidates);
+        // After a run of light cuts, the region once, across the seam
+        // between two blockers' parts of the light where one moves across
+        // it: no cut of the light then suits all of the region.
+        let (light_first, region_axis) = if light_side.is_some() && light_run >= LIGHT_RUN {
+            (false, region_axis.or(seam_axis))
+        } else {
+            (
+                light_side.is_some() || (region_axis.is_none() && depth % 2 == 0),
+                region_axis,
+            )
+        };
         for split_light in [light_first, !light_first] {
             if split_light {
                 if let Some([a, b]) = self.halve_light(light, light_side) {
-                    return self.prove(region, &a, &near, depth - 1, search)
-                        && self.prove(region, &b, &near, depth - 1, search);
+                    return self.prove(region, &a, &near, depth - 1, light_run + 1, search)
+                        && self.prove(region, &b, &near, depth - 1, light_run + 1, search);
                 }
             } else if let Some((a, b)) = halve_region(region, region_axis) {
-                return self.prove(&a, light, &near, depth - 1, search)
-                    && self.prove(&b, light, &near, depth - 1, search);
+                return self.prove(&a, light, &near, depth - 1, 0, search)
+                    && self.prove(&b, light, &near, depth - 1, 0, search);
             }
         }
         false
@@ -672,36 +687,45 @@ impl Prover<'_> {
         })
     }
 
-    /// The light piece's side (0 or 1, of its in-plane axes) or else the
-    /// region's axis across which a blocker (its corner pairs `candidates`)
-    /// turns from hiding the light to not.
+    /// Where a blocker (its corner pairs `candidates`) turns from hiding
+    /// the light to not: the light piece's side (0 or 1, in its lattice)
+    /// across which it hides all the region from some corners and not
+    /// others; the region's axis across which it hides all the light from
+    /// some region corners and not others; and the region's axis across
+    /// which it hides one light corner from some region corners and not
+    /// others (where a seam between two blockers' parts of the light
+    /// crosses the region).
     fn guide(
         &self,
         region: &ConvexPolygon,
         light: &LightPiece,
         candidates: &[Pairs],
-    ) -> (Option<usize>, Option<usize>) {
+    ) -> (Option<usize>, Option<usize>, Option<usize>) {
         let (nk, nl) = (region.len(), light.corners.len());
-        let mut region_axis = None;
+        let (mut light_side, mut region_axis, mut seam_axis) = (None, None, None);
         for m in candidates {
-            let by_light: SmallVec<[bool; 8]> =
-                (0..nl).map(|j| (0..nk).all(|i| m[j * nk + i])).collect();
-            if let Some(side) = self.lattice.and_then(|lattice| {
-                let coords = light
-                    .corners
-                    .iter()
-                    .map(|&p| lattice.coords(p).map(|c| c as f64));
-                separating_axis(coords, &by_light)
-            }) {
-                return (Some(side), None);
+            if light_side.is_none() {
+                let by_light: SmallVec<[bool; 8]> =
+                    (0..nl).map(|j| (0..nk).all(|i| m[j * nk + i])).collect();
+                light_side = self.lattice.and_then(|lattice| {
+                    let coords = light
+                        .corners
+                        .iter()
+                        .map(|&p| lattice.coords(p).map(|c| c as f64));
+                    separating_axis(coords, &by_light)
+                });
             }
             if region_axis.is_none() {
                 let by_region: SmallVec<[bool; 8]> =
                     (0..nk).map(|i| (0..nl).all(|j| m[j * nk + i])).collect();
                 region_axis = separating_axis(region.vertices_f64(), &by_region);
             }
+            if seam_axis.is_none() {
+                seam_axis = (0..nl)
+                    .find_map(|j| separating_axis(region.vertices_f64(), &m[j * nk..(j + 1) * nk]));
+            }
         }
-        (None, region_axis)
+        (light_side, region_axis, seam_axis)
     }
 
     /// Whether no light of the piece reaches the receiver: it lies behind a

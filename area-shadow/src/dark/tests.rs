@@ -274,3 +274,26 @@ fn proven_dark_regions_see_no_light_under(rise: i64) {
         "rise {rise}: proven {proven}, joint {joint}"
     );
 }
+
+/// Two narrow panels overlapping in plan (neither has an umbra): from the
+/// floor strip x in [0, 250] the high one hides the light's low x, the low
+/// one its high x, with the seam between them moving across the strip as
+/// x does. No one cut of the light suits the whole strip; halving the
+/// light and the strip in turn proves it (halving only the light, as long
+/// as a blocker told where, did not).
+#[test]
+fn a_seam_moving_across_the_region_needs_both_halved() {
+    let source = light(-500, 500, 4000);
+    let low = panel([-450, 50], 2000, [-1500, 1500]);
+    let high = panel([-50, 450], 2300, [-1500, 1500]);
+    for (x0, x1) in [(-250, 0), (0, 250), (0, 125), (125, 250)] {
+        let c = [g(x0, 0, -125), g(x0, 0, 125), g(x1, 0, 125), g(x1, 0, -125)];
+        let region = ConvexPolygon::from_grid_points(&c, 0).unwrap();
+        assert!(
+            sees_none(&region, false, &source, &[&low, &high], &[]),
+            "{x0}..{x1}"
+        );
+        assert!(!sees_none(&region, false, &source, &[&low], &[]));
+        assert!(!sees_none(&region, false, &source, &[&high], &[]));
+    }
+}
