@@ -4,9 +4,8 @@
 //! proven dark.
 //!
 //! `umbra shadow` finds those occluders with a uniform grid of their boxes
-//! (and cuts fragments to follow a joint umbra that ends inside them,
-//! [`area_shadow::dark::dark_parts`]); `umbra dm` (and `update`) takes the
-//! objects its cell lists name, and keeps its cells whole.
+//! and the shaft between the face and the light; `umbra dm` (and
+//! `update`) takes the objects its cell lists name. Faces stay whole.
 
 use std::collections::HashMap;
 
@@ -120,7 +119,7 @@ impl<'a> Occluders<'a> {
     ) -> (Vec<&ConvexPolygon>, Vec<&Body>) {
         let (around, shaft) = between(region, light);
         let items = self.index.meeting(&around);
-        self.resolve(items.into_iter(), &around, &shaft)
+        self.resolve(items.into_iter(), &shaft)
     }
 
     /// The blockers of `objects` whose boxes meet the box around `region`
@@ -131,7 +130,7 @@ impl<'a> Occluders<'a> {
         region: &ConvexPolygon,
         light: &AreaSource,
     ) -> (Vec<&ConvexPolygon>, Vec<&Body>) {
-        let (around, shaft) = between(region, light);
+        let (_, shaft) = between(region, light);
         let mut items: Vec<Item> = objects
             .iter()
             .filter_map(|&o| self.by_object.get(o as usize))
@@ -143,29 +142,28 @@ impl<'a> Occluders<'a> {
             .collect();
         items.sort_unstable();
         items.dedup();
-        self.resolve(items.into_iter(), &around, &shaft)
+        self.resolve(items.into_iter(), &shaft)
     }
 
-    /// The items whose boxes meet `around` and that reach into the shaft
-    /// between `region` and `light`.
+    /// The items that reach into the shaft between a region and a light
+    /// (its box first).
     fn resolve(
         &self,
         items: impl Iterator<Item = Item>,
-        around: &Bounds,
         shaft: &Shaft,
     ) -> (Vec<&ConvexPolygon>, Vec<&Body>) {
         let (mut polygons, mut bodies) = (Vec::new(), Vec::new());
         for item in items {
             match item {
                 Item::Polygon(k) => {
-                    let (polygon, b) = &self.polygons[k];
-                    if meet(b, around) && !shaft.misses(&polygon.vertices_f64()) {
+                    let (polygon, _) = &self.polygons[k];
+                    if !shaft.misses(&polygon.vertices_f64()) {
                         polygons.push(*polygon);
                     }
                 }
                 Item::Body(k) => {
                     let (body, b) = &self.bodies[k];
-                    if meet(b, around) && !shaft.misses_box(&[b.0, b.1]) {
+                    if !shaft.misses_box(&[b.0, b.1]) {
                         bodies.push(body);
                     }
                 }
@@ -181,10 +179,6 @@ fn between(region: &ConvexPolygon, light: &AreaSource) -> (Bounds, Shaft) {
     let source: Vec<[f64; 3]> = light.vertices().map(|p| p.to_f64()).collect();
     let around = bounds(&corners.iter().chain(&source).copied().collect::<Vec<_>>());
     (around, Shaft::new(&corners, &source))
-}
-
-fn meet((a, b): &Bounds, (lo, hi): &Bounds) -> bool {
-    (0..3).all(|k| a[k] <= hi[k] && b[k] >= lo[k])
 }
 
 fn bounds(points: &[[f64; 3]]) -> Bounds {
@@ -279,46 +273,24 @@ impl GridIndex {
     }
 }
 
-/// A face to look at: its region, whether its receiver is two-sided, and
-/// the lights (bit `i` for `lights[i]`) it is penumbra for with every
-/// corner dark.
-pub(crate) struct DarkCandidate<'a> {
-    pub region: &'a ConvexPolygon,
-    pub two_sided: bool,
-    pub lights: u32,
-}
-
-/// The lights of the candidate's bits proven to be hidden from all of its
-/// region, past the occluders of `objects` (those a DM cell lists).
+/// The lights among `lights` (bit `i` for `areas[i]`) proven to be hidden
+/// from all of `region` (a face of a receiver, two-sided or not) past the
+/// blockers of `objects` (those a DM cell lists).
 pub(crate) fn proven_dark_past(
-    candidate: &DarkCandidate<'_>,
-    lights: &[Option<&AreaSource>],
+    region: &ConvexPolygon,
+    two_sided: bool,
+    lights: u32,
+    areas: &[&AreaSource],
     occluders: &Occluders<'_>,
     objects: &[u32],
 ) -> u32 {
-    dark_lights(candidate, lights, |light| {
-        occluders.of_objects(objects, candidate.region, light)
-    })
-}
-
-fn dark_lights<'o>(
-    candidate: &DarkCandidate<'_>,
-    lights: &[Option<&AreaSource>],
-    blockers: impl Fn(&AreaSource) -> (Vec<&'o ConvexPolygon>, Vec<&'o Body>),
-) -> u32 {
     let mut dark = 0;
-    for (i, light) in lights.iter().enumerate() {
-        let Some(light) = light.filter(|_| candidate.lights & (1 << i) != 0) else {
+    for (i, light) in areas.iter().enumerate() {
+        if lights & (1 << i) == 0 {
             continue;
-        };
-        let (polygons, bodies) = blockers(light);
-        if sees_none(
-            candidate.region,
-            candidate.two_sided,
-            light,
-            &polygons,
-            &bodies,
-        ) {
+        }
+        let (polygons, bodies) = occluders.of_objects(objects, region, light);
+        if sees_none(region, two_sided, light, &polygons, &bodies) {
             dark |= 1 << i;
         }
     }

@@ -14,7 +14,7 @@ use slotmap::SecondaryMap;
 use svbsp::PieceFlags;
 
 use crate::atomic::Outputs;
-use crate::dark::{DarkCandidate, Occluders, proven_dark_past};
+use crate::dark::{Occluders, proven_dark_past};
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh};
@@ -126,7 +126,7 @@ impl FreshDm {
 
 /// What the joint-umbra proofs of the output's cells need (`cli::dark`).
 struct DarkContext<'a> {
-    areas: &'a [Option<&'a AreaSource>],
+    areas: &'a [&'a AreaSource],
     occluders: &'a Occluders<'a>,
     /// The index into [`DmRun::objects`] of each object.
     object_of: &'a SecondaryMap<ObjectId, u32>,
@@ -291,8 +291,7 @@ impl DmRun {
         for (o, (id, _)) in self.objects.iter().enumerate() {
             object_of.insert(*id, o as u32);
         }
-        let areas: Vec<Option<&AreaSource>> =
-            self.dm.lights().iter().map(|l| Some(l.source())).collect();
+        let areas: Vec<&AreaSource> = self.dm.lights().iter().map(|l| l.source()).collect();
         let context = DarkContext {
             areas: &areas,
             occluders: &occluders,
@@ -390,12 +389,14 @@ impl DmRun {
         let proven: Vec<u32> = candidates
             .par_iter()
             .map(|(_, region, lights, objects)| {
-                let candidate = DarkCandidate {
+                proven_dark_past(
                     region,
                     two_sided,
-                    lights: *lights,
-                };
-                proven_dark_past(&candidate, dark.areas, dark.occluders, objects)
+                    *lights,
+                    dark.areas,
+                    dark.occluders,
+                    objects,
+                )
             })
             .collect();
         for ((f, ..), dark) in candidates.iter().zip(proven) {
