@@ -59,29 +59,13 @@ impl Plane {
     /// The plane through `p`, `q`, `r`, oriented by the right-hand rule
     /// (counter-clockwise seen from the front). `None` if they are collinear.
     pub fn through(p: GridPoint, q: GridPoint, r: GridPoint) -> Option<Self> {
-        let [px, py, pz] = p.to_i64();
-        let [qx, qy, qz] = q.to_i64();
-        let [rx, ry, rz] = r.to_i64();
-        let (ux, uy, uz) = (qx - px, qy - py, qz - pz);
-        let (vx, vy, vz) = (rx - px, ry - py, rz - pz);
-        let a = uy * vz - uz * vy;
-        let b = uz * vx - ux * vz;
-        let c = ux * vy - uy * vx;
-        if a == 0 && b == 0 && c == 0 {
-            return None;
-        }
-        let d = -(i128::from(a) * i128::from(px)
-            + i128::from(b) * i128::from(py)
-            + i128::from(c) * i128::from(pz));
+        let ([a, b, c], d) = Self::coefficients(p, q, r)?;
         Some(Self::normalized(a, b, c, d))
     }
 
-    /// [`Self::through`] without dividing out the coefficients' common
-    /// factor: the same oriented plane, with the same sides, for planes
-    /// made for a few side tests and dropped (the common factor is most of
-    /// the cost of making one). Its coefficients are within the kernel's
-    /// bounds all the same; it may compare unequal to the reduced plane.
-    pub fn through_unreduced(p: GridPoint, q: GridPoint, r: GridPoint) -> Option<Self> {
+    /// The normal and offset of the plane through `p`, `q`, `r`, not
+    /// reduced; `None` if they are collinear.
+    fn coefficients(p: GridPoint, q: GridPoint, r: GridPoint) -> Option<([i64; 3], i128)> {
         let normal = crate::predicates::cross_of_differences(p, q, r);
         if normal == [0, 0, 0] {
             return None;
@@ -90,6 +74,16 @@ impl Plane {
         let d = -(i128::from(normal[0]) * i128::from(px)
             + i128::from(normal[1]) * i128::from(py)
             + i128::from(normal[2]) * i128::from(pz));
+        Some((normal, d))
+    }
+
+    /// [`Self::through`] without dividing out the coefficients' common
+    /// factor: the same oriented plane, with the same sides, for planes
+    /// made for a few side tests and dropped (the common factor is most of
+    /// the cost of making one). Its coefficients are within the kernel's
+    /// bounds all the same; it may compare unequal to the reduced plane.
+    pub fn through_unreduced(p: GridPoint, q: GridPoint, r: GridPoint) -> Option<Self> {
+        let (normal, d) = Self::coefficients(p, q, r)?;
         Some(Self {
             normal,
             approx_offset: d as f64,
