@@ -135,15 +135,19 @@ impl Pieces {
                     SnappedLight::Directional(integer_direction(*direction))
                 }
                 LightKind::Area { vertices } => {
-                    let (g, moved) = grid.snap_all(vertices).map_err(grid_error)?;
+                    // One convex planar piece, however the light is tilted
+                    // (a tilted quad's nearest grid points are not coplanar).
+                    let (polygon, moved) = ConvexPolygon::snap_planar(&grid, vertices, i as u32)
+                        .map_err(|e| match e {
+                            bsp_core::Error::OutsideGrid { .. }
+                            | bsp_core::Error::NonFinite { .. } => grid_error(e),
+                            e => Error::Field {
+                                path: scene.path.clone(),
+                                field: format!("light[{i}].vertices"),
+                                message: format!("once snapped to the grid: {e}"),
+                            },
+                        })?;
                     out.max_snap_distance = out.max_snap_distance.max(moved);
-                    let polygon = ConvexPolygon::from_grid_points(&g, i as u32).map_err(|e| {
-                        Error::Field {
-                            path: scene.path.clone(),
-                            field: format!("light[{i}].vertices"),
-                            message: format!("once snapped to the grid: {e}"),
-                        }
-                    })?;
                     SnappedLight::Area(polygon)
                 }
             };

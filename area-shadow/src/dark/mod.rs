@@ -15,8 +15,8 @@
 //!   between their corners (`Occluder::pair_crossings`).
 //! - Where no occluder blocks all of `K x L`, the light or the region is
 //!   halved and each half proven on its own: the light into parallelograms
-//!   of its plane's lattice of grid points (`lattice`: every corner stays
-//!   a grid point, whatever the light's tilt), the region by axis-aligned
+//!   of its plane's lattice of grid points ([`PlaneLattice`]: every corner
+//!   stays a grid point, whatever the light's tilt), the region by axis-aligned
 //!   grid planes (its corners are implicit points, as every cell's). Parts
 //!   of the light a one-sided receiver has behind it need no occluder.
 //!   Halving keeps every corner a corner of some part, so a corner pair
@@ -65,11 +65,9 @@
 
 use crate::AreaSource;
 use bsp_core::predicates::{Side, side_of_point};
-use bsp_core::{ConvexPolygon, GridPoint, Plane, Split};
-use lattice::Lattice;
+use bsp_core::{ConvexPolygon, GridPoint, Plane, PlaneLattice, Split};
 use smallvec::SmallVec;
 
-mod lattice;
 mod leak;
 mod shaft;
 mod vector;
@@ -123,7 +121,7 @@ pub fn sees_none(
         lattice: light
             .vertices()
             .next()
-            .and_then(|on| Lattice::of(light.support(), on)),
+            .and_then(|on| PlaneLattice::of(light.support(), on)),
     };
     let whole = LightPiece {
         corners: light.vertices().collect(),
@@ -497,7 +495,7 @@ struct Prover<'a> {
     receiver: &'a Plane,
     two_sided: bool,
     light: &'a AreaSource,
-    lattice: Option<Lattice>,
+    lattice: Option<PlaneLattice>,
 }
 
 /// The blockers a node of a proof looks at: indices into the prover's
@@ -785,7 +783,7 @@ impl Prover<'_> {
         ])
     }
 
-    fn parallelogram(lattice: &Lattice, [lo, hi]: [[i64; 2]; 2]) -> Option<LightPiece> {
+    fn parallelogram(lattice: &PlaneLattice, [lo, hi]: [[i64; 2]; 2]) -> Option<LightPiece> {
         Some(LightPiece {
             corners: [
                 lattice.point([lo[0], lo[1]])?,

@@ -2,6 +2,7 @@
 
 mod chord;
 mod common;
+mod planar_snap;
 mod scene_bsp;
 mod solid;
 mod split;

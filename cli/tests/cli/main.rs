@@ -15,6 +15,7 @@ mod ply_files;
 mod properties;
 mod render;
 mod shadow;
+mod tilted_light;
 mod volumes;
 
 use std::path::Path;

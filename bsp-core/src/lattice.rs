@@ -1,13 +1,18 @@
-//! The grid points of a light's plane, as a 2D lattice: `origin + i u + j
-//! v` for integers `i`, `j`. A proof halves the light into lattice
-//! parallelograms, whose corners are grid points whatever the plane's
-//! tilt (a light in an axis-aligned plane gets the plain axes).
+//! The grid points of a plane, as a 2D lattice: `origin + i u + j v` for
+//! integers `i`, `j`, with a short (reduced) basis `u`, `v`.
+//!
+//! Whatever a plane's tilt, its grid points form such a lattice, so work
+//! that must stay on grid points in a tilted plane can count in lattice
+//! steps: a joint-umbra proof halves an area light into lattice
+//! parallelograms; snapping a tilted light puts its corners on the nearest
+//! lattice points of one plane (a plane in an axis-aligned plane gets the
+//! plain axes).
 
-use bsp_core::{GridPoint, Plane};
+use crate::{GridPoint, Plane};
 
 /// A plane's grid points as the integer combinations of two vectors.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct Lattice {
+pub struct PlaneLattice {
     origin: [i64; 3],
     u: [i64; 3],
     v: [i64; 3],
@@ -17,10 +22,10 @@ pub(super) struct Lattice {
     det: i128,
 }
 
-impl Lattice {
+impl PlaneLattice {
     /// The lattice of the plane `support` through its grid point `on`;
     /// `None` if a vector is out of range.
-    pub(super) fn of(support: &Plane, on: GridPoint) -> Option<Self> {
+    pub fn of(support: &Plane, on: GridPoint) -> Option<Self> {
         let n = support.normal();
         let g = gcd(gcd(n[0], n[1]), n[2]);
         if g == 0 {
@@ -47,7 +52,7 @@ impl Lattice {
     }
 
     /// The coordinates `(i, j)` of a grid point of the plane.
-    pub(super) fn coords(&self, p: GridPoint) -> [i64; 2] {
+    pub fn coords(&self, p: GridPoint) -> [i64; 2] {
         let d = sub(p.to_i64(), self.origin);
         // d = i u + j v: d x v = i (u x v), u x d = j (u x v).
         let i = dot(cross(d, self.v), self.normal) / self.det;
@@ -56,7 +61,7 @@ impl Lattice {
     }
 
     /// The grid point with coordinates `(i, j)`, if in range.
-    pub(super) fn point(&self, [i, j]: [i64; 2]) -> Option<GridPoint> {
+    pub fn point(&self, [i, j]: [i64; 2]) -> Option<GridPoint> {
         let c = |k: usize| -> Option<i64> {
             let v = i128::from(self.origin[k])
                 + i128::from(i) * i128::from(self.u[k])
@@ -66,9 +71,40 @@ impl Lattice {
         GridPoint::new(c(0)?, c(1)?, c(2)?).ok()
     }
 
+    /// The lattice point nearest to `q` (grid units, anywhere in space),
+    /// if in range: `q`'s lattice coordinates rounded (close to nearest, as
+    /// the basis is reduced), then the nearest of that point and its eight
+    /// neighbours.
+    pub fn nearest(&self, q: [f64; 3]) -> Option<GridPoint> {
+        let f = |a: [i64; 3]| a.map(|c| c as f64);
+        let d = [0, 1, 2].map(|k| q[k] - self.origin[k] as f64);
+        let (u, v, n) = (f(self.u), f(self.v), f(self.normal));
+        let det = self.det as f64;
+        let i = dot_f64(cross_f64(d, v), n) / det;
+        let j = dot_f64(cross_f64(u, d), n) / det;
+        if !(i.is_finite() && j.is_finite()) {
+            return None;
+        }
+        let (i, j) = (i.round() as i64, j.round() as i64);
+        let mut best: Option<(f64, GridPoint)> = None;
+        for di in -1..=1 {
+            for dj in -1..=1 {
+                let Some(p) = self.point([i + di, j + dj]) else {
+                    continue;
+                };
+                let g = p.to_f64();
+                let distance = (0..3).map(|k| (g[k] - q[k]).powi(2)).sum::<f64>();
+                if best.is_none_or(|(b, _)| distance < b) {
+                    best = Some((distance, p));
+                }
+            }
+        }
+        best.map(|(_, p)| p)
+    }
+
     /// Where the plane `cut` meets the lattice's plane in a line of
     /// constant `i` (`(0, i)`) or constant `j` (`(1, j)`), if it does.
-    pub(super) fn line_of(&self, cut: &Plane) -> Option<(usize, i64)> {
+    pub fn line_of(&self, cut: &Plane) -> Option<(usize, i64)> {
         let r = cut.normal();
         let (ru, rv) = (dot(r, self.u), dot(r, self.v));
         // On the line origin + c u + j v (all j) when r . v = 0 and
@@ -174,6 +210,18 @@ fn dot(a: [i64; 3], b: [i64; 3]) -> i128 {
     (0..3).map(|k| i128::from(a[k]) * i128::from(b[k])).sum()
 }
 
+fn cross_f64(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot_f64(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -187,7 +235,7 @@ mod tests {
         // The plane 3x + 5y + 7z = 39 through (2, 1, 4).
         let (p, q, r) = (g(2, 1, 4), g(7, -2, 4), g(9, 1, 1));
         let plane = Plane::through(p, q, r).unwrap();
-        let lattice = Lattice::of(&plane, p).unwrap();
+        let lattice = PlaneLattice::of(&plane, p).unwrap();
         assert_eq!(lattice.det.abs(), 83, "u x v is the primitive normal");
         for point in [p, q, r, g(2, 8, -1), g(-3, 11, -1)] {
             let ij = lattice.coords(point);
@@ -201,7 +249,7 @@ mod tests {
     #[test]
     fn an_axis_plane_keeps_its_axes_and_meets_cuts_in_lines() {
         let plane = Plane::through(g(0, 10, 0), g(0, 10, 1), g(1, 10, 0)).unwrap();
-        let lattice = Lattice::of(&plane, g(3, 10, 4)).unwrap();
+        let lattice = PlaneLattice::of(&plane, g(3, 10, 4)).unwrap();
         assert_eq!(lattice.point([2, 5]), Some(g(3 + 5, 10, 4 + 2)));
         // The receiver x = 7 meets it in a line of constant j (along z).
         let wall = Plane::through(g(7, 0, 0), g(7, 1, 0), g(7, 0, 1)).unwrap();

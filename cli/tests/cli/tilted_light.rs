@@ -1,0 +1,132 @@
+//! An area light in a tilted plane whose corners' nearest grid points are
+//! not coplanar (a user's scene that was refused): both commands take it as
+//! one convex light, classify the floor under an occluder, and light it as
+//! quadrature over the light says.
+
+use crate::area::{face_points, floor_classes};
+use crate::{folder, umbra};
+use umbra::load_ply;
+
+/// The light's corners, a parallelogram tilted about 10 degrees about x
+/// and 2 about z, facing down.
+const LIGHT: [[f64; 3]; 4] = [
+    [-1.3898948642456967, 3.5282534945275446, -0.6631425633241408],
+    [
+        -0.19145700534392707,
+        3.4792339852393814,
+        -0.6631425633241408,
+    ],
+    [-0.18358269696526763, 3.6717465054724556, 0.4013633257258893],
+    [-1.3820205558670373, 3.7207660147606187, 0.4013633257258893],
+];
+
+/// The occluder: x in [-1.6, 0], z in [-0.93, 0.67] at y = 2, wider than
+/// the light, so part of the floor sees none of it.
+const OCCLUDER: [[f64; 2]; 2] = [[-1.6, 0.0], [-0.93, 0.67]];
+
+fn scene() -> String {
+    let corners: Vec<String> = LIGHT
+        .iter()
+        .map(|p| format!("[{:?}, {:?}, {:?}]", p[0], p[1], p[2]))
+        .collect();
+    let [[x0, x1], [z0, z1]] = OCCLUDER;
+    format!(
+        r#"
+[[object]]
+name = "floor"
+polygons = [[[-3, 0, 3], [3, 0, 3], [3, 0, -3], [-3, 0, -3]]]
+
+[[object]]
+name = "occluder"
+polygons = [[[{x0}, 2, {z1}], [{x1}, 2, {z1}], [{x1}, 2, {z0}], [{x0}, 2, {z0}]]]
+
+[[light]]
+type = "area"
+vertices = [{}]
+intensity = 1.5
+"#,
+        corners.join(", ")
+    )
+}
+
+/// Irradiance at floor point `p` (normal +y) by midpoint quadrature over
+/// the light (radiance 1.5), each sample blocked when its ray meets the
+/// occluder.
+fn quadrature(p: [f64; 3]) -> f64 {
+    let [o, a, _, c] = LIGHT;
+    let e1 = [0, 1, 2].map(|k| a[k] - o[k]);
+    let e2 = [0, 1, 2].map(|k| c[k] - o[k]);
+    let cross = [
+        e1[1] * e2[2] - e1[2] * e2[1],
+        e1[2] * e2[0] - e1[0] * e2[2],
+        e1[0] * e2[1] - e1[1] * e2[0],
+    ];
+    let area = cross.iter().map(|c| c * c).sum::<f64>().sqrt();
+    let normal = cross.map(|c| c / area);
+    let n = 400;
+    let h = 1.0 / f64::from(n);
+    let mut e = 0.0;
+    for i in 0..n {
+        for j in 0..n {
+            let (s, t) = ((f64::from(i) + 0.5) * h, (f64::from(j) + 0.5) * h);
+            let x = [0, 1, 2].map(|k| o[k] + s * e1[k] + t * e2[k]);
+            let d = [0, 1, 2].map(|k| x[k] - p[k]);
+            let at = (2.0 - p[1]) / d[1];
+            let (cx, cz) = (p[0] + at * d[0], p[2] + at * d[2]);
+            let [[x0, x1], [z0, z1]] = OCCLUDER;
+            if (0.0..1.0).contains(&at) && (x0..x1).contains(&cx) && (z0..z1).contains(&cz) {
+                continue;
+            }
+            let r2 = d.iter().map(|c| c * c).sum::<f64>();
+            let r = r2.sqrt();
+            // cos at the floor (normal +y) and at the light (its normal
+            // faces the floor: -d . normal > 0).
+            let cos_floor = d[1] / r;
+            let cos_light = -(0..3).map(|k| d[k] * normal[k]).sum::<f64>() / r;
+            e += 1.5 * cos_floor * cos_light / r2 * area * h * h;
+        }
+    }
+    e
+}
+
+#[test]
+fn a_tilted_light_off_the_grid_shades_the_floor() {
+    let dir = folder(&[("scene.toml", scene().as_str())]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{command}: {}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let [lit, penumbra, umbra] = floor_classes(&mesh);
+        assert!(
+            (lit + penumbra + umbra - 36.0).abs() < 1e-9,
+            "{command}: {lit} + {penumbra} + {umbra}"
+        );
+        assert!(
+            lit > 5.0 && penumbra > 5.0 && umbra > 1.0,
+            "{command}: lit {lit}, penumbra {penumbra}, umbra {umbra}"
+        );
+        let mut checked = 0;
+        for (f, face) in mesh.faces.iter().enumerate() {
+            if face.source != 0 {
+                continue;
+            }
+            for (p, &v) in face_points(&mesh, f).into_iter().zip(&face.vertices) {
+                let e = f64::from(mesh.vertices[v as usize].1);
+                if face.umbra_mask & 1 != 0 {
+                    assert!(e.abs() < 1e-6, "{command}: umbra vertex {p:?}: {e}");
+                    continue;
+                }
+                checked += 1;
+                if checked % 5 != 0 {
+                    continue;
+                }
+                let truth = quadrature(p);
+                assert!(
+                    (e - truth).abs() <= 2e-3 * truth + 1e-5,
+                    "{command}: vertex {p:?}: {e} vs {truth}"
+                );
+            }
+        }
+        assert!(checked > 20, "{command}: {checked} vertices checked");
+    }
+}
