@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    Deletion, DemoFiles, DmOptions, DmRun, Error, ObjMesh, Outputs, OverlapKind, Pieces,
+    Deletion, DemoFiles, DmOptions, DmRun, DmStats, Error, ObjMesh, Outputs, OverlapKind, Pieces,
     PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene_moving, dm_scene_with,
     render_scene_with, save_csg_obj, shadow_scene, shadow_scene_with, stage_obj, stage_ply,
 };
@@ -435,15 +435,17 @@ fn dm_options(outer_only: bool, deletion: DeletionArg, overlap: OverlapArg) -> D
     }
 }
 
-/// Writes a DM run's PLY and, if asked, its statistics, together.
-fn save_dm(run: &DmRun, output: &Path, ascii: bool, stats: Option<&Path>) -> Result<()> {
+/// Writes a DM run's PLY and, if asked, its statistics, together; returns
+/// the statistics written.
+fn save_dm(run: &DmRun, output: &Path, ascii: bool, stats: Option<&Path>) -> Result<DmStats> {
     let mut outputs = Outputs::default();
     let (mesh, figures) = run.output();
     stage_ply(&mut outputs, output, &mesh, encoding(ascii))?;
     if let Some(stats) = stats {
         figures.stage(&mut outputs, stats)?;
     }
-    outputs.commit()
+    outputs.commit()?;
+    Ok(figures)
 }
 
 /// `umbra dm`: outputs are written only once everything succeeded.
@@ -454,9 +456,8 @@ fn run_dm(args: &DmArgs) -> Result<()> {
     let options = dm_options(args.outer_only, DeletionArg::Local, args.overlap);
     let run = dm_scene_with(&scene, options)?;
     progress.say("writing");
-    save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
+    let s = save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
     progress.finish();
-    let s = &run.stats;
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,

@@ -45,6 +45,9 @@ pub struct DmFigures {
     pub build_seconds: f64,
     /// Seconds illuminating vertices.
     pub illum_seconds: f64,
+    /// Seconds turning the cells into output faces, proving the cells in a
+    /// joint umbra dark on the way (counted in `seconds.total`).
+    pub output_seconds: f64,
 }
 
 /// Per-step figures of `umbra update`.
@@ -241,8 +244,11 @@ impl DmRun {
     /// those of the mesh (joint umbrae proven as it is made turn penumbra
     /// cells umbra, see [`Self::mesh`]).
     pub fn output(&self) -> (OutputMesh, DmStats) {
+        let started = Instant::now();
         let mesh = self.mesh();
         let mut stats = self.stats.clone();
+        stats.dm.output_seconds = started.elapsed().as_secs_f64();
+        stats.stats.seconds.total += stats.dm.output_seconds;
         for (i, light) in stats.stats.lights.iter_mut().enumerate() {
             let bit = 1 << i;
             light.lit = mesh.faces.iter().filter(|f| f.lit_mask & bit != 0).count() as u64;
@@ -467,6 +473,7 @@ impl DmRun {
                 comparisons_per_visibility_vertex: per(illum.visibility),
                 build_seconds: build,
                 illum_seconds,
+                output_seconds: 0.0,
             },
             update: None,
         }

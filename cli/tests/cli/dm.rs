@@ -107,6 +107,14 @@ fn dm_cells_have_the_exact_shadow_areas_and_stats() {
     }
     assert_eq!(json["output_fragments"], json["dm"]["cells"]);
     assert!(json["dm"]["tree_nodes"].as_u64().unwrap() >= 8);
+    // The run's total counts every phase, the output (with its joint
+    // umbra proofs) included.
+    let seconds = |v: &serde_json::Value| v.as_f64().unwrap();
+    let phases = ["build_seconds", "illum_seconds", "output_seconds"]
+        .map(|key| seconds(&json["dm"][key]))
+        .iter()
+        .sum::<f64>();
+    assert!(seconds(&json["seconds"]["total"]) >= phases);
     // Per light, the contract's fields for an area light: the floor's
     // umbra is the square's four umbra planes, its penumbra at least the
     // four outer ones.
