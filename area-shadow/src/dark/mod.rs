@@ -21,6 +21,13 @@
 //!   of the light a one-sided receiver has behind it need no occluder.
 //!   Halving keeps every corner a corner of some part, so a corner pair
 //!   that no blocker crosses ends the proof at once: it has failed.
+//! - Before halving, where one blocker hides a run of the light piece's
+//!   corners from all of the region, the piece is cut along the frontier
+//!   of what that blocker hides (`frontier`): one side is hidden by it,
+//!   the other left to the rest. Where two blockers' hidden parts overlap
+//!   only thinly (beside a contact, or at a discontinuity the region's
+//!   corners lie on), one such cut does what midpoint halving could only
+//!   do many levels down.
 //! - The halving stops at a depth and a node budget: a region next to the
 //!   true (curved) boundary of the joint umbra is never proven, and stays
 //!   penumbra. So is one that reaches where two occluders' hidden parts of
@@ -68,6 +75,7 @@ use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane, PlaneLattice, Split};
 use smallvec::SmallVec;
 
+mod frontier;
 mod leak;
 mod shaft;
 mod vector;
@@ -480,13 +488,22 @@ type Pairs = SmallVec<[bool; 32]>;
 /// The sides of a region's corners and of a light's corners of a plane.
 type CornerSides = (SmallVec<[Side; 8]>, SmallVec<[Side; 8]>);
 
-/// A part of the light: the light itself, or a parallelogram of its
-/// plane's lattice, grid points at its corners, covering part of it.
+/// A part of the light: the light itself, a parallelogram of its plane's
+/// lattice, or a side of a cut along a blocker's frontier
+/// ([`frontier`]); a convex polygon with grid points at its corners,
+/// covering part of the light (and maybe some of the plane beyond it).
 struct LightPiece {
     corners: SmallVec<[GridPoint; 8]>,
     /// The parallelogram's low and high lattice coordinates; `None` for
-    /// the light itself.
+    /// the light itself and the sides of frontier cuts.
     rectangle: Option<[[i64; 2]; 2]>,
+}
+
+/// A blocker of a proof: one of the prover's occluders or bodies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum BlockerRef {
+    Occluder(u32),
+    Body(u32),
 }
 
 struct Prover<'a> {
@@ -563,20 +580,20 @@ impl Prover<'_> {
         // region (strictly between them, or a body they may enter), each
         // with the corner pairs it crosses: one that crosses them all hides
         // it all, and the others guide the halving.
-        let mut candidates: Vec<Pairs> = Vec::new();
-        let occluders = near
+        let mut candidates: Vec<(BlockerRef, Pairs)> = Vec::new();
+        let blockers = near
             .occluders
             .iter()
-            .filter_map(|&k| self.occluders[k as usize].candidate_pairs(region, &light.corners));
-        let bodies = near
-            .bodies
-            .iter()
-            .filter_map(|&k| self.bodies[k as usize].candidate_pairs(region, &light.corners));
-        for pairs in occluders.chain(bodies) {
+            .map(|&k| BlockerRef::Occluder(k))
+            .chain(near.bodies.iter().map(|&k| BlockerRef::Body(k)));
+        for blocker in blockers {
+            let Some(pairs) = self.candidate_pairs(blocker, region, &light.corners) else {
+                continue;
+            };
             if !pairs.contains(&false) {
                 return true;
             }
-            candidates.push(pairs);
+            candidates.push((blocker, pairs));
         }
         // No one blocker hides it all: before halving, once, look for what
         // dooms the proof (a sampled segment that clearly passes every
@@ -591,12 +608,20 @@ impl Prover<'_> {
             return false;
         }
         search.budget -= 1;
+        // Where one blocker hides the light's corners on one side from all
+        // of the region, cut the light along the edge of what it hides:
+        // that side is proven at once, the other left to the rest.
+        if let Some([hidden, rest]) = self.cut_at_frontier(region, light, &candidates) {
+            return self.prove(region, &hidden, &near, depth - 1, light_run + 1, search)
+                && self.prove(region, &rest, &near, depth - 1, light_run + 1, search);
+        }
         // Where a blocker hides the light from some corner pairs and not
         // others, cut between them: the pieces on each side then have one
         // blocker more or less to care about. Else alternate: a joint
         // umbra is most often one occluder hiding one part of the light and
         // another the rest, each over all of the region.
-        let (light_side, region_axis, seam_axis) = self.guide(region, light, &candidates);
+        let pairs: Vec<Pairs> = candidates.into_iter().map(|(_, pairs)| pairs).collect();
+        let (light_side, region_axis, seam_axis) = self.guide(region, light, &pairs);
         // After a run of light cuts, the region once, across the seam
         // between two blockers' parts of the light where one moves across
         // it: no cut of the light then suits all of the region.
@@ -620,6 +645,21 @@ impl Prover<'_> {
             }
         }
         false
+    }
+
+    /// The corner pairs `blocker` crosses when it may hide all of the
+    /// light piece with corners `light` from `region` (see
+    /// [`Occluder::candidate_pairs`], [`Body::candidate_pairs`]).
+    fn candidate_pairs(
+        &self,
+        blocker: BlockerRef,
+        region: &ConvexPolygon,
+        light: &[GridPoint],
+    ) -> Option<Pairs> {
+        match blocker {
+            BlockerRef::Occluder(k) => self.occluders[k as usize].candidate_pairs(region, light),
+            BlockerRef::Body(k) => self.bodies[k as usize].candidate_pairs(region, light),
+        }
     }
 
     /// Whether a sampled segment from inside the region to the light
@@ -673,12 +713,11 @@ impl Prover<'_> {
     ) -> bool {
         light.corners.iter().enumerate().any(|(j, &l)| {
             let shines = self.two_sided || side_of_point(self.receiver, l) == Side::Front;
-            let on_light = light.rectangle.is_none()
-                || self
-                    .light
-                    .polygon()
-                    .edges()
-                    .all(|edge| side_of_point(edge, l) != Side::Front);
+            let on_light = self
+                .light
+                .polygon()
+                .edges()
+                .all(|edge| side_of_point(edge, l) != Side::Front);
             shines
                 && on_light
                 && crossed[j * region_corners..(j + 1) * region_corners].contains(&false)
@@ -727,20 +766,20 @@ impl Prover<'_> {
     }
 
     /// Whether no light of the piece reaches the receiver: it lies behind a
-    /// one-sided receiver, or outside the light (a covering rectangle's
-    /// part beyond one of its edges).
+    /// one-sided receiver, or outside the light (a covering piece's part
+    /// beyond one of its edges; the light's own corners are all on or
+    /// inside every edge, and some inside).
     fn needs_no_occluder(&self, light: &LightPiece) -> bool {
         let behind = |p: &GridPoint| side_of_point(self.receiver, *p) != Side::Front;
         if !self.two_sided && light.corners.iter().all(behind) {
             return true;
         }
-        light.rectangle.is_some()
-            && self.light.polygon().edges().any(|edge| {
-                light
-                    .corners
-                    .iter()
-                    .all(|&p| side_of_point(edge, p) != Side::Back)
-            })
+        self.light.polygon().edges().any(|edge| {
+            light
+                .corners
+                .iter()
+                .all(|&p| side_of_point(edge, p) != Side::Back)
+        })
     }
 
     /// The piece's bounding lattice parallelogram halved across its

@@ -297,3 +297,133 @@ fn a_seam_moving_across_the_region_needs_both_halved() {
         assert!(!sees_none(&region, false, &source, &[&high], &[]));
     }
 }
+
+/// Two boxes standing on the floor that run into each other (turned, as
+/// `rotate_deg` leaves them), under a light that neither hides alone from
+/// the floor in the notch between them. The region's corner `(-423091,
+/// -1460769)` sits next to where one box's hidden part of the light starts
+/// as the other's ends: halving at midpoints had to shrink the light below
+/// that thin overlap and gave up; cut along the first box's frontier, one
+/// cut leaves the rest to the second. Sampled segments agree it is dark.
+#[test]
+fn boxes_running_into_each_other_hide_the_light_from_their_notch() {
+    let quad = |c: [[i64; 3]; 4]| {
+        ConvexPolygon::from_grid_points(&c.map(|[x, y, z]| g(x, y, z)), 0).unwrap()
+    };
+    // A box on the floor: its corners at the floor in counter-clockwise
+    // order seen from above, and its height.
+    let upright = |base: [[i64; 2]; 4], h: i64| -> Vec<ConvexPolygon> {
+        let at = |[x, z]: [i64; 2], y: i64| [x, y, z];
+        let mut faces = vec![
+            quad(base.map(|c| at(c, h))),
+            quad([base[3], base[2], base[1], base[0]].map(|c| at(c, 0))),
+        ];
+        for i in 0..4 {
+            let (a, b) = (base[i], base[(i + 1) % 4]);
+            faces.push(quad([at(a, 0), at(b, 0), at(b, h), at(a, h)]));
+        }
+        faces
+    };
+    let first = upright(
+        [
+            [-99184, -1173868],
+            [404620, -833032],
+            [733580, -1319284],
+            [229772, -1660120],
+        ],
+        3_286_000,
+    );
+    let second = upright(
+        [
+            [-339812, -728368],
+            [645196, -273212],
+            [836552, -687336],
+            [-148456, -1142488],
+        ],
+        2_134_000,
+    );
+    let body = |faces: &[ConvexPolygon]| {
+        let groups = convex_groups(faces, &vec![Some(0); faces.len()]);
+        let [group] = &groups[..] else {
+            panic!("a box is one group")
+        };
+        let Some(crate::Blocker::Body(body)) = group.blocker(faces) else {
+            panic!("a box is a body")
+        };
+        body
+    };
+    let (a, b) = (body(&first), body(&second));
+    let y = 15_800_000;
+    let source = AreaSource::from_grid_points(&[
+        g(4_000_000, y, 2_000_000),
+        g(8_000_000, y, 2_000_000),
+        g(8_000_000, y, 6_000_000),
+        g(4_000_000, y, 6_000_000),
+    ])
+    .unwrap();
+    let corners = [
+        g(-282_049, 0, -1_395_596),
+        g(-423_091, 0, -1_460_769),
+        g(-282_049, 0, -1_335_841),
+    ];
+    let region = ConvexPolygon::from_grid_points(&corners, 0).unwrap();
+    assert!(region.support().normal()[1] > 0, "the floor faces up");
+    assert!(sees_none(&region, false, &source, &[], &[&a, &b]));
+    assert!(!sees_none(&region, false, &source, &[], &[&a]));
+    assert!(!sees_none(&region, false, &source, &[], &[&b]));
+
+    // Sampled segments from the region to the light all enter a box.
+    let planes = |faces: &[ConvexPolygon]| -> Vec<([f64; 3], f64)> {
+        faces
+            .iter()
+            .map(|f| {
+                let [a, b, c, d] = f.support().approx();
+                let length = (a * a + b * b + c * c).sqrt();
+                ([a / length, b / length, c / length], d / length)
+            })
+            .collect()
+    };
+    let boxes = [planes(&first), planes(&second)];
+    // How deep the segment k-l runs inside a box (parameter length).
+    let inside = |faces: &[([f64; 3], f64)], k: [f64; 3], l: [f64; 3]| {
+        let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+        for (n, d) in faces {
+            let (at_k, at_l) = (vector::dot(*n, k) + d, vector::dot(*n, l) + d);
+            if at_k == at_l {
+                if at_k > 0.0 {
+                    return 0.0;
+                }
+                continue;
+            }
+            let t = at_k / (at_k - at_l);
+            if at_k > at_l {
+                lo = lo.max(t);
+            } else {
+                hi = hi.min(t);
+            }
+        }
+        hi - lo
+    };
+    let mut rng = Pcg64::seed_from_u64(3);
+    let points = region.vertices_f64();
+    for _ in 0..4000 {
+        let (s, t) = (rng.random::<f64>(), rng.random::<f64>());
+        let (s, t) = if s + t > 1.0 {
+            (1.0 - s, 1.0 - t)
+        } else {
+            (s, t)
+        };
+        let k: [f64; 3] = std::array::from_fn(|i| {
+            points[0][i] + s * (points[1][i] - points[0][i]) + t * (points[2][i] - points[0][i])
+        });
+        let l = [
+            4e6 + rng.random::<f64>() * 4e6,
+            y as f64,
+            2e6 + rng.random::<f64>() * 4e6,
+        ];
+        assert!(
+            boxes.iter().any(|faces| inside(faces, k, l) > 1e-9),
+            "segment {k:?} -> {l:?} passes both boxes"
+        );
+    }
+}
