@@ -162,8 +162,11 @@ impl ConvexGroup {
         let Some(umbra) = solid.umbra_planes(light) else {
             return Vec::new();
         };
+        // Outside the surface's hull, not just outside the body: a body
+        // moved in leaves part of the surface's inside, which light
+        // reaches through the hole, outside it.
         solid
-            .faces()
+            .hull()
             .iter()
             .map(|face| {
                 let mut part = umbra.clone();

@@ -51,6 +51,12 @@ pub(super) struct Solid {
     /// The pieces (outline, support) of the surface it was made from,
     /// without the faces that closed it; empty for a hull.
     surface: Vec<(Vec<GridPoint>, Plane)>,
+    /// The planes of the convex hull of the surface (closed by its caps),
+    /// the hull behind each: a point in front of one is outside the
+    /// surface. The faces themselves when the body is exact; the hull's
+    /// when it was moved in, which leaves a layer of the surface's inside
+    /// outside the body.
+    hull: Vec<Plane>,
 }
 
 impl Solid {
@@ -94,7 +100,14 @@ impl Solid {
             (supports.to_vec(), ahead)
         };
         let solid = if out.contains(&true) {
-            Self::moved_in(&faces, &vertices, &out)
+            let hull: Vec<Plane> = convex_hull(&vertices)?
+                .into_iter()
+                .map(|(_, plane)| plane)
+                .collect();
+            Self::moved_in(&faces, &vertices, &out).map(|solid| Self {
+                hull: distinct_planes(hull),
+                ..solid
+            })
         } else {
             Self::with_faces(outlines, faces, vertices, true)
         };
@@ -227,6 +240,12 @@ impl Solid {
         self.exact && !self.capped
     }
 
+    /// The planes of the surface's convex hull, facing out (see the
+    /// field).
+    pub(super) fn hull(&self) -> &[Plane] {
+        &self.hull
+    }
+
     /// A piece's support plane turned to face out of the body.
     pub(super) fn outward(&self, support: &Plane) -> Plane {
         if self.faces_in {
@@ -305,6 +324,7 @@ impl Solid {
         solid_edges.sort_unstable();
         Some(Self {
             vertices,
+            hull: distinct_planes(faces.clone()),
             faces,
             edges: solid_edges,
             exact,
@@ -464,6 +484,17 @@ impl Solid {
             _ => None,
         }
     }
+}
+
+/// The planes with repeats (coincident planes) dropped, in order.
+fn distinct_planes(planes: Vec<Plane>) -> Vec<Plane> {
+    let mut out: Vec<Plane> = Vec::with_capacity(planes.len());
+    for plane in planes {
+        if !out.iter().any(|p| p.is_coincident(&plane)) {
+            out.push(plane);
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ mod dm;
 mod errors;
 mod joint_umbra;
 mod joints;
+mod open_box;
 mod order;
 mod ply_files;
 mod properties;
