@@ -127,6 +127,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
             |f| illuminator.fragment_irradiance(f),
         );
     }
+    settle_beyond_range(&mut fragments, &lights);
     let dark_started = Instant::now();
     mark_joint_umbra(
         &mut fragments,
@@ -254,6 +255,30 @@ fn scene_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<SceneLight>> {
         });
     }
     Ok(lights)
+}
+
+/// Marks umbra, for each point light with a range, every fragment wholly
+/// beyond it (it takes no part for that light). The shadow pass settles
+/// whole polygons so; the fragments it and gridding cut from a polygon
+/// that straddles the range may lie beyond it too.
+fn settle_beyond_range(fragments: &mut [Fragment], lights: &[SceneLight]) {
+    for (i, light) in lights.iter().enumerate() {
+        let SceneLight::Svbsp(light) = light else {
+            continue;
+        };
+        if light.range.is_none() {
+            continue;
+        }
+        let bit = 1 << i;
+        for fragment in fragments.iter_mut() {
+            if fragment.umbra_mask & bit == 0
+                && light.wholly_beyond_range(&fragment.polygon.vertices_f64())
+            {
+                fragment.lit_mask &= !bit;
+                fragment.umbra_mask |= bit;
+            }
+        }
+    }
 }
 
 /// Marks umbra, for an area light, each penumbra fragment that sees none

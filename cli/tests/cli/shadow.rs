@@ -288,3 +288,87 @@ fn svg_draws_one_polygons_fragments() {
     assert!(run.stderr.contains("polygon"), "{}", run.stderr);
     assert!(!dir.path().join("none.svg").exists());
 }
+
+/// Distance from `x` to the convex polygon `v` (counter-clockwise about
+/// its normal): to its plane when `x` projects inside, else to its
+/// nearest edge.
+fn distance_to_polygon(x: [f64; 3], v: &[[f64; 3]]) -> f64 {
+    let sub = |a: [f64; 3], b: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| a[k] - b[k]) };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let n = cross(sub(v[1], v[0]), sub(v[2], v[0]));
+    let inside =
+        (0..v.len()).all(|i| dot(cross(sub(v[(i + 1) % v.len()], v[i]), sub(x, v[i])), n) >= 0.0);
+    if inside {
+        return dot(sub(x, v[0]), n).abs() / dot(n, n).sqrt();
+    }
+    (0..v.len())
+        .map(|i| {
+            let (a, b) = (v[i], v[(i + 1) % v.len()]);
+            let t = (dot(sub(x, a), sub(b, a)) / dot(sub(b, a), sub(b, a))).clamp(0.0, 1.0);
+            let p: [f64; 3] = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
+            dot(sub(x, p), sub(x, p)).sqrt()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// A floor straddling a point light's range, and a panel inside the range
+/// whose shadow falls on the floor beyond it: every fragment wholly beyond
+/// the range has the umbra bit (it takes no part for the light), also the
+/// pieces the shadow and the grid cut from the straddling floor; those
+/// within it keep their classes.
+#[test]
+fn fragments_beyond_a_lights_range_are_umbra() {
+    let scene = r#"
+[[object]]
+name = "floor"
+polygons = [[[-4, 0, -1], [-4, 0, 1], [4, 0, 1], [4, 0, -1]]]
+
+[[object]]
+name = "panel"
+polygons = [[[1.2, 0.5, -0.3], [1.2, 0.5, 0.3], [1.8, 0.5, 0.3], [1.8, 0.5, -0.3]]]
+
+[[light]]
+type = "point"
+position = [0.0, 1.0, 0.0]
+intensity = 1.0
+falloff_start = 1.0
+range = 2.0
+"#;
+    let dir = folder(&[("scene.toml", scene)]);
+    for grid in [None, Some("16")] {
+        let mut args = vec!["shadow", "scene.toml", "-o", "out.ply"];
+        args.extend(grid.iter().flat_map(|n| ["--grid", *n]));
+        let run = umbra(dir.path(), &args);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        let (mut beyond, mut within_lit) = (0, 0);
+        for (f, face) in mesh.faces.iter().enumerate() {
+            let corners: Vec<[f64; 3]> = face
+                .vertices
+                .iter()
+                .map(|&v| mesh.vertices[v as usize].0)
+                .collect();
+            let d = distance_to_polygon([0.0, 1.0, 0.0], &corners);
+            if d >= 2.0 + 1e-6 {
+                beyond += 1;
+                assert!(
+                    face.umbra_mask & 1 != 0 && face.lit_mask & 1 == 0,
+                    "grid {grid:?}: face {f} at {d} from the light is not umbra"
+                );
+            } else if face.lit_mask & 1 != 0 {
+                within_lit += 1;
+            }
+        }
+        assert!(
+            beyond >= 2 && within_lit >= 1,
+            "grid {grid:?}: {beyond} beyond, {within_lit} lit within"
+        );
+    }
+}
