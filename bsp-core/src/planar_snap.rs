@@ -29,7 +29,9 @@ impl ConvexPolygon {
     /// Corners go to their nearest grid points when those lie in one plane
     /// and still make a convex polygon; otherwise to the nearest grid
     /// points of a plane close to the polygon's (see the module docs), so
-    /// the polygon keeps its corners, its orientation and its convexity.
+    /// the polygon keeps its orientation, its convexity and its corners
+    /// (but one all but in line with its neighbours, which may fall in
+    /// line and be dropped).
     ///
     /// Errors: a point off the grid, or a polygon that no snap keeps convex
     /// and planar (one that is not, or too small for the grid): the error
@@ -60,7 +62,7 @@ impl ConvexPolygon {
         ) else {
             return Err(refused);
         };
-        let mut best: Option<(f64, Self)> = None;
+        let mut best: Option<((usize, f64), Self)> = None;
         let mut tried: Option<[i64; 3]> = None;
         for eighth_bits in 0..=8 * LARGEST_NORMAL_BITS {
             let size = 2f64.powf(f64::from(eighth_bits) / 8.0);
@@ -77,15 +79,21 @@ impl ConvexPolygon {
             };
             let n = polygon.support().normal();
             let facing: f64 = (0..3).map(|k| n[k] as f64 * normal[k]).sum();
-            if polygon.len() != points.len() || facing <= 0.0 {
+            if facing <= 0.0 {
                 continue;
             }
-            let moved = farthest(grid, points, &corners);
-            if best.as_ref().is_none_or(|(b, _)| moved < *b) {
-                best = Some((moved, polygon));
+            // Fewest corners lost (a corner all but in line with its
+            // neighbours may fall in line), then least moved.
+            let key = (
+                points.len() - polygon.len(),
+                farthest(grid, points, &corners),
+            );
+            if best.as_ref().is_none_or(|(b, _)| key < *b) {
+                best = Some((key, polygon));
             }
         }
-        best.map(|(moved, polygon)| (polygon, moved)).ok_or(refused)
+        best.map(|((_, moved), polygon)| (polygon, moved))
+            .ok_or(refused)
     }
 }
 

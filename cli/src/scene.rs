@@ -537,7 +537,8 @@ impl Checker<'_> {
                 for v in &vertices {
                     self.finite(&at("vertices"), v)?;
                 }
-                check_convex_planar(&vertices).map_err(|m| self.field(at("vertices"), m))?;
+                let vertices =
+                    check_convex_planar(&vertices).map_err(|m| self.field(at("vertices"), m))?;
                 LightKind::Area { vertices }
             }
         };
@@ -623,10 +624,20 @@ impl Checker<'_> {
     }
 }
 
-/// Checks that an area light's vertices form a strictly convex planar
-/// polygon with non-zero area (in `f64`, relative to its size; the exact
-/// check runs again after snapping).
-fn check_convex_planar(v: &[[f64; 3]]) -> std::result::Result<(), String> {
+/// How far (relative to its size) an area light's vertex may lie off the
+/// plane that fits the others: six significant digits. Snapping puts the
+/// light in one plane anyway (`ConvexPolygon::snap_planar`).
+const LIGHT_PLANARITY: f64 = 1e-6;
+
+/// The sine of the turn at an area light's vertex at or below which the
+/// vertex is in line with its neighbours (and dropped).
+const LIGHT_STRAIGHT: f64 = 1e-7;
+
+/// Checks that an area light's vertices form a convex planar polygon with
+/// non-zero area (in `f64`, relative to its size; the exact check runs
+/// again after snapping) and returns them without the vertices in line
+/// with their neighbours (a square given with a vertex mid-edge, say).
+fn check_convex_planar(v: &[[f64; 3]]) -> std::result::Result<Vec<[f64; 3]>, String> {
     let n = v.len();
     if n < 3 {
         return Err(format!(
@@ -654,30 +665,46 @@ fn check_convex_planar(v: &[[f64; 3]]) -> std::result::Result<(), String> {
         return Err("the polygon encloses no area (degenerate)".into());
     }
     let unit = area.map(|c| c / a);
-    for (i, p) in v.iter().enumerate() {
-        if dot(unit, sub(*p, v[0])).abs() > 1e-9 * size {
-            return Err(format!(
-                "vertex {i} is not in the plane of the others (not planar)"
-            ));
-        }
+    // Off the plane through the centroid with Newell's normal (the best
+    // fit): the farthest vertex is the one named.
+    let centroid: [f64; 3] =
+        std::array::from_fn(|k| v.iter().map(|p| p[k]).sum::<f64>() / n as f64);
+    let (farthest, off) = v
+        .iter()
+        .map(|p| dot(unit, sub(*p, centroid)).abs())
+        .enumerate()
+        .fold(
+            (0, 0.0),
+            |best, (i, d)| if d > best.1 { (i, d) } else { best },
+        );
+    if off > LIGHT_PLANARITY * size {
+        return Err(format!(
+            "vertex {farthest} lies {off:e} off the plane of the others (not planar)"
+        ));
     }
+    let mut kept = Vec::with_capacity(n);
     let mut turning = 0.0;
     for i in 0..n {
         let e0 = sub(v[(i + 1) % n], v[i]);
         let e1 = sub(v[(i + 2) % n], v[(i + 1) % n]);
         let s = dot(cross(e0, e1), unit);
-        if s <= 1e-12 * norm(e0) * norm(e1) {
-            return Err(format!(
-                "not strictly convex at vertex {} (reflex or collinear)",
-                (i + 1) % n
-            ));
+        let (straight, along) = (LIGHT_STRAIGHT * norm(e0) * norm(e1), dot(e0, e1));
+        if s.abs() <= straight && along > 0.0 {
+            continue;
         }
-        turning += s.atan2(dot(e0, e1));
+        if s <= straight {
+            let how = if along > 0.0 { "reflex" } else { "turns back" };
+            return Err(format!("not convex at vertex {} ({how})", (i + 1) % n));
+        }
+        turning += s.atan2(along);
+        kept.push(v[(i + 1) % n]);
     }
     if (turning - std::f64::consts::TAU).abs() > 1e-6 {
         return Err("not convex (the outline winds more than once)".into());
     }
-    Ok(())
+    // Vertex i + 1 was looked at in step i: the list starts at vertex 1.
+    kept.rotate_right(1);
+    Ok(kept)
 }
 
 #[cfg(test)]
@@ -721,6 +748,36 @@ mod tests {
     }
 
     #[test]
+    fn area_lights_drop_vertices_in_line_and_allow_rounded_digits() {
+        let area = |v: &str| -> Vec<[f64; 3]> {
+            let scene = load(&format!(
+                "{TRI}[[light]]\ntype = \"area\"\nvertices = {v}\n"
+            ))
+            .unwrap();
+            let LightKind::Area { vertices } = &scene.lights[0].kind else {
+                panic!("an area light")
+            };
+            vertices.clone()
+        };
+        // A square with a vertex mid-edge is the square.
+        assert_eq!(
+            area("[[-0.3,3,-0.3],[0,3,-0.3],[0.3,3,-0.3],[0.3,3,0.3],[-0.3,3,0.3]]"),
+            [
+                [-0.3, 3.0, -0.3],
+                [0.3, 3.0, -0.3],
+                [0.3, 3.0, 0.3],
+                [-0.3, 3.0, 0.3]
+            ]
+        );
+        // A tilted pentagon written with nine significant digits: its
+        // vertices lie up to 2e-9 off one plane, and it is taken whole.
+        let pentagon = "[[0.331859078,2.93521907,0.694760983],[0.00707110885,2.99002162,0.605084061],\
+                        [-0.0653802043,3.08958008,-0.129351962],[0.486330607,3.03143682,-0.262917521],\
+                        [0.770614682,2.95642145,0.0368352651]]";
+        assert_eq!(area(pentagon).len(), 5);
+    }
+
+    #[test]
     fn semantic_errors_name_the_field() {
         let cases = [
             (format!("{TRI}{TRI}"), "object[1].name: `t` is already"),
@@ -736,7 +793,7 @@ mod tests {
                 format!(
                     "{TRI}[[light]]\ntype = \"area\"\nvertices = [[0,0,0],[2,0,0],[1,0,-0.2],[1,0,-2]]\n"
                 ),
-                "light[0].vertices: not strictly convex",
+                "light[0].vertices: not convex at vertex 2 (reflex)",
             ),
             (
                 format!(

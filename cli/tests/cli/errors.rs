@@ -157,7 +157,7 @@ fn degenerate_and_non_convex_area_lights() {
             "scene.toml",
             &light("[[0,2,0],[2,2,0],[1,2,-0.2],[1,2,-2]]"),
         )],
-        "light[0].vertices: not strictly convex",
+        "light[0].vertices: not convex at vertex 2 (reflex)",
     );
 }
 

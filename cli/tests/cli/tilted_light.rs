@@ -1,7 +1,7 @@
 //! An area light in a tilted plane whose corners' nearest grid points are
 //! not coplanar (a user's scene that was refused): both commands take it as
 //! one convex light, classify the floor under an occluder, and light it as
-//! quadrature over the light says.
+//! quadrature over the light says; and a pentagon written with few digits.
 
 use crate::area::{face_points, floor_classes};
 use crate::{folder, umbra};
@@ -128,5 +128,30 @@ fn a_tilted_light_off_the_grid_shades_the_floor() {
             }
         }
         assert!(checked > 20, "{command}: {checked} vertices checked");
+    }
+}
+
+/// A tilted pentagon light written with nine significant digits (its
+/// vertices up to 2e-9 off one plane), over a bare floor: both commands
+/// take it, and every floor vertex gets light from it.
+#[test]
+fn a_rounded_tilted_pentagon_light_is_taken() {
+    let scene = r#"
+[[object]]
+name = "floor"
+polygons = [[[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]]
+
+[[light]]
+type = "area"
+vertices = [[0.331859078, 2.93521907, 0.694760983], [0.00707110885, 2.99002162, 0.605084061], [-0.0653802043, 3.08958008, -0.129351962], [0.486330607, 3.03143682, -0.262917521], [0.770614682, 2.95642145, 0.0368352651]]
+intensity = 1.0
+"#;
+    let dir = folder(&[("scene.toml", scene)]);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{command}: {}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        assert!(mesh.faces.iter().all(|f| f.lit_mask == 1), "{command}");
+        assert!(mesh.vertices.iter().all(|(_, e)| *e > 0.0), "{command}");
     }
 }
