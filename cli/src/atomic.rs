@@ -42,6 +42,21 @@ impl Outputs {
             path: path.to_path_buf(),
             source,
         };
+        // A link is written through (the file it names is replaced, the
+        // link stays); a pipe, a device or a socket is refused before a
+        // byte is written: renaming over it would replace it with a file.
+        // (A folder fails at `commit`.)
+        let target = resolve_links(path).map_err(fail)?;
+        let path = target.as_path();
+        if let Ok(meta) = std::fs::metadata(path)
+            && !meta.is_file()
+            && !meta.is_dir()
+        {
+            return Err(fail(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "is not a regular file (a pipe, a device or a socket)",
+            )));
+        }
         let dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d,
             _ => Path::new("."),
@@ -89,6 +104,25 @@ impl Outputs {
     }
 }
 
+/// `path` with symbolic links followed to the file they name (which need
+/// not exist yet), at most 40 deep.
+fn resolve_links(path: &Path) -> std::io::Result<PathBuf> {
+    let mut path = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&path) {
+            Ok(meta) if meta.file_type().is_symlink() => {
+                let link = std::fs::read_link(&path)?;
+                path = match path.parent() {
+                    Some(parent) => parent.join(link),
+                    None => link,
+                };
+            }
+            _ => return Ok(path),
+        }
+    }
+    Err(std::io::Error::other("too many levels of symbolic links"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -106,6 +140,32 @@ mod tests {
         write_atomic(&target, |w| w.write_all(b"whole")).unwrap();
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "whole");
         assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 1);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_are_written_through_and_special_files_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let file = dir.path().join("real.ply");
+        let link = dir.path().join("link.ply");
+        std::os::unix::fs::symlink("real.ply", &link).unwrap();
+        write_atomic(&link, |w| w.write_all(b"through")).unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read_to_string(&file).unwrap(), "through");
+        // A pipe stays a pipe, and nothing is written beside it.
+        let pipe = dir.path().join("pipe.ply");
+        let made = std::process::Command::new("mkfifo").arg(&pipe).status();
+        if made.is_ok_and(|s| s.success()) {
+            let e = write_atomic(&pipe, |w| w.write_all(b"x")).unwrap_err();
+            assert!(e.to_string().contains("not a regular file"), "{e}");
+            assert!(!std::fs::metadata(&pipe).unwrap().is_file());
+            assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 3);
+        }
     }
 
     #[test]
