@@ -3,13 +3,16 @@
 //! occluders between it and the light, and turns umbra for that light when
 //! proven dark.
 //!
+//! The blockers are the shadow-casting pieces, the convex groups they make
+//! and the open sheets of one object ([`sheet_bodies`]).
+//!
 //! `umbra shadow` finds those occluders with a uniform grid of their boxes
 //! and the shaft between the face and the light; `umbra dm` (and
 //! `update`) takes the objects its cell lists name. Faces stay whole.
 
 use std::collections::HashMap;
 
-use area_shadow::dark::{Body, Shaft, sees_none};
+use area_shadow::dark::{Body, Shaft, sees_none, sheet_bodies};
 use area_shadow::{AreaSource, Blocker, ShadowGroups};
 use bsp_core::ConvexPolygon;
 
@@ -84,6 +87,31 @@ impl<'a> Occluders<'a> {
                     covered[k as usize] = true;
                 }
             }
+        }
+        // Sheets open on some side (a tent of triangles): one body each,
+        // besides their pieces, for regions that see only covered faces.
+        let mut grouped: Vec<&[u32]> = groups
+            .bodies
+            .iter()
+            .chain(&groups.joint_bodies)
+            .map(|g| g.pieces.as_slice())
+            .collect();
+        grouped.sort_unstable();
+        let owners: Vec<Option<u32>> = (0..pieces.polygons.len())
+            .map(|k| pieces.casts_shadows[k].then_some(objects[k]))
+            .collect();
+        for (sheet, body) in sheet_bodies(&pieces.polygons, &owners) {
+            if grouped.binary_search(&sheet.as_slice()).is_ok() {
+                continue;
+            }
+            let corners: Vec<[f64; 3]> = sheet
+                .iter()
+                .flat_map(|&k| pieces.polygons[k as usize].vertices_f64())
+                .collect();
+            by_object[objects[sheet[0] as usize] as usize]
+                .1
+                .push(bodies.len());
+            bodies.push((body, bounds(&corners)));
         }
         for (k, p) in pieces.polygons.iter().enumerate() {
             if pieces.casts_shadows[k] && !covered[k] {

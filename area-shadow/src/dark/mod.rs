@@ -35,6 +35,10 @@
 //!   occluder's umbra at the light's edge, say): no cut of the light then
 //!   suits all of a part of it. Only what is proven is dark: the test is
 //!   sound, not complete.
+//! - Pieces of one object joined edge to edge that tile faces of their
+//!   hull (a tent of triangles) block as one [`Body`] with the other hull
+//!   faces open ([`sheet_bodies`]): where they meet, their hidden parts of
+//!   the light join with no overlap, which no cut gets across.
 //! - Each step looks only at the blockers in the [`Shaft`] between its
 //!   parts of the region and of the light (a floating-point cull: a wrong
 //!   one could only fail a proof).
@@ -78,8 +82,10 @@ use smallvec::SmallVec;
 mod frontier;
 mod leak;
 mod shaft;
+mod sheet;
 mod vector;
 pub use shaft::Shaft;
+pub use sheet::sheet_bodies;
 
 /// A point counts as dark for a light, in floating point, when it gets at
 /// most this fraction of what all of the light would give there: rounding

@@ -427,3 +427,109 @@ fn boxes_running_into_each_other_hide_the_light_from_their_notch() {
         );
     }
 }
+
+/// A tent of three triangles around an apex (an open sheet of one object)
+/// hides a light from the floor under the seam between two of them: each
+/// triangle hides part of the light, the parts joining along the seam's
+/// image with no overlap, so no proof taking them one by one gets across;
+/// as a sheet (the hull of the three, its base and back open) it does.
+/// Sampled segments agree.
+#[test]
+fn a_tent_of_triangles_hides_the_light_as_one_sheet() {
+    let apex = g(0, 1400, 0);
+    let base = [
+        g(700, 800, 0),
+        g(350, 800, -606),
+        g(-350, 800, -606),
+        g(-700, 800, 0),
+    ];
+    let tent: Vec<ConvexPolygon> = (0..3)
+        .map(|i| ConvexPolygon::from_grid_points(&[base[i], base[i + 1], apex], 0).unwrap())
+        .collect();
+    let sheets = sheet_bodies(&tent, &[Some(0); 3]);
+    let [(members, sheet)] = &sheets[..] else {
+        panic!("the tent is one sheet: {} found", sheets.len())
+    };
+    assert_eq!(members, &[0, 1, 2]);
+    assert!(!sheet.is_closed());
+    // Another object's triangle joins no sheet.
+    assert!(sheet_bodies(&tent, &[Some(0), Some(1), None]).is_empty());
+    // A sheet folded up, down and up again is no face of its hull in the
+    // valley: no body.
+    let p = |i: i64, z: i64| g(1000 * i, 500 * (i % 2), z);
+    let zigzag: Vec<ConvexPolygon> = (0..3)
+        .flat_map(|i| {
+            [
+                [p(i, 0), p(i + 1, 0), p(i, 1000)],
+                [p(i, 1000), p(i + 1, 0), p(i + 1, 1000)],
+            ]
+        })
+        .map(|t| ConvexPolygon::from_grid_points(&t, 0).unwrap())
+        .collect();
+    assert!(sheet_bodies(&zigzag, &[Some(0); 6]).is_empty());
+    assert_eq!(
+        sheet_bodies(&zigzag[..4], &[Some(0); 4]).len(),
+        1,
+        "up and down is a roof"
+    );
+
+    let y = 3000;
+    let source = AreaSource::from_grid_points(&[
+        g(-100, y, -500),
+        g(100, y, -500),
+        g(100, y, -300),
+        g(-100, y, -300),
+    ])
+    .unwrap();
+    let region = floor(276, -247, 20);
+    let triangles: Vec<&ConvexPolygon> = tent.iter().collect();
+    assert!(sees_none(&region, false, &source, &[], &[sheet]));
+    assert!(!sees_none(&region, false, &source, &triangles, &[]));
+
+    let mut rng = Pcg64::seed_from_u64(5);
+    for _ in 0..4000 {
+        let k = [
+            256.0 + 40.0 * rng.random::<f64>(),
+            0.0,
+            -267.0 + 40.0 * rng.random::<f64>(),
+        ];
+        let l = [
+            -100.0 + 200.0 * rng.random::<f64>(),
+            y as f64,
+            -500.0 + 200.0 * rng.random::<f64>(),
+        ];
+        let through = tent.iter().any(|t| {
+            let c = t.vertices_f64();
+            segment_meets_triangle(k, l, [c[0], c[1], c[2]])
+        });
+        assert!(through, "segment {k:?} -> {l:?} passes the tent");
+    }
+}
+
+/// Whether the segment `k`-`l` meets the triangle (Möller-Trumbore, with
+/// its border counted in).
+fn segment_meets_triangle(k: [f64; 3], l: [f64; 3], [a, b, c]: [[f64; 3]; 3]) -> bool {
+    let sub = vector::sub;
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - u[2] * v[1],
+            u[2] * v[0] - u[0] * v[2],
+            u[0] * v[1] - u[1] * v[0],
+        ]
+    };
+    let (d, e1, e2) = (sub(l, k), sub(b, a), sub(c, a));
+    let p = cross(d, e2);
+    let det = vector::dot(e1, p);
+    if det == 0.0 {
+        return false;
+    }
+    let s = sub(k, a);
+    let u = vector::dot(s, p) / det;
+    let q = cross(s, e1);
+    let v = vector::dot(d, q) / det;
+    let t = vector::dot(e2, q) / det;
+    (-1e-9..=1.0 + 1e-9).contains(&u)
+        && v >= -1e-9
+        && u + v <= 1.0 + 1e-9
+        && (0.0..=1.0).contains(&t)
+}

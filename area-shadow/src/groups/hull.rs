@@ -9,7 +9,7 @@ use std::collections::HashSet;
 /// with its plane (the hull behind it). A point on a face (not strictly
 /// outside the hull so far) is left out, so faces in one plane may meet.
 /// `None` when the points do not span a volume.
-pub(super) fn convex_hull(points: &[GridPoint]) -> Option<Vec<([GridPoint; 3], Plane)>> {
+pub(crate) fn convex_hull(points: &[GridPoint]) -> Option<Vec<([GridPoint; 3], Plane)>> {
     let (a, b, c, d) = first_tetrahedron(points)?;
     let face =
         |x: GridPoint, y: GridPoint, z: GridPoint| Some(([x, y, z], Plane::through(x, y, z)?));

@@ -72,7 +72,7 @@ use solid::Solid;
 use std::collections::HashMap;
 
 mod flat_union;
-mod hull;
+pub(crate) mod hull;
 mod joint;
 mod solid;
 
