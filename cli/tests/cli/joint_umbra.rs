@@ -4,6 +4,7 @@
 //! and mark them umbra, and a sampling oracle checks every umbra face.
 
 use crate::area::{face_points, floor_classes};
+use crate::vectors::inner_points;
 use crate::{folder, umbra};
 use umbra::{OutputMesh, load_ply};
 
@@ -76,15 +77,7 @@ fn assert_umbra_sees_nothing(
         if face.source != 0 || face.umbra_mask & 1 == 0 {
             continue;
         }
-        let corners = face_points(mesh, f);
-        let n = corners.len() as f64;
-        let centre: [f64; 3] =
-            std::array::from_fn(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
-        let samples = corners
-            .iter()
-            .map(|c| std::array::from_fn(|k| 0.5 * (c[k] + centre[k])))
-            .chain([centre]);
-        for p in samples {
+        for p in inner_points(&face_points(mesh, f)) {
             for &l in &light {
                 assert!(
                     hidden(p, l),

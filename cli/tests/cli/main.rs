@@ -17,6 +17,7 @@ mod properties;
 mod render;
 mod shadow;
 mod tilted_light;
+mod vectors;
 mod volumes;
 
 use std::path::Path;

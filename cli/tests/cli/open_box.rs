@@ -5,6 +5,7 @@
 //! moved in leaves part of the inside outside the body).
 
 use crate::area::face_points;
+use crate::vectors::{cross, dot, inner_points, sub};
 use crate::{folder, umbra};
 use umbra::{OutputMesh, load_ply};
 
@@ -45,15 +46,6 @@ intensity = 1
 /// Whether the segment `p`-`l` crosses the convex polygon `q` (`None`:
 /// too close to its border or plane to tell in floating point).
 fn crosses(p: [f64; 3], l: [f64; 3], q: &[[f64; 3]]) -> Option<bool> {
-    let sub = |a: [f64; 3], b: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| a[k] - b[k]) };
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
     let mut n = [0.0; 3];
     for i in 0..q.len() {
         let c = cross(q[i], q[(i + 1) % q.len()]);
@@ -98,25 +90,13 @@ fn assert_umbra_sees_nothing(mesh: &OutputMesh, two_sided: bool, what: &str) -> 
         }
         checked += 1;
         let corners = &faces[f];
-        let n = corners.len() as f64;
-        let centre: [f64; 3] =
-            std::array::from_fn(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
-        let samples = corners
-            .iter()
-            .map(|c| std::array::from_fn(|k| 0.5 * (c[k] + centre[k])))
-            .chain([centre]);
-        for p in samples {
+        for p in inner_points(corners) {
             for i in 0..11 {
                 for j in 0..11 {
                     let l = [-0.2 + 0.04 * f64::from(i), 4.0, -0.2 + 0.04 * f64::from(j)];
                     // A one-sided face receives on its counter-clockwise side.
-                    let [a, b, c] = [corners[0], corners[1], corners[2]];
-                    let normal = [
-                        (b[1] - a[1]) * (c[2] - a[2]) - (b[2] - a[2]) * (c[1] - a[1]),
-                        (b[2] - a[2]) * (c[0] - a[0]) - (b[0] - a[0]) * (c[2] - a[2]),
-                        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]),
-                    ];
-                    let toward: f64 = (0..3).map(|k| normal[k] * (l[k] - p[k])).sum();
+                    let normal = cross(sub(corners[1], corners[0]), sub(corners[2], corners[0]));
+                    let toward = dot(normal, sub(l, p));
                     if !two_sided && toward <= 0.0 {
                         continue;
                     }

@@ -2,6 +2,7 @@
 //! polygon, its classes agree with the scene's geometry, and its
 //! irradiance follows FORMATS.md.
 
+use crate::vectors::{cross, dot, sub};
 use crate::{folder, umbra};
 use umbra::{OutputMesh, load_ply};
 
@@ -293,15 +294,6 @@ fn svg_draws_one_polygons_fragments() {
 /// its normal): to its plane when `x` projects inside, else to its
 /// nearest edge.
 fn distance_to_polygon(x: [f64; 3], v: &[[f64; 3]]) -> f64 {
-    let sub = |a: [f64; 3], b: [f64; 3]| -> [f64; 3] { std::array::from_fn(|k| a[k] - b[k]) };
-    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let cross = |a: [f64; 3], b: [f64; 3]| {
-        [
-            a[1] * b[2] - a[2] * b[1],
-            a[2] * b[0] - a[0] * b[2],
-            a[0] * b[1] - a[1] * b[0],
-        ]
-    };
     let n = cross(sub(v[1], v[0]), sub(v[2], v[0]));
     let inside =
         (0..v.len()).all(|i| dot(cross(sub(v[(i + 1) % v.len()], v[i]), sub(x, v[i])), n) >= 0.0);

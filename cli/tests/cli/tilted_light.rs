@@ -4,6 +4,7 @@
 //! quadrature over the light says; and a pentagon written with few digits.
 
 use crate::area::{face_points, floor_classes};
+use crate::vectors::{cross, dot, sub};
 use crate::{folder, umbra};
 use umbra::load_ply;
 
@@ -54,15 +55,10 @@ intensity = 1.5
 /// occluder.
 fn quadrature(p: [f64; 3]) -> f64 {
     let [o, a, _, c] = LIGHT;
-    let e1 = [0, 1, 2].map(|k| a[k] - o[k]);
-    let e2 = [0, 1, 2].map(|k| c[k] - o[k]);
-    let cross = [
-        e1[1] * e2[2] - e1[2] * e2[1],
-        e1[2] * e2[0] - e1[0] * e2[2],
-        e1[0] * e2[1] - e1[1] * e2[0],
-    ];
-    let area = cross.iter().map(|c| c * c).sum::<f64>().sqrt();
-    let normal = cross.map(|c| c / area);
+    let (e1, e2) = (sub(a, o), sub(c, o));
+    let across = cross(e1, e2);
+    let area = dot(across, across).sqrt();
+    let normal = across.map(|c| c / area);
     let n = 400;
     let h = 1.0 / f64::from(n);
     let mut e = 0.0;
@@ -70,19 +66,19 @@ fn quadrature(p: [f64; 3]) -> f64 {
         for j in 0..n {
             let (s, t) = ((f64::from(i) + 0.5) * h, (f64::from(j) + 0.5) * h);
             let x = [0, 1, 2].map(|k| o[k] + s * e1[k] + t * e2[k]);
-            let d = [0, 1, 2].map(|k| x[k] - p[k]);
+            let d = sub(x, p);
             let at = (2.0 - p[1]) / d[1];
             let (cx, cz) = (p[0] + at * d[0], p[2] + at * d[2]);
             let [[x0, x1], [z0, z1]] = OCCLUDER;
             if (0.0..1.0).contains(&at) && (x0..x1).contains(&cx) && (z0..z1).contains(&cz) {
                 continue;
             }
-            let r2 = d.iter().map(|c| c * c).sum::<f64>();
+            let r2 = dot(d, d);
             let r = r2.sqrt();
             // cos at the floor (normal +y) and at the light (its normal
             // faces the floor: -d . normal > 0).
             let cos_floor = d[1] / r;
-            let cos_light = -(0..3).map(|k| d[k] * normal[k]).sum::<f64>() / r;
+            let cos_light = -dot(d, normal) / r;
             e += 1.5 * cos_floor * cos_light / r2 * area * h * h;
         }
     }
