@@ -533,3 +533,94 @@ fn segment_meets_triangle(k: [f64; 3], l: [f64; 3], [a, b, c]: [[f64; 3]; 3]) ->
         && u + v <= 1.0 + 1e-9
         && (0.0..=1.0).contains(&t)
 }
+
+/// Random sheets (the faces of a random convex hull that face one random
+/// way, as triangles of one object) over random floor squares (seeded):
+/// whatever is proven dark past a sheet's body is dark, every sampled
+/// segment from the region to the light meeting one of its triangles; and
+/// the sheets do prove regions dark.
+#[test]
+fn proven_dark_regions_under_random_sheets_see_no_light() {
+    let mut rng = Pcg64::seed_from_u64(11);
+    let source = light(-500, 500, 10_000);
+    let unit = |rng: &mut Pcg64| loop {
+        let v: [f64; 3] = std::array::from_fn(|_| rng.random_range(-1.0..1.0));
+        let length = vector::norm(v);
+        if (0.1..=1.0).contains(&length) {
+            break v.map(|c| c / length);
+        }
+    };
+    let (mut sheets_seen, mut proven) = (0, 0);
+    for _ in 0..400 {
+        let centre = [
+            rng.random_range(-1500.0..1500.0),
+            rng.random_range(3000.0..7000.0),
+            rng.random_range(-1500.0..1500.0),
+        ];
+        let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+        let points: Vec<GridPoint> = (0..rng.random_range(5..12))
+            .map(|_| {
+                let u = unit(&mut rng);
+                let c: [i64; 3] =
+                    std::array::from_fn(|k| (centre[k] + radii[k] * u[k]).round() as i64);
+                g(c[0], c[1], c[2])
+            })
+            .collect();
+        let Some(hull) = crate::groups::hull::convex_hull(&points) else {
+            continue;
+        };
+        // Half the sheets face up, towards the light (the rest any way).
+        let mut towards = unit(&mut rng);
+        if rng.random::<bool>() {
+            towards[1] = towards[1].abs();
+        }
+        let triangles: Vec<ConvexPolygon> = hull
+            .iter()
+            .filter(|(_, plane)| vector::dot(plane.unit_normal_f64(), towards) > 0.0)
+            .filter_map(|(t, _)| ConvexPolygon::from_grid_points(t, 0).ok())
+            .collect();
+        let owners = vec![Some(0); triangles.len()];
+        for (_, body) in sheet_bodies(&triangles, &owners) {
+            sheets_seen += 1;
+            // Around the sheet's shadow: its centre seen from the light's.
+            let t = 10_000.0 / (10_000.0 - centre[1]);
+            let shadow = [centre[0] * t, centre[2] * t];
+            for _ in 0..8 {
+                let (cx, cz, r) = (
+                    (shadow[0] + rng.random_range(-1.2..1.2) * radii[0] * t).round() as i64,
+                    (shadow[1] + rng.random_range(-1.2..1.2) * radii[2] * t).round() as i64,
+                    rng.random_range(5..100),
+                );
+                let region = floor(cx, cz, r);
+                if !sees_none(&region, false, &source, &[], &[&body]) {
+                    continue;
+                }
+                proven += 1;
+                for _ in 0..256 {
+                    let k = [
+                        (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+                        0.0,
+                        (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+                    ];
+                    let l = [
+                        -500.0 + 1000.0 * rng.random::<f64>(),
+                        10_000.0,
+                        -500.0 + 1000.0 * rng.random::<f64>(),
+                    ];
+                    let through = triangles.iter().any(|t| {
+                        let c = t.vertices_f64();
+                        segment_meets_triangle(k, l, [c[0], c[1], c[2]])
+                    });
+                    assert!(
+                        through,
+                        "segment {k:?} -> {l:?} passes the sheet {triangles:?}"
+                    );
+                }
+            }
+        }
+    }
+    assert!(
+        sheets_seen >= 300 && proven >= 40,
+        "{sheets_seen} sheets, {proven} regions proven"
+    );
+}
