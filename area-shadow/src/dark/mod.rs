@@ -215,23 +215,28 @@ impl Occluder {
 
     /// For each corner pair (light corner `j`, region corner `i`, at
     /// `j * region.len() + i`), whether its segment crosses this polygon
-    /// (closed) strictly between its ends. When every pair crosses, every
+    /// (closed) strictly between its ends, or is `known` to cross some
+    /// blocker (those are not looked at). When every pair crosses, every
     /// segment from `region` to `light` does (see the module's docs).
-    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Pairs {
-        let region_sides: SmallVec<[Side; 8]> = (0..region.len())
+    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint], known: &Pairs) -> Pairs {
+        let nk = region.len();
+        let region_sides: SmallVec<[Side; 8]> = (0..nk)
             .map(|i| region.vertex_side(i, &self.support))
             .collect();
         let mut pairs = Pairs::new();
-        for &l in light {
+        for (j, &l) in light.iter().enumerate() {
+            let known = &known[j * nk..(j + 1) * nk];
             let l_side = side_of_point(&self.support, l);
             let test: SmallVec<[bool; 8]> = region_sides
                 .iter()
-                .map(|&k| l_side != Side::On && k == l_side.flipped())
+                .zip(known)
+                .map(|(&k, &known)| !known && l_side != Side::On && k == l_side.flipped())
                 .collect();
             if test.contains(&true) {
-                pairs.extend(self.crossings(region, l, &test));
+                let crossed = self.crossings(region, l, &test);
+                pairs.extend(crossed.iter().zip(known).map(|(&c, &k)| c || k));
             } else {
-                pairs.extend(test);
+                pairs.extend_from_slice(known);
             }
         }
         pairs
@@ -369,7 +374,10 @@ impl Body {
             light
                 .iter()
                 .enumerate()
-                .flat_map(|(j, &l)| self.crossings(region, l, j, &sides, entry))
+                .flat_map(|(j, &l)| {
+                    let none: SmallVec<[bool; 8]> = smallvec::smallvec![false; region.len()];
+                    self.crossings(region, l, j, &sides, entry, none)
+                })
                 .collect(),
         )
     }
@@ -399,13 +407,17 @@ impl Body {
     /// those of the light may enter the body (see the type's docs) and
     /// every pair crosses, every segment from `region` to `light` crosses
     /// the body's occluders.
-    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Pairs {
+    fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint], known: &Pairs) -> Pairs {
         let entry = self.entry(region, light).unwrap_or(Entry::Either);
         let sides = self.surface_sides(region, light);
+        let nk = region.len();
         light
             .iter()
             .enumerate()
-            .flat_map(|(j, &l)| self.crossings(region, l, j, &sides, entry))
+            .flat_map(|(j, &l)| {
+                let known = known[j * nk..(j + 1) * nk].iter().copied().collect();
+                self.crossings(region, l, j, &sides, entry, known)
+            })
             .collect()
     }
 
@@ -429,7 +441,8 @@ impl Body {
     }
 
     /// For each region corner, whether the segment from it to light corner
-    /// `l` (number `j`) crosses a surface polygon. A segment from outside
+    /// `l` (number `j`) crosses a surface polygon, or is known to cross a
+    /// blocker (`crossed` on entry: not looked at). A segment from outside
     /// the body that meets it enters through a face its outer end sees, so
     /// with that end known (`entry`) only those faces are tried.
     fn crossings(
@@ -439,8 +452,11 @@ impl Body {
         j: usize,
         sides: &[CornerSides],
         entry: Entry,
+        mut crossed: SmallVec<[bool; 8]>,
     ) -> SmallVec<[bool; 8]> {
-        let mut crossed: SmallVec<[bool; 8]> = smallvec::smallvec![false; region.len()];
+        if !crossed.contains(&false) {
+            return crossed;
+        }
         for ((o, (ks, ls)), outward) in self.surface.iter().zip(sides).zip(&self.outward) {
             if ls[j] == Side::On {
                 continue;
@@ -605,7 +621,7 @@ impl Prover<'_> {
         // dooms the proof (a sampled segment that clearly passes every
         // blocker, a corner pair none crosses).
         if std::mem::take(&mut search.at_root)
-            && (self.leaks(region) || self.refuted(region, light, &near))
+            && (self.leaks(region) || self.refuted(region, light, &near, &candidates))
         {
             search.refuted = true;
             return false;
@@ -690,21 +706,39 @@ impl Prover<'_> {
 
     /// Whether a corner pair no blocker `near` crosses refutes the proof:
     /// it stays a corner pair of some part however the region and the
-    /// light are halved, and no part with it is ever proven.
-    fn refuted(&self, region: &ConvexPolygon, light: &LightPiece, near: &Near) -> bool {
+    /// light are halved, and no part with it is ever proven. The pairs the
+    /// `candidates` cross are known; each other blocker is asked only for
+    /// those no blocker before it crosses.
+    fn refuted(
+        &self,
+        region: &ConvexPolygon,
+        light: &LightPiece,
+        near: &Near,
+        candidates: &[(BlockerRef, Pairs)],
+    ) -> bool {
         let mut crossed: Pairs = smallvec::smallvec![false; region.len() * light.corners.len()];
-        let occluders = near
-            .occluders
-            .iter()
-            .map(|&k| self.occluders[k as usize].pair_crossings(region, &light.corners));
-        let bodies = near
-            .bodies
-            .iter()
-            .map(|&k| self.bodies[k as usize].pair_crossings(region, &light.corners));
-        for pairs in occluders.chain(bodies) {
-            for (c, &p) in crossed.iter_mut().zip(&pairs) {
+        for (_, pairs) in candidates {
+            for (c, &p) in crossed.iter_mut().zip(pairs) {
                 *c |= p;
             }
+        }
+        let blockers = near
+            .occluders
+            .iter()
+            .map(|&k| BlockerRef::Occluder(k))
+            .chain(near.bodies.iter().map(|&k| BlockerRef::Body(k)));
+        for blocker in blockers {
+            if !crossed.contains(&false) {
+                return false;
+            }
+            crossed = match blocker {
+                BlockerRef::Occluder(k) => {
+                    self.occluders[k as usize].pair_crossings(region, &light.corners, &crossed)
+                }
+                BlockerRef::Body(k) => {
+                    self.bodies[k as usize].pair_crossings(region, &light.corners, &crossed)
+                }
+            };
         }
         self.pair_sees_past_all(region.len(), light, &crossed)
     }
