@@ -177,8 +177,11 @@ pub fn print() {
             one_step
                 .move_steps(&scene, object, *by, 1, |_, _, _| {})
                 .expect("moves");
-            let change =
-                OutputChange::between(&run.mesh(), &one_step.rebuilt().expect("rebuilds").mesh());
+            let rebuilt = one_step.rebuilt().expect("rebuilds");
+            let change = OutputChange::between(
+                &run.mesh().expect("meshes"),
+                &rebuilt.mesh().expect("meshes"),
+            );
             rows.push(MoveRow {
                 scene: scene_name,
                 object,
@@ -246,12 +249,12 @@ pub fn print() {
         let start = Instant::now();
         let mut run = dm_scene_with(&hall, options).expect("the hall builds");
         let build = start.elapsed().as_secs_f64();
-        let before = run.mesh();
+        let before = run.mesh().expect("the hall meshes");
         let moves = back_and_forth(&mut run, &hall, "box0", HALL_MOVES);
         let start = Instant::now();
         let moved = run.rebuilt().expect("the hall rebuilds");
         let rebuild = start.elapsed().as_secs_f64();
-        let change = OutputChange::between(&before, &moved.mesh());
+        let change = OutputChange::between(&before, &moved.mesh().expect("the hall meshes"));
         println!(
             "  {label:<16} {:>7} {build:>8.2} {:>8} {rebuild:>9.2} {:>10.2} {:>11.2} {:>9.2}% {:>6.2}%",
             run.stats.stats.input_polygons,

@@ -31,7 +31,9 @@ pub enum Command {
     Shadow(ShadowArgs),
     /// Render an image from the scene's camera, shadows included.
     Render(RenderArgs),
-    /// Build discontinuity meshes (DM-trees) of every receiver, illuminated.
+    /// Build discontinuity meshes (DM-trees) of every receiver for the area
+    /// lights, illuminated; point and directional lights' shadows cut the
+    /// cells.
     Dm(DmArgs),
     /// Move an object step by step, updating the discontinuity meshes
     /// incrementally; reports update and rebuild times.
@@ -439,7 +441,7 @@ fn dm_options(outer_only: bool, deletion: DeletionArg, overlap: OverlapArg) -> D
 /// the statistics written.
 fn save_dm(run: &DmRun, output: &Path, ascii: bool, stats: Option<&Path>) -> Result<DmStats> {
     let mut outputs = Outputs::default();
-    let (mesh, figures) = run.output();
+    let (mesh, figures) = run.output()?;
     stage_ply(&mut outputs, output, &mesh, encoding(ascii))?;
     if let Some(stats) = stats {
         figures.stage(&mut outputs, stats)?;

@@ -11,11 +11,12 @@ use dm_mesh::{CellClass, DmLight, DmOptions, DmScene, IllumStats, ObjectId, Piec
 use rayon::prelude::*;
 use serde::Serialize;
 use slotmap::SecondaryMap;
-use svbsp::PieceFlags;
+use svbsp::{Fragment, PieceFlags};
 
 use crate::atomic::Outputs;
 use crate::dark::{Occluders, proven_dark_past};
 use crate::decompose::{Pieces, SnappedLight};
+use crate::dm_lights::{LightMap, cut_by_other_lights};
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh};
 use crate::scene::Scene;
@@ -145,8 +146,13 @@ pub struct DmRun {
     pub objects: Vec<(ObjectId, Vec<usize>)>,
     /// Figures of the build.
     pub stats: DmStats,
+    /// Where the DM (area) lights stand among the scene's, and the point
+    /// and directional lights cut into the cells at output.
+    pub(crate) light_map: LightMap,
 }
 
+/// The DM lights: the scene's area lights, in order (the others are cut
+/// into the cells at output, `dm_lights`).
 fn area_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<DmLight>> {
     let mut out = Vec::new();
     for (i, (light, snapped)) in scene.lights.iter().zip(&pieces.lights).enumerate() {
@@ -156,9 +162,7 @@ fn area_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<DmLight>> {
             message,
         };
         let SnappedLight::Area(polygon) = snapped else {
-            return Err(field(
-                "discontinuity meshes need area lights; use `umbra shadow` for point and directional lights".into(),
-            ));
+            continue;
         };
         let source = AreaSource::new(polygon.clone()).map_err(|e| field(e.to_string()))?;
         out.push(DmLight::new(source, light.intensity).map_err(|e| field(e.to_string()))?);
@@ -207,6 +211,7 @@ pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Re
     let started = Instant::now();
     let pieces = Pieces::from_scene_moving(scene, lengths)?;
     let lights = area_lights(scene, &pieces)?;
+    let light_map = LightMap::of(scene, &pieces)?;
     let groups = grouped(scene, &pieces);
     let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = groups
         .iter()
@@ -214,14 +219,21 @@ pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Re
         .collect();
     let fresh = FreshDm::build(lights, objects, options)?;
     let groups = groups.into_iter().map(|g| g.0).collect();
-    Ok(DmRun::assemble(pieces, fresh, groups, started))
+    Ok(DmRun::assemble(pieces, fresh, groups, light_map, started))
 }
 
 impl DmRun {
     /// The run of `fresh` (built from `pieces`, object `k` of the pieces
     /// `groups[k]`), its figures timed from `started`.
-    fn assemble(pieces: Pieces, fresh: FreshDm, groups: Vec<Vec<usize>>, started: Instant) -> Self {
+    fn assemble(
+        pieces: Pieces,
+        fresh: FreshDm,
+        groups: Vec<Vec<usize>>,
+        light_map: LightMap,
+        started: Instant,
+    ) -> Self {
         let mut run = DmRun {
+            light_map,
             pieces,
             dm: fresh.dm,
             objects: fresh.ids.into_iter().zip(groups).collect(),
@@ -243,10 +255,13 @@ impl DmRun {
     /// The output mesh and the statistics, their cell counts per class
     /// those of the mesh (joint umbrae proven as it is made turn penumbra
     /// cells umbra, see [`Self::mesh`]).
-    pub fn output(&self) -> (OutputMesh, DmStats) {
+    pub fn output(&self) -> Result<(OutputMesh, DmStats)> {
         let started = Instant::now();
-        let mesh = self.mesh();
+        let (mesh, figures) = self.mesh_with_figures()?;
         let mut stats = self.stats.clone();
+        for (i, s) in figures {
+            stats.stats.lights[i] = s;
+        }
         stats.dm.output_seconds = started.elapsed().as_secs_f64();
         stats.stats.seconds.total += stats.dm.output_seconds;
         for (i, light) in stats.stats.lights.iter_mut().enumerate() {
@@ -259,7 +274,8 @@ impl DmRun {
                 .count() as u64;
             light.penumbra = mesh.faces.len() as u64 - light.lit - light.umbra;
         }
-        (mesh, stats)
+        stats.stats.output_fragments = mesh.faces.len() as u64;
+        Ok((mesh, stats))
     }
 
     /// The cells as an output mesh (world units; one face per cell), the
@@ -268,7 +284,16 @@ impl DmRun {
     /// when proven to see none of it past the occluders it lists
     /// (`cli::dark`: a joint umbra of several occluders, which no
     /// one volume bounds).
-    pub fn mesh(&self) -> OutputMesh {
+    ///
+    /// Point and directional lights cut the cells along their shadows
+    /// (`dm_lights`); errors only as their passes may.
+    pub fn mesh(&self) -> Result<OutputMesh> {
+        Ok(self.mesh_with_figures()?.0)
+    }
+
+    /// [`Self::mesh`], with the figures of the point and directional
+    /// lights' passes (scene index, statistics).
+    fn mesh_with_figures(&self) -> Result<(OutputMesh, Vec<(usize, LightStats)>)> {
         let receivers: Vec<(usize, PieceId)> = self
             .objects
             .iter()
@@ -310,6 +335,21 @@ impl DmRun {
             .with_max_len(1)
             .map(|&(k, piece)| self.receiver_mesh(k, piece, &context))
             .collect();
+        if !self.light_map.others.is_empty() {
+            let cells = receivers
+                .iter()
+                .zip(&parts)
+                .flat_map(|(&(k, piece), part)| self.cell_fragments(k, piece, part))
+                .collect();
+            return cut_by_other_lights(
+                cells,
+                &self.pieces,
+                &flags,
+                &groups,
+                &self.light_map,
+                &areas,
+            );
+        }
         let mut mesh = OutputMesh {
             vertices: Vec::with_capacity(parts.iter().map(|p| p.vertices.len()).sum()),
             faces: Vec::with_capacity(parts.iter().map(|p| p.faces.len()).sum()),
@@ -322,7 +362,27 @@ impl DmRun {
                 face
             }));
         }
-        mesh
+        Ok((mesh, Vec::new()))
+    }
+
+    /// The cells of one receiver (`piece`, of scene piece `k`) as exact
+    /// polygons (source `k`) with the masks of its output faces `part`
+    /// ([`Self::receiver_mesh`], one face per cell in the same order).
+    fn cell_fragments(&self, k: usize, piece: PieceId, part: &OutputMesh) -> Vec<Fragment> {
+        let Some(receiver) = self.dm.receiver(piece) else {
+            return Vec::new();
+        };
+        receiver
+            .cells()
+            .zip(&part.faces)
+            .filter_map(|((face, _), out)| {
+                Some(Fragment {
+                    polygon: receiver.mesh().face_polygon(face, k as u32).ok()?,
+                    lit_mask: out.lit_mask,
+                    umbra_mask: out.umbra_mask,
+                })
+            })
+            .collect()
     }
 
     /// The cells of one receiver (`piece`, of scene piece `k`), its
@@ -386,8 +446,8 @@ impl DmRun {
             mesh.faces.push(OutputFace {
                 vertices,
                 source: self.pieces.input_of[k],
-                lit_mask,
-                umbra_mask,
+                lit_mask: self.light_map.scene_bits(lit_mask),
+                umbra_mask: self.light_map.scene_bits(umbra_mask),
             });
         }
         // The proofs in parallel too: one receiver (a floor) may hold most
@@ -406,7 +466,7 @@ impl DmRun {
             })
             .collect();
         for ((f, ..), dark) in candidates.iter().zip(proven) {
-            mesh.faces[*f].umbra_mask |= dark;
+            mesh.faces[*f].umbra_mask |= self.light_map.scene_bits(dark);
         }
         mesh
     }
@@ -442,6 +502,13 @@ impl DmRun {
                 }
             }
         }
+        // In the scene's order (the point and directional lights' figures
+        // come with the output).
+        let mut in_scene = vec![LightStats::default(); self.light_map.len()];
+        for (s, &i) in light_stats.into_iter().zip(&self.light_map.area) {
+            in_scene[i] = s;
+        }
+        let light_stats = in_scene;
         let per = |n: usize| {
             if n == 0 {
                 0.0
@@ -566,7 +633,13 @@ impl DmRun {
         let started = Instant::now();
         let fresh = self.fresh_dm()?;
         let groups = self.objects.iter().map(|(_, ks)| ks.clone()).collect();
-        Ok(DmRun::assemble(self.pieces.clone(), fresh, groups, started))
+        Ok(DmRun::assemble(
+            self.pieces.clone(),
+            fresh,
+            groups,
+            self.light_map.clone(),
+            started,
+        ))
     }
 
     /// The DM-trees of the current state built and illuminated from

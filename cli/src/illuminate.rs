@@ -14,6 +14,7 @@ use illum::{FragmentClass, OccluderIndex, Sidedness, VertexPlan, VisiblePart, ve
 use svbsp::Fragment;
 
 /// A light as `illum` evaluates it.
+#[derive(Debug, Clone)]
 pub enum IllumLight {
     /// A point light, in world units.
     Point(illum::PointLight),

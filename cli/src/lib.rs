@@ -52,6 +52,7 @@ mod demo;
 mod demo_dm;
 mod demo_room;
 mod dm;
+mod dm_lights;
 mod error;
 mod illuminate;
 mod mesh;

@@ -6,8 +6,8 @@ use std::time::Instant;
 
 use area_shadow::dark::{DARK_FRACTION, sees_none};
 use area_shadow::{
-    AreaSource, Class, LightFigures, SceneLight, ShadowGroups, conform_fragments, grid_fragments,
-    subdivide_adaptive,
+    AreaSource, Class, ConformingMesh, LightFigures, SceneLight, ShadowGroups, conform_fragments,
+    grid_fragments, subdivide_adaptive,
 };
 use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
 use rayon::prelude::*;
@@ -16,7 +16,7 @@ use svbsp::{Fragment, LightSource, PieceFlags};
 use crate::dark::Occluders;
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
-use crate::illuminate::{IllumLight, Illuminator, illuminate};
+use crate::illuminate::{IllumLight, Illuminated, Illuminator, illuminate};
 use crate::mesh::{OutputFace, OutputMesh};
 use crate::scene::{LightKind, Scene};
 use crate::stats::{LightStats, Seconds, Stats};
@@ -53,7 +53,7 @@ impl ShadowResult {
 /// Faces with more corners than this (a large fragment beside many small
 /// ones gathers their vertices) are halved: the PLY's vertex lists hold at
 /// most 255, and shading is smoother on compact faces.
-const MAX_FACE_CORNERS: usize = 64;
+pub(crate) const MAX_FACE_CORNERS: usize = 64;
 
 /// Options of the shadow pipeline beyond the scene file.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -141,22 +141,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     let grid = grid_started.elapsed().as_secs_f64() - dark_seconds;
 
     let illum_started = Instant::now();
-    let lit = illuminate(&illuminator, &fragments, &conforming);
-    let mut mesh = OutputMesh::default();
-    let lights = illum_lights.len();
-    for (v, p) in lit.coords.iter().enumerate() {
-        let e: f64 = lit.per_light[v * lights..(v + 1) * lights].iter().sum();
-        mesh.vertices
-            .push((pieces.grid.grid_to_world(*p), e as f32));
-    }
-    for (fragment, face) in fragments.iter().zip(lit.faces) {
-        mesh.faces.push(OutputFace {
-            vertices: face,
-            source: pieces.input_of[fragment.polygon.source() as usize],
-            lit_mask: fragment.lit_mask,
-            umbra_mask: fragment.umbra_mask,
-        });
-    }
+    let (mesh, lit) = illuminated_mesh(&fragments, &conforming, &illuminator, &pieces);
     let light_irradiance: Vec<f64> = lit.per_light;
     let illum = illum_started.elapsed().as_secs_f64();
 
@@ -217,6 +202,33 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     })
 }
 
+/// The output mesh of conforming fragments (world units), each vertex's
+/// irradiance from all the lights together, and their illumination.
+pub(crate) fn illuminated_mesh(
+    fragments: &[Fragment],
+    conforming: &ConformingMesh,
+    illuminator: &Illuminator<'_>,
+    pieces: &Pieces,
+) -> (OutputMesh, Illuminated) {
+    let lit = illuminate(illuminator, fragments, conforming);
+    let mut mesh = OutputMesh::default();
+    let lights = illuminator.lights.len();
+    for (v, p) in lit.coords.iter().enumerate() {
+        let e: f64 = lit.per_light[v * lights..(v + 1) * lights].iter().sum();
+        mesh.vertices
+            .push((pieces.grid.grid_to_world(*p), e as f32));
+    }
+    for (fragment, face) in fragments.iter().zip(&lit.faces) {
+        mesh.faces.push(OutputFace {
+            vertices: face.clone(),
+            source: pieces.input_of[fragment.polygon.source() as usize],
+            lit_mask: fragment.lit_mask,
+            umbra_mask: fragment.umbra_mask,
+        });
+    }
+    (mesh, lit)
+}
+
 /// The largest side of the pieces' bounding box, in grid units.
 fn scene_extent(pieces: &[ConvexPolygon]) -> f64 {
     let (lo, hi) = pieces.iter().flat_map(|p| p.vertices_f64()).fold(
@@ -261,7 +273,7 @@ fn scene_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<SceneLight>> {
 /// beyond it (it takes no part for that light). The shadow pass settles
 /// whole polygons so; the fragments it and gridding cut from a polygon
 /// that straddles the range may lie beyond it too.
-fn settle_beyond_range(fragments: &mut [Fragment], lights: &[SceneLight]) {
+pub(crate) fn settle_beyond_range(fragments: &mut [Fragment], lights: &[SceneLight]) {
     for (i, light) in lights.iter().enumerate() {
         let SceneLight::Svbsp(light) = light else {
             continue;

@@ -33,10 +33,14 @@ fn demo_writes_the_scene_and_prints_its_path() {
 
 #[test]
 fn dm_commands_refuse_bad_input_with_exit_2_and_write_nothing() {
-    // A scene without area lights: nothing for discontinuity meshes.
-    let scene = format!("{TRIANGLE}[[light]]\ntype = \"point\"\nposition = [0, 3, 0]\n");
+    // A point light given a direction: not a field of its kind.
+    let scene = format!(
+        "{TRIANGLE}[[light]]\ntype = \"point\"\nposition = [0, 3, 0]\ndirection = [0, -1, 0]\n"
+    );
+    let valid = format!("{TRIANGLE}[[light]]\ntype = \"point\"\nposition = [0, 3, 0]\n");
     let dir = folder(&[
         ("scene.toml", scene.as_str()),
+        ("valid.toml", valid.as_str()),
         ("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
     ]);
     let runs: [&[&str]; 2] = [
@@ -57,14 +61,19 @@ fn dm_commands_refuse_bad_input_with_exit_2_and_write_nothing() {
     for args in runs {
         let run = umbra(dir.path(), args);
         assert_eq!(run.code, 2, "{args:?}");
-        assert!(run.stderr.contains("need area lights"), "{}", run.stderr);
+        assert!(
+            run.stderr
+                .contains("light[0].direction: not a field of a point light"),
+            "{}",
+            run.stderr
+        );
     }
-    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 2);
+    assert_eq!(std::fs::read_dir(dir.path()).unwrap().count(), 3);
     let run = umbra(
         dir.path(),
         &[
             "update",
-            "scene.toml",
+            "valid.toml",
             "--move",
             "nobody",
             "--by",

@@ -7,6 +7,7 @@ mod decimal;
 mod decomposition;
 mod demos;
 mod dm;
+mod dm_lights;
 mod errors;
 mod joint_umbra;
 mod joints;
