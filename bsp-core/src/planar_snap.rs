@@ -1,5 +1,5 @@
 //! Snapping a convex planar polygon given in world coordinates to the grid
-//! without losing its planarity.
+//! without losing its planarity, onto a plane dense in grid points.
 //!
 //! Each corner snapped to its nearest grid point keeps a triangle, or a
 //! polygon in an axis-aligned plane, planar; but the corners of a tilted
@@ -16,6 +16,12 @@
 //! best balance of tilt, `L / size`, and lattice spacing, `sqrt(size)`): a
 //! few hundred of the grid's `2^25`. Measured over 20,000 random polygons:
 //! `0.3 L^(1/3)` typically, `1.8 L^(1/3)` at most.
+//!
+//! A triangle's nearest grid points are always coplanar, but the plane
+//! through them has a normal of up to the square of its span and holds
+//! hardly a grid point inside it; work that cuts the polygon at grid
+//! points (a joint-umbra proof halving a light) then cannot. Such a plane
+//! is replaced the same way.
 
 use crate::{ConvexPolygon, Error, Grid, GridPoint, Plane, PlaneLattice};
 
@@ -45,13 +51,17 @@ impl ConvexPolygon {
             .iter()
             .map(|&p| grid.snap(p))
             .collect::<Result<Vec<_>, _>>()?;
-        let refused = match Self::from_grid_points(&nearest, source) {
-            Ok(polygon) => return Ok((polygon, farthest(grid, points, &nearest))),
-            Err(e) => e,
+        let plain = Self::from_grid_points(&nearest, source);
+        let refused = match plain {
+            Ok(polygon) if dense(&polygon) => {
+                return Ok((polygon, farthest(grid, points, &nearest)));
+            }
+            Ok(polygon) => Ok((polygon, farthest(grid, points, &nearest))),
+            Err(e) => Err(e),
         };
         let in_units: Vec<[f64; 3]> = points.iter().map(|&p| grid.world_to_grid(p)).collect();
         let Some(normal) = unit_normal(&in_units) else {
-            return Err(refused);
+            return refused;
         };
         let centroid =
             [0, 1, 2].map(|k| in_units.iter().map(|q| q[k]).sum::<f64>() / in_units.len() as f64);
@@ -60,7 +70,7 @@ impl ConvexPolygon {
             centroid[1].round() as i64,
             centroid[2].round() as i64,
         ) else {
-            return Err(refused);
+            return refused;
         };
         let mut best: Option<((usize, f64), Self)> = None;
         let mut tried: Option<[i64; 3]> = None;
@@ -92,9 +102,34 @@ impl ConvexPolygon {
                 best = Some((key, polygon));
             }
         }
-        best.map(|((_, moved), polygon)| (polygon, moved))
-            .ok_or(refused)
+        match best {
+            Some(((_, moved), polygon)) => Ok((polygon, moved)),
+            None => refused,
+        }
     }
+}
+
+/// Whether a polygon's plane holds grid points densely enough for work
+/// that must cut it at grid points (a joint-umbra proof halves a light in
+/// its plane's lattice): lattice steps (about the square root of the
+/// primitive normal's length) at most 1/1024 of the polygon's span. Any
+/// three grid points are coplanar, but a tilted triangle's plane through
+/// them has a normal of up to the square of its span, and its lattice has
+/// hardly a point inside it.
+fn dense(polygon: &ConvexPolygon) -> bool {
+    let n = polygon.support().normal().map(|c| c as f64);
+    let length = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+    let corners = polygon.vertices_f64();
+    let span = corners
+        .iter()
+        .flat_map(|a| {
+            corners
+                .iter()
+                .map(move |b| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>())
+        })
+        .fold(0.0, f64::max)
+        .sqrt();
+    length.sqrt() * 1024.0 <= span
 }
 
 /// The nearest grid points to `points` (grid units) in the plane with
@@ -148,6 +183,38 @@ fn farthest(grid: &Grid, points: &[[f64; 3]], snapped: &[GridPoint]) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_tilted_triangle_goes_to_a_plane_dense_in_grid_points() {
+        let triangle = [
+            [
+                -1.1575838019248348,
+                -0.1982945797119009,
+                -1.4568135662675603,
+            ],
+            [
+                -1.060454586721948,
+                0.091_563_397_705_811_82,
+                -1.6703250650443702,
+            ],
+            [-1.6040091416277682, 0.33254635617886347, -1.44133926742636],
+        ];
+        let grid = Grid::new([-4.0; 3], [4.0; 3]).unwrap();
+        let nearest: Vec<GridPoint> = triangle.iter().map(|&p| grid.snap(p).unwrap()).collect();
+        // Its corners' nearest grid points make a triangle, on a plane
+        // with hardly a grid point inside it.
+        assert!(!dense(
+            &ConvexPolygon::from_grid_points(&nearest, 0).unwrap()
+        ));
+        let (light, moved) = ConvexPolygon::snap_planar(&grid, &triangle, 0).unwrap();
+        assert!(dense(&light));
+        assert_eq!(light.len(), 3);
+        assert!(
+            moved <= 200.0 / grid.scale(),
+            "moved {} steps",
+            moved * grid.scale()
+        );
+    }
     use crate::predicates::{Side, side_of_point};
 
     /// The tilted light of a user's scene: its corners' nearest grid

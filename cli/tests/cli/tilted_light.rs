@@ -151,3 +151,79 @@ intensity = 1.0
         assert!(mesh.vertices.iter().all(|(_, e)| *e > 0.0), "{command}");
     }
 }
+
+/// A one-sided quad over a floor, and a tilted triangle light crossing the
+/// floor's plane: the part of the light in front of the quad lies below
+/// the floor, so the quad sees none of it (sampled segments agree). The
+/// triangle's own plane holds grid points too sparsely to halve it in a
+/// proof, so it is snapped onto a plane that holds them densely; the
+/// quad is then proven umbra.
+#[test]
+fn a_quad_that_sees_a_tilted_triangle_only_below_the_floor_is_umbra() {
+    let scene = r#"
+[[object]]
+name = "floor"
+polygons = [[[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]]
+
+[[object]]
+name = "quad"
+polygons = [[[-0.42326865331708707, -0.90600422025459659, -1], [0.57298834401784871, -0.81956351652552439, -1], [0.57298834401784871, -0.81956351652552439, 1], [-0.42326865331708707, -0.90600422025459659, 1]]]
+translate = [0.12059871529015886, 1.0582998304569451, -0.15326538264757122]
+rotate_deg = [-23.944372442942246, 47.458375291776321, 0]
+scale = [0.56695087603180971, 0.44878095731694573, 1.1969455468970165]
+
+[[light]]
+type = "area"
+vertices = [[-1.1575838019248348, -0.1982945797119009, -1.4568135662675603], [-1.0604545867219479, 0.091563397705811816, -1.6703250650443702], [-1.6040091416277682, 0.33254635617886347, -1.4413392674263601]]
+intensity = 1.0
+"#;
+    let light = [
+        [
+            -1.1575838019248348,
+            -0.1982945797119009,
+            -1.4568135662675603,
+        ],
+        [
+            -1.060454586721948,
+            0.091_563_397_705_811_82,
+            -1.6703250650443702,
+        ],
+        [-1.6040091416277682, 0.33254635617886347, -1.44133926742636],
+    ];
+    let dir = folder(&[("scene.toml", scene)]);
+    let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "out.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+    let quad: Vec<usize> = (0..mesh.faces.len())
+        .filter(|&f| mesh.faces[f].source == 1)
+        .collect();
+    assert!(!quad.is_empty());
+    for &f in &quad {
+        let corners = face_points(&mesh, f);
+        let normal = cross(sub(corners[1], corners[0]), sub(corners[2], corners[0]));
+        // The premise: every sampled segment from the face to a point of
+        // the light in front of it crosses the floor (y = 0, |x|, |z| < 4).
+        for p in crate::vectors::inner_points(&corners) {
+            for i in 0..=20 {
+                for j in 0..=(20 - i) {
+                    let (u, v) = (f64::from(i) / 20.0, f64::from(j) / 20.0);
+                    let l: [f64; 3] = std::array::from_fn(|k| {
+                        light[0][k]
+                            + u * (light[1][k] - light[0][k])
+                            + v * (light[2][k] - light[0][k])
+                    });
+                    if dot(normal, sub(l, p)) <= 0.0 {
+                        continue;
+                    }
+                    let t = p[1] / (p[1] - l[1]);
+                    let x = [p[0] + t * (l[0] - p[0]), p[2] + t * (l[2] - p[2])];
+                    assert!(
+                        l[1] < 0.0 && x[0].abs() < 4.0 && x[1].abs() < 4.0,
+                        "face {f} sees {l:?} from {p:?}"
+                    );
+                }
+            }
+        }
+        assert_eq!(mesh.faces[f].umbra_mask, 1, "face {f} of the quad");
+    }
+}
