@@ -295,13 +295,18 @@ fn output_does_not_depend_on_the_thread_count() {
 /// The floor's areas (lit, penumbra, umbra) for light 0 in a PLY written
 /// by `umbra shadow` or `umbra dm`.
 pub(crate) fn floor_classes(mesh: &OutputMesh) -> [f64; 3] {
+    floor_classes_for(mesh, 0)
+}
+
+/// [`floor_classes`] for light `light`.
+pub(crate) fn floor_classes_for(mesh: &OutputMesh, light: u32) -> [f64; 3] {
     let mut out = [0.0; 3];
     for (f, face) in mesh.faces.iter().enumerate() {
         if face.source != 0 {
             continue;
         }
         let a = area(&face_points(mesh, f));
-        match (face.lit_mask & 1, face.umbra_mask & 1) {
+        match ((face.lit_mask >> light) & 1, (face.umbra_mask >> light) & 1) {
             (1, 0) => out[0] += a,
             (0, 0) => out[1] += a,
             (0, 1) => out[2] += a,

@@ -3,6 +3,7 @@
 //! cover the same areas as `umbra shadow` gives; with point lights alone
 //! the output is `umbra shadow`'s.
 
+use crate::area::floor_classes_for;
 use crate::{folder, umbra};
 use umbra::{OutputMesh, load_ply};
 
@@ -40,34 +41,6 @@ intensity = 0.5
     )
 }
 
-/// The floor's lit, penumbra and umbra areas for light `bit`.
-fn floor_areas(mesh: &OutputMesh, bit: u32) -> [f64; 3] {
-    let mut out = [0.0; 3];
-    for f in mesh.faces.iter().filter(|f| f.source == 0) {
-        let p: Vec<[f64; 3]> = f
-            .vertices
-            .iter()
-            .map(|&v| mesh.vertices[v as usize].0)
-            .collect();
-        // The floor is level: its area is the xz-plane's.
-        let twice: f64 = (0..p.len())
-            .map(|i| {
-                let (a, b) = (p[i], p[(i + 1) % p.len()]);
-                a[0] * b[2] - b[0] * a[2]
-            })
-            .sum();
-        let class = if f.lit_mask & (1 << bit) != 0 {
-            0
-        } else if f.umbra_mask & (1 << bit) != 0 {
-            2
-        } else {
-            1
-        };
-        out[class] += 0.5 * twice.abs();
-    }
-    out
-}
-
 fn run(dir: &std::path::Path, args: &[&str]) -> OutputMesh {
     let run = umbra(dir, args);
     assert_eq!(run.code, 0, "{args:?}: {}", run.stderr);
@@ -77,7 +50,7 @@ fn run(dir: &std::path::Path, args: &[&str]) -> OutputMesh {
 
 fn assert_same_areas(a: &OutputMesh, b: &OutputMesh, lights: u32, what: &str) {
     for bit in 0..lights {
-        let (x, y) = (floor_areas(a, bit), floor_areas(b, bit));
+        let (x, y) = (floor_classes_for(a, bit), floor_classes_for(b, bit));
         for c in 0..3 {
             assert!(
                 (x[c] - y[c]).abs() < 1e-9,
@@ -99,7 +72,7 @@ fn point_and_directional_lights_cut_the_cells() {
     assert_same_areas(&dm, &shadow, 3, "dm against shadow");
     // Each light casts the square's shadow on the floor.
     for bit in 0..3 {
-        assert!(floor_areas(&dm, bit)[2] > 10.0, "light {bit}");
+        assert!(floor_classes_for(&dm, bit)[2] > 10.0, "light {bit}");
     }
     let stats: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
