@@ -48,9 +48,17 @@ impl Prover<'_> {
             })
             .max_by_key(|&(.., count)| count)
             .map(|(blocker, first, last, _)| (blocker, first, last))?;
-        let hides = |p: GridPoint| {
-            self.candidate_pairs(blocker, region, &[p])
-                .is_some_and(|pairs| !pairs.contains(&false))
+        // Whether the blocker hides a point from all of the region (a
+        // body's side of the region worked out once for the bisections).
+        let body_test = match blocker {
+            BlockerRef::Body(k) => Some(self.bodies[k as usize].point_test(region)),
+            BlockerRef::Occluder(_) => None,
+        };
+        let hides = |p: GridPoint| match &body_test {
+            Some(test) => test(p),
+            None => self
+                .candidate_pairs(blocker, region, &[p])
+                .is_some_and(|pairs| !pairs.contains(&false)),
         };
         // The last hidden grid point from `from` (hidden) towards `to`
         // (not): the hidden points of the edge are one interval from

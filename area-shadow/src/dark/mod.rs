@@ -490,6 +490,48 @@ impl Body {
         crossed
     }
 
+    /// A test of single light points against `region`, with the region's
+    /// part of [`Self::candidate_pairs`] (its sides of every plane) done
+    /// once: whether the body may hide the point from all of the region
+    /// and every corner's segment to it crosses the body's occluders.
+    fn point_test<'r>(&'r self, region: &'r ConvexPolygon) -> impl Fn(GridPoint) -> bool + 'r {
+        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            (0..region.len())
+                .map(|i| region.vertex_side(i, plane))
+                .collect()
+        };
+        let region_enters = self.enters_from(region_sides);
+        let surface: Vec<SmallVec<[Side; 8]>> = self
+            .surface
+            .iter()
+            .map(|o| region_sides(&o.support))
+            .collect();
+        move |l: GridPoint| {
+            let entry = if self.enters_from(|plane: &Plane| [side_of_point(plane, l)]) {
+                Entry::Light
+            } else if region_enters {
+                Entry::Region
+            } else {
+                return false;
+            };
+            let sides: Vec<CornerSides> = self
+                .surface
+                .iter()
+                .zip(&surface)
+                .map(|(o, ks)| {
+                    (
+                        ks.clone(),
+                        smallvec::smallvec![side_of_point(&o.support, l)],
+                    )
+                })
+                .collect();
+            let none: SmallVec<[bool; 8]> = smallvec::smallvec![false; region.len()];
+            !self
+                .crossings(region, l, 0, &sides, entry, none)
+                .contains(&false)
+        }
+    }
+
     /// Whether the corners whose sides of a plane `sides` gives are all
     /// strictly outside the body (in front of one face) and behind or on
     /// every open face.
