@@ -341,14 +341,7 @@ impl DmRun {
                 .zip(&parts)
                 .flat_map(|(&(k, piece), part)| self.cell_fragments(k, piece, part))
                 .collect();
-            return cut_by_other_lights(
-                cells,
-                &self.pieces,
-                &flags,
-                &groups,
-                &self.light_map,
-                &areas,
-            );
+            return cut_by_other_lights(cells, &self.pieces, &flags, &groups, &self.light_map);
         }
         let mut mesh = OutputMesh {
             vertices: Vec::with_capacity(parts.iter().map(|p| p.vertices.len()).sum()),

@@ -5,8 +5,7 @@
 //! illuminated from scratch (`illum`), as `umbra shadow` does.
 
 use area_shadow::{
-    AreaSource, LightFigures, SceneLight, ShadowGroups, compute_shadows_with_groups,
-    conform_fragments,
+    LightFigures, SceneLight, ShadowGroups, compute_shadows_with_groups, conform_fragments,
 };
 use bsp_core::{BuildOptions, ConvexPolygon, Split};
 use rayon::prelude::*;
@@ -79,7 +78,6 @@ pub(crate) fn cut_by_other_lights(
     flags: &[PieceFlags],
     groups: &ShadowGroups,
     map: &LightMap,
-    areas: &[&AreaSource],
 ) -> Result<(OutputMesh, Vec<(usize, LightStats)>)> {
     let lights: Vec<SceneLight> = map
         .others
@@ -125,19 +123,7 @@ pub(crate) fn cut_by_other_lights(
         })
         .collect();
     // Beyond a point light's range a cut fragment takes no part.
-    let mut scene_lights: Vec<SceneLight> = Vec::with_capacity(map.len());
-    let (mut area, mut other) = (
-        map.area.iter().zip(areas).peekable(),
-        map.others.iter().peekable(),
-    );
-    for i in 0..map.len() {
-        if let Some(&(_, l)) = other.next_if(|(j, _)| *j == i) {
-            scene_lights.push(SceneLight::Svbsp(l));
-        } else if let Some((_, a)) = area.next_if(|(j, _)| **j == i) {
-            scene_lights.push(SceneLight::Area((*a).clone()));
-        }
-    }
-    settle_beyond_range(&mut fragments, &scene_lights);
+    settle_beyond_range(&mut fragments, map.others.iter().map(|(i, l)| (*i, l)));
     let (fragments, conforming) = conform_fragments(fragments, MAX_FACE_CORNERS);
     let illuminator = Illuminator::new(
         &map.illum,

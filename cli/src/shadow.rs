@@ -127,7 +127,11 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
             |f| illuminator.fragment_irradiance(f),
         );
     }
-    settle_beyond_range(&mut fragments, &lights);
+    let point_lights = lights.iter().enumerate().filter_map(|(i, l)| match l {
+        SceneLight::Svbsp(l) => Some((i, l)),
+        SceneLight::Area(_) => None,
+    });
+    settle_beyond_range(&mut fragments, point_lights);
     let dark_started = Instant::now();
     mark_joint_umbra(
         &mut fragments,
@@ -203,14 +207,15 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
 }
 
 /// The output mesh of conforming fragments (world units), each vertex's
-/// irradiance from all the lights together, and their illumination.
+/// irradiance from all the lights together, and their illumination (its
+/// faces moved into the mesh).
 pub(crate) fn illuminated_mesh(
     fragments: &[Fragment],
     conforming: &ConformingMesh,
     illuminator: &Illuminator<'_>,
     pieces: &Pieces,
 ) -> (OutputMesh, Illuminated) {
-    let lit = illuminate(illuminator, fragments, conforming);
+    let mut lit = illuminate(illuminator, fragments, conforming);
     let mut mesh = OutputMesh::default();
     let lights = illuminator.lights.len();
     for (v, p) in lit.coords.iter().enumerate() {
@@ -218,9 +223,9 @@ pub(crate) fn illuminated_mesh(
         mesh.vertices
             .push((pieces.grid.grid_to_world(*p), e as f32));
     }
-    for (fragment, face) in fragments.iter().zip(&lit.faces) {
+    for (fragment, face) in fragments.iter().zip(std::mem::take(&mut lit.faces)) {
         mesh.faces.push(OutputFace {
-            vertices: face.clone(),
+            vertices: face,
             source: pieces.input_of[fragment.polygon.source() as usize],
             lit_mask: fragment.lit_mask,
             umbra_mask: fragment.umbra_mask,
@@ -273,11 +278,11 @@ fn scene_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<SceneLight>> {
 /// beyond it (it takes no part for that light). The shadow pass settles
 /// whole polygons so; the fragments it and gridding cut from a polygon
 /// that straddles the range may lie beyond it too.
-pub(crate) fn settle_beyond_range(fragments: &mut [Fragment], lights: &[SceneLight]) {
-    for (i, light) in lights.iter().enumerate() {
-        let SceneLight::Svbsp(light) = light else {
-            continue;
-        };
+pub(crate) fn settle_beyond_range<'a>(
+    fragments: &mut [Fragment],
+    lights: impl IntoIterator<Item = (usize, &'a svbsp::Light)>,
+) {
+    for (i, light) in lights {
         if light.range.is_none() {
             continue;
         }

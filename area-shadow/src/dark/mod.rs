@@ -587,6 +587,14 @@ struct Near {
     bodies: SmallVec<[u32; 16]>,
 }
 
+impl Near {
+    /// The occluders, then the bodies.
+    fn blockers(&self) -> impl Iterator<Item = BlockerRef> + '_ {
+        let occluders = self.occluders.iter().map(|&k| BlockerRef::Occluder(k));
+        occluders.chain(self.bodies.iter().map(|&k| BlockerRef::Body(k)))
+    }
+}
+
 /// The state of one proof: how many halvings it may still make, and whether
 /// it is refuted (a corner of a part of the region sees a point of the
 /// light past every blocker).
@@ -645,12 +653,7 @@ impl Prover<'_> {
         // with the corner pairs it crosses: one that crosses them all hides
         // it all, and the others guide the halving.
         let mut candidates: Vec<(BlockerRef, Pairs)> = Vec::new();
-        let blockers = near
-            .occluders
-            .iter()
-            .map(|&k| BlockerRef::Occluder(k))
-            .chain(near.bodies.iter().map(|&k| BlockerRef::Body(k)));
-        for blocker in blockers {
+        for blocker in near.blockers() {
             let Some(pairs) = self.candidate_pairs(blocker, region, &light.corners) else {
                 continue;
             };
@@ -764,12 +767,7 @@ impl Prover<'_> {
                 *c |= p;
             }
         }
-        let blockers = near
-            .occluders
-            .iter()
-            .map(|&k| BlockerRef::Occluder(k))
-            .chain(near.bodies.iter().map(|&k| BlockerRef::Body(k)));
-        for blocker in blockers {
+        for blocker in near.blockers() {
             if !crossed.contains(&false) {
                 return false;
             }
