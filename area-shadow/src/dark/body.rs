@@ -1,0 +1,287 @@
+//! Convex bodies as blockers: the solid of a convex surface of occluders,
+//! open on some faces, and the shell a surface closed over its hole
+//! bounds ([`Body::shell`]).
+
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{ConvexPolygon, GridPoint, Plane};
+use smallvec::SmallVec;
+
+use super::{Bounds, Occluder, Pairs, bounds};
+
+/// A convex body whose boundary is made of occluders, but for some *open*
+/// faces (the caps that close a bent quad into a thin tetrahedron, say).
+///
+/// From a point outside the body that is behind (or on) every open face,
+/// the faces it sees are occluders, so a segment from it that meets the
+/// body crosses one of them; and for a fixed end, the ends whose segment
+/// meets a convex body form a convex set. So when the corners of `K` (or
+/// of `L`) are all outside the body and behind every open face, and every
+/// segment between corners crosses one of the body's occluders, so does
+/// every segment from `K` to `L`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// The box around the corners.
+    pub(super) bounds: Bounds,
+    /// Each face's plane, the body behind it (planes may repeat).
+    faces: Vec<Plane>,
+    /// The open faces' planes, the body behind them.
+    open: Vec<Plane>,
+    /// The occluders on the body's boundary.
+    pub(super) surface: Vec<Occluder>,
+    /// Per surface occluder: its support's front, in or out of the body
+    /// (`Some(true)`: out), or `None` if the body is on both sides.
+    outward: Vec<Option<bool>>,
+}
+
+/// Which end of a segment is outside the body, for segments that enter it
+/// through a face that end sees (see [`Body::crossings`]).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Entry {
+    Light,
+    Region,
+    Either,
+}
+
+impl Body {
+    /// The body with face planes `faces` and `open` (each with the body
+    /// behind it) whose boundary, but for the open faces, the polygons
+    /// `surface` cover. `None` when one of them has a corner that is no
+    /// grid point.
+    pub fn new(faces: Vec<Plane>, open: Vec<Plane>, surface: &[&ConvexPolygon]) -> Option<Self> {
+        let surface: Vec<Occluder> = surface
+            .iter()
+            .map(|p| Occluder::new(p))
+            .collect::<Option<_>>()?;
+        let outward = surface
+            .iter()
+            .map(|o| {
+                let sides = surface
+                    .iter()
+                    .flat_map(|other| other.corners.iter())
+                    .map(|&p| side_of_point(&o.support, p));
+                let (mut front, mut back) = (false, false);
+                for side in sides {
+                    front |= side == Side::Front;
+                    back |= side == Side::Back;
+                }
+                match (front, back) {
+                    (false, true) => Some(true),
+                    (true, false) => Some(false),
+                    _ => None,
+                }
+            })
+            .collect();
+        Some(Self {
+            outward,
+            bounds: bounds(
+                surface
+                    .iter()
+                    .flat_map(|o| o.corners.iter().map(|p| p.to_f64())),
+            ),
+            faces,
+            open,
+            surface,
+        })
+    }
+
+    /// Whether the body is closed (it has no open faces).
+    pub fn is_closed(&self) -> bool {
+        self.open.is_empty()
+    }
+
+    /// When the corners of the light or of the region may enter the body
+    /// (see the type's docs), which corner pairs cross one of its
+    /// occluders (as [`Self::pair_crossings`]); `None` otherwise.
+    pub(super) fn candidate_pairs(
+        &self,
+        region: &ConvexPolygon,
+        light: &[GridPoint],
+    ) -> Option<Pairs> {
+        let entry = self.entry(region, light)?;
+        let sides = self.surface_sides(region, light);
+        Some(
+            light
+                .iter()
+                .enumerate()
+                .flat_map(|(j, &l)| {
+                    let none: SmallVec<[bool; 8]> = smallvec::smallvec![false; region.len()];
+                    self.crossings(region, l, j, &sides, entry, none)
+                })
+                .collect(),
+        )
+    }
+
+    /// Which corners are all outside the body and may enter it (see the
+    /// type's docs): the light's, else the region's, else none.
+    fn entry(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Option<Entry> {
+        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            (0..region.len())
+                .map(|i| region.vertex_side(i, plane))
+                .collect()
+        };
+        let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            light.iter().map(|&p| side_of_point(plane, p)).collect()
+        };
+        if self.enters_from(light_sides) {
+            Some(Entry::Light)
+        } else if self.enters_from(region_sides) {
+            Some(Entry::Region)
+        } else {
+            None
+        }
+    }
+
+    /// As [`Occluder::pair_crossings`], a pair crossing when it crosses
+    /// one of the body's occluders. When the corners of the region or
+    /// those of the light may enter the body (see the type's docs) and
+    /// every pair crosses, every segment from `region` to `light` crosses
+    /// the body's occluders.
+    pub(super) fn pair_crossings(
+        &self,
+        region: &ConvexPolygon,
+        light: &[GridPoint],
+        known: &Pairs,
+    ) -> Pairs {
+        let entry = self.entry(region, light).unwrap_or(Entry::Either);
+        let sides = self.surface_sides(region, light);
+        let nk = region.len();
+        light
+            .iter()
+            .enumerate()
+            .flat_map(|(j, &l)| {
+                let known = known[j * nk..(j + 1) * nk].iter().copied().collect();
+                self.crossings(region, l, j, &sides, entry, known)
+            })
+            .collect()
+    }
+
+    /// The sides of the region's and the light's corners for each surface
+    /// polygon's plane.
+    fn surface_sides(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Vec<CornerSides> {
+        self.surface
+            .iter()
+            .map(|o| {
+                (
+                    (0..region.len())
+                        .map(|i| region.vertex_side(i, &o.support))
+                        .collect(),
+                    light
+                        .iter()
+                        .map(|&p| side_of_point(&o.support, p))
+                        .collect(),
+                )
+            })
+            .collect()
+    }
+
+    /// For each region corner, whether the segment from it to light corner
+    /// `l` (number `j`) crosses a surface polygon, or is known to cross a
+    /// blocker (`crossed` on entry: not looked at). A segment from outside
+    /// the body that meets it enters through a face its outer end sees, so
+    /// with that end known (`entry`) only those faces are tried.
+    fn crossings(
+        &self,
+        region: &ConvexPolygon,
+        l: GridPoint,
+        j: usize,
+        sides: &[CornerSides],
+        entry: Entry,
+        mut crossed: SmallVec<[bool; 8]>,
+    ) -> SmallVec<[bool; 8]> {
+        if !crossed.contains(&false) {
+            return crossed;
+        }
+        for ((o, (ks, ls)), outward) in self.surface.iter().zip(sides).zip(&self.outward) {
+            if ls[j] == Side::On {
+                continue;
+            }
+            // The side a face's outer end must be on.
+            let seen_from = match outward {
+                Some(true) => Some(Side::Front),
+                Some(false) => Some(Side::Back),
+                None => None,
+            };
+            if entry == Entry::Light && seen_from.is_some_and(|s| ls[j] != s) {
+                continue;
+            }
+            let test: SmallVec<[bool; 8]> = (0..region.len())
+                .map(|i| {
+                    !crossed[i]
+                        && ks[i] == ls[j].flipped()
+                        && !(entry == Entry::Region && seen_from.is_some_and(|s| ks[i] != s))
+                })
+                .collect();
+            if !test.contains(&true) {
+                continue;
+            }
+            for (c, now) in crossed.iter_mut().zip(o.crossings(region, l, &test)) {
+                *c |= now;
+            }
+            if !crossed.contains(&false) {
+                break;
+            }
+        }
+        crossed
+    }
+
+    /// A test of single light points against `region`, with the region's
+    /// part of [`Self::candidate_pairs`] (its sides of every plane) done
+    /// once: whether the body may hide the point from all of the region
+    /// and every corner's segment to it crosses the body's occluders.
+    pub(super) fn point_test<'r>(
+        &'r self,
+        region: &'r ConvexPolygon,
+    ) -> impl Fn(GridPoint) -> bool + 'r {
+        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            (0..region.len())
+                .map(|i| region.vertex_side(i, plane))
+                .collect()
+        };
+        let region_enters = self.enters_from(region_sides);
+        let surface: Vec<SmallVec<[Side; 8]>> = self
+            .surface
+            .iter()
+            .map(|o| region_sides(&o.support))
+            .collect();
+        move |l: GridPoint| {
+            let entry = if self.enters_from(|plane: &Plane| [side_of_point(plane, l)]) {
+                Entry::Light
+            } else if region_enters {
+                Entry::Region
+            } else {
+                return false;
+            };
+            let sides: Vec<CornerSides> = self
+                .surface
+                .iter()
+                .zip(&surface)
+                .map(|(o, ks)| {
+                    (
+                        ks.clone(),
+                        smallvec::smallvec![side_of_point(&o.support, l)],
+                    )
+                })
+                .collect();
+            let none: SmallVec<[bool; 8]> = smallvec::smallvec![false; region.len()];
+            !self
+                .crossings(region, l, 0, &sides, entry, none)
+                .contains(&false)
+        }
+    }
+
+    /// Whether the corners whose sides of a plane `sides` gives are all
+    /// strictly outside the body (in front of one face) and behind or on
+    /// every open face.
+    fn enters_from<S: IntoIterator<Item = Side>>(&self, sides: impl Fn(&Plane) -> S) -> bool {
+        self.open
+            .iter()
+            .all(|f| sides(f).into_iter().all(|s| s != Side::Front))
+            && self
+                .faces
+                .iter()
+                .any(|f| sides(f).into_iter().all(|s| s == Side::Front))
+    }
+}
+
+/// The sides of a region's corners and of a light's corners of a plane.
+type CornerSides = (SmallVec<[Side; 8]>, SmallVec<[Side; 8]>);
