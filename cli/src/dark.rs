@@ -4,7 +4,8 @@
 //! proven dark.
 //!
 //! The blockers are the shadow-casting pieces, the convex groups they make
-//! and the open sheets of one object ([`sheet_bodies`]).
+//! (with the shells of open surfaces closed over their hole, a cup's) and
+//! the open sheets of one object ([`sheet_bodies`]).
 //!
 //! `umbra shadow` finds those occluders with a uniform grid of their boxes
 //! and the shaft between the face and the light; `umbra dm` (and
@@ -64,6 +65,12 @@ impl<'a> Occluders<'a> {
             let mut members: Vec<u32> = group.pieces.iter().map(|&k| objects[k as usize]).collect();
             members.sort_unstable();
             members.dedup();
+            if let Some(shell) = group.shell() {
+                for &o in &members {
+                    by_object[o as usize].1.push(bodies.len());
+                }
+                bodies.push((shell, bounds(&corners)));
+            }
             let covers = match group.blocker(&pieces.polygons) {
                 Some(Blocker::Body(body)) => {
                     let closed = body.is_closed();

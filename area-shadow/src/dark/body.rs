@@ -8,16 +8,24 @@ use smallvec::SmallVec;
 
 use super::{Bounds, Occluder, Pairs, bounds};
 
-/// A convex body whose boundary is made of occluders, but for some *open*
-/// faces (the caps that close a bent quad into a thin tetrahedron, say).
+/// A convex body that blocks segments meeting it, in one of two ways.
 ///
-/// From a point outside the body that is behind (or on) every open face,
-/// the faces it sees are occluders, so a segment from it that meets the
-/// body crosses one of them; and for a fixed end, the ends whose segment
-/// meets a convex body form a convex set. So when the corners of `K` (or
-/// of `L`) are all outside the body and behind every open face, and every
-/// segment between corners crosses one of the body's occluders, so does
-/// every segment from `K` to `L`.
+/// *Surface*: the body's boundary is made of occluders, but for some
+/// *open* faces (the caps that close a bent quad into a thin tetrahedron,
+/// say). From a point outside the body that is behind (or on) every open
+/// face, the faces it sees are occluders, so a segment from it that meets
+/// the body crosses one of them; and for a fixed end, the ends whose
+/// segment meets a convex body form a convex set. So when the corners of
+/// `K` (or of `L`) are all outside the body and behind every open face,
+/// and every segment between corners crosses one of the body's occluders,
+/// so does every segment from `K` to `L`.
+///
+/// *Shell* ([`Self::shell`]): the body is a convex *core* inside a closed
+/// surface of occluders and caps over its hole (a cup, its rim closed),
+/// its boundary polygons no occluders. A segment whose ends are both
+/// outside the surface's hull and that meets the core crosses the
+/// surface, and not only its caps (see [`Self::shell`]); the convex-set
+/// argument carries that from the corner pairs to all of `K x L`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
     /// The box around the corners.
@@ -31,6 +39,110 @@ pub struct Body {
     /// Per surface occluder: its support's front, in or out of the body
     /// (`Some(true)`: out), or `None` if the body is on both sides.
     outward: Vec<Option<bool>>,
+    /// For a shell: the closed surface around the core (`surface` is then
+    /// the core's boundary, not occluders).
+    shell: Option<Box<Shell>>,
+}
+
+/// The closed surface around a shell's core (see [`Body::shell`]).
+#[derive(Debug, Clone, PartialEq)]
+struct Shell {
+    /// The planes of the surface's convex hull, facing out.
+    hull: Vec<Plane>,
+    /// The surface's corners.
+    corners: Vec<GridPoint>,
+    /// The planes of the caps over its hole, facing out.
+    caps: Vec<Plane>,
+}
+
+/// For a shell, planes that put points outside its surface's hull: a
+/// point of the receiver's plane (of the light's) on or in front of
+/// `region` (`light`) is outside it ([`Shell::separator`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Clearance {
+    pub(super) region: Option<Plane>,
+    pub(super) light: Option<Plane>,
+}
+
+/// Where a set of points (a region's or a light's corners) lies for a
+/// [`Shell`].
+#[derive(Clone, Copy)]
+struct ShellEnd {
+    /// Outside the hull: on or in front of a separator (see
+    /// [`Clearance`]), or strictly in front of one of the hull's planes.
+    outside: bool,
+    /// Strictly on one side of every cap's plane, the same for all.
+    beside_caps: bool,
+}
+
+impl Shell {
+    /// Where points whose sides of a plane `sides` gives lie, with a
+    /// plane that puts those on or in front of it outside the hull.
+    fn end<S: IntoIterator<Item = Side>>(
+        &self,
+        sides: impl Fn(&Plane) -> S,
+        separator: Option<&Plane>,
+    ) -> ShellEnd {
+        let all = |plane: &Plane, side: Side| sides(plane).into_iter().all(|s| s == side);
+        let ahead = |plane: &Plane| sides(plane).into_iter().all(|s| s != Side::Back);
+        ShellEnd {
+            outside: separator.is_some_and(ahead) || self.hull.iter().any(|f| all(f, Side::Front)),
+            beside_caps: [Side::Front, Side::Back]
+                .into_iter()
+                .any(|side| self.caps.iter().all(|c| all(c, side))),
+        }
+    }
+
+    /// Among `own` (a plane), the hull's planes and `more`, one that puts
+    /// every point of `own` on or in front of it outside the hull, and the
+    /// points whose sides `sides` gives (in `own`) on or in front: the
+    /// hull behind or on it, and where it touches the hull (the hull of
+    /// its corners there) strictly on one side of `own`.
+    fn separator<S: IntoIterator<Item = Side>>(
+        &self,
+        own: &Plane,
+        sides: impl Fn(&Plane) -> S,
+        more: impl Iterator<Item = Plane>,
+    ) -> Option<Plane> {
+        let separates = |plane: Plane| -> Option<Plane> {
+            let (mut front, mut back) = (false, false);
+            for &p in &self.corners {
+                match side_of_point(&plane, p) {
+                    Side::Front => front = true,
+                    Side::Back => back = true,
+                    Side::On => {}
+                }
+            }
+            let plane = match (front, back) {
+                (true, true) => return None,
+                (true, false) => plane.flipped(),
+                _ => plane,
+            };
+            let mut touching = self
+                .corners
+                .iter()
+                .filter(|&&p| side_of_point(&plane, p) == Side::On)
+                .map(|&p| side_of_point(own, p));
+            let apart = match touching.next() {
+                None => true,
+                Some(Side::On) => false,
+                Some(first) => touching.all(|s| s == first),
+            };
+            (apart && sides(&plane).into_iter().all(|s| s != Side::Back)).then_some(plane)
+        };
+        std::iter::once(*own)
+            .chain(self.hull.iter().copied())
+            .chain(more)
+            .find_map(separates)
+    }
+
+    /// Whether a segment between these ends that meets the core meets an
+    /// occluder (see the type's docs).
+    fn blocks(&self, region: ShellEnd, light: ShellEnd) -> bool {
+        region.outside
+            && light.outside
+            && (self.caps.len() <= 1 || region.beside_caps || light.beside_caps)
+    }
 }
 
 /// Which end of a segment is outside the body, for segments that enter it
@@ -81,12 +193,97 @@ impl Body {
             faces,
             open,
             surface,
+            shell: None,
         })
     }
 
-    /// Whether the body is closed (it has no open faces).
+    /// The shell (see the type's docs) of a closed surface with corners
+    /// `corners`, whose hull has face planes `hull` and whose caps have
+    /// planes `caps` (all facing out), about a convex core with boundary
+    /// polygons `core` (facing out) that lies behind every face plane of
+    /// the surface. `None` when a core polygon has a corner that is no
+    /// grid point, or no caps are given.
+    ///
+    /// Why it blocks: the surface's *winding number* about a point off it
+    /// counts how many times it wraps the point (faces oriented out); a
+    /// segment meets the surface wherever that number changes along it.
+    /// It is 0 outside the hull, and at least 1 at a point of the core off
+    /// the surface (every face turns its back to it). Take a segment with
+    /// both ends outside the hull that meets the core at `b`, and suppose
+    /// it meets no occluder. Then every point where it meets the surface
+    /// is on a cap, off the occluders (which hold the hole's rim). Either
+    /// the segment lies in a cap's plane, and then it meets the rim (it
+    /// passes a point of the cap and ends outside the hull), or it crosses
+    /// each cap's plane at most once; the number changes at `b` or between
+    /// `b` and each end, so the segment meets the caps at two points or
+    /// more, in two caps:
+    ///
+    /// - With one cap, that cannot be.
+    /// - With several (the two triangles closing a bent hole), when all of
+    ///   one end's side (`K` or `L`) lies strictly on one side of every
+    ///   cap's plane, the same for all, the segment crosses every cap in
+    ///   the same direction, and each crossing changes the number by one
+    ///   the same way: it cannot come back to 0 at the other end.
+    ///
+    /// So such a segment meets an occluder.
+    pub fn shell(
+        core: &[&ConvexPolygon],
+        hull: Vec<Plane>,
+        caps: Vec<Plane>,
+        corners: Vec<GridPoint>,
+    ) -> Option<Self> {
+        if caps.is_empty() {
+            return None;
+        }
+        let faces = core.iter().map(|p| *p.support()).collect();
+        Some(Self {
+            shell: Some(Box::new(Shell {
+                hull,
+                caps,
+                corners,
+            })),
+            ..Self::new(faces, Vec::new(), core)?
+        })
+    }
+
+    /// For a shell, planes that put all of `region` and of `light` (with
+    /// support `light_plane`), and the parts of them a proof takes,
+    /// outside its surface's hull when they can (see [`Clearance`]).
+    pub(super) fn clearance(
+        &self,
+        region: &ConvexPolygon,
+        light: &[GridPoint],
+        light_plane: &Plane,
+    ) -> Clearance {
+        let Some(shell) = &self.shell else {
+            return Clearance::default();
+        };
+        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            (0..region.len())
+                .map(|i| region.vertex_side(i, plane))
+                .collect()
+        };
+        let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
+            light.iter().map(|&p| side_of_point(plane, p)).collect()
+        };
+        // Planes through an edge of the light and a corner of the hull.
+        let n = light.len();
+        let through_edges = (0..n).flat_map(|i| {
+            shell
+                .corners
+                .iter()
+                .filter_map(move |&h| Plane::through(light[i], light[(i + 1) % n], h))
+        });
+        Clearance {
+            region: shell.separator(region.support(), region_sides, std::iter::empty()),
+            light: shell.separator(light_plane, light_sides, through_edges),
+        }
+    }
+
+    /// Whether the body is closed: its boundary is all occluders (no open
+    /// faces, not a shell).
     pub fn is_closed(&self) -> bool {
-        self.open.is_empty()
+        self.open.is_empty() && self.shell.is_none()
     }
 
     /// When the corners of the light or of the region may enter the body
@@ -96,8 +293,9 @@ impl Body {
         &self,
         region: &ConvexPolygon,
         light: &[GridPoint],
+        clear: Clearance,
     ) -> Option<Pairs> {
-        let entry = self.entry(region, light)?;
+        let entry = self.entry(region, light, clear)?;
         let sides = self.surface_sides(region, light);
         Some(
             light
@@ -113,7 +311,12 @@ impl Body {
 
     /// Which corners are all outside the body and may enter it (see the
     /// type's docs): the light's, else the region's, else none.
-    fn entry(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Option<Entry> {
+    fn entry(
+        &self,
+        region: &ConvexPolygon,
+        light: &[GridPoint],
+        clear: Clearance,
+    ) -> Option<Entry> {
         let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
             (0..region.len())
                 .map(|i| region.vertex_side(i, plane))
@@ -122,6 +325,13 @@ impl Body {
         let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
             light.iter().map(|&p| side_of_point(plane, p)).collect()
         };
+        if let Some(shell) = &self.shell {
+            // The light is outside the core: a segment from it meeting the
+            // core enters by a face it sees.
+            let region = shell.end(region_sides, clear.region.as_ref());
+            let light = shell.end(light_sides, clear.light.as_ref());
+            return shell.blocks(region, light).then_some(Entry::Light);
+        }
         if self.enters_from(light_sides) {
             Some(Entry::Light)
         } else if self.enters_from(region_sides) {
@@ -141,8 +351,9 @@ impl Body {
         region: &ConvexPolygon,
         light: &[GridPoint],
         known: &Pairs,
+        clear: Clearance,
     ) -> Pairs {
-        let entry = self.entry(region, light).unwrap_or(Entry::Either);
+        let entry = self.entry(region, light, clear).unwrap_or(Entry::Either);
         let sides = self.surface_sides(region, light);
         let nk = region.len();
         light
@@ -231,6 +442,7 @@ impl Body {
     pub(super) fn point_test<'r>(
         &'r self,
         region: &'r ConvexPolygon,
+        clear: Clearance,
     ) -> impl Fn(GridPoint) -> bool + 'r {
         let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
             (0..region.len())
@@ -238,13 +450,23 @@ impl Body {
                 .collect()
         };
         let region_enters = self.enters_from(region_sides);
+        let region_end = self
+            .shell
+            .as_ref()
+            .map(|shell| shell.end(region_sides, clear.region.as_ref()));
         let surface: Vec<SmallVec<[Side; 8]>> = self
             .surface
             .iter()
             .map(|o| region_sides(&o.support))
             .collect();
         move |l: GridPoint| {
-            let entry = if self.enters_from(|plane: &Plane| [side_of_point(plane, l)]) {
+            let light_sides = |plane: &Plane| [side_of_point(plane, l)];
+            let entry = if let (Some(shell), Some(region)) = (&self.shell, region_end) {
+                if !shell.blocks(region, shell.end(light_sides, clear.light.as_ref())) {
+                    return false;
+                }
+                Entry::Light
+            } else if self.enters_from(light_sides) {
                 Entry::Light
             } else if region_enters {
                 Entry::Region

@@ -51,7 +51,9 @@ impl Prover<'_> {
         // Whether the blocker hides a point from all of the region (a
         // body's side of the region worked out once for the bisections).
         let body_test = match blocker {
-            BlockerRef::Body(k) => Some(self.bodies[k as usize].point_test(region)),
+            BlockerRef::Body(k) => {
+                Some(self.bodies[k as usize].point_test(region, self.clearances[k as usize]))
+            }
             BlockerRef::Occluder(_) => None,
         };
         let hides = |p: GridPoint| match &body_test {

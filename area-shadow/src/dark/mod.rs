@@ -86,6 +86,7 @@ mod shaft;
 mod sheet;
 mod vector;
 pub use body::Body;
+use body::Clearance;
 pub use shaft::Shaft;
 pub use sheet::sheet_bodies;
 
@@ -128,9 +129,15 @@ pub fn sees_none(
     if occluders.is_empty() && bodies.is_empty() {
         return false;
     }
+    let light_corners: SmallVec<[GridPoint; 8]> = light.vertices().collect();
+    let clearances = bodies
+        .iter()
+        .map(|b| b.clearance(region, &light_corners, light.support()))
+        .collect();
     let prover = Prover {
         occluders,
         bodies,
+        clearances,
         receiver: region.support(),
         two_sided,
         light,
@@ -309,6 +316,9 @@ enum BlockerRef {
 struct Prover<'a> {
     occluders: Vec<Occluder>,
     bodies: &'a [&'a Body],
+    /// Per body: whether it is clear of the receiver's and the light's
+    /// planes ([`Body::clearance`]).
+    clearances: Vec<Clearance>,
     receiver: &'a Plane,
     two_sided: bool,
     light: &'a AreaSource,
@@ -461,7 +471,9 @@ impl Prover<'_> {
     ) -> Option<Pairs> {
         match blocker {
             BlockerRef::Occluder(k) => self.occluders[k as usize].candidate_pairs(region, light),
-            BlockerRef::Body(k) => self.bodies[k as usize].candidate_pairs(region, light),
+            BlockerRef::Body(k) => {
+                self.bodies[k as usize].candidate_pairs(region, light, self.clearances[k as usize])
+            }
         }
     }
 
@@ -511,9 +523,12 @@ impl Prover<'_> {
                 BlockerRef::Occluder(k) => {
                     self.occluders[k as usize].pair_crossings(region, &light.corners, &crossed)
                 }
-                BlockerRef::Body(k) => {
-                    self.bodies[k as usize].pair_crossings(region, &light.corners, &crossed)
-                }
+                BlockerRef::Body(k) => self.bodies[k as usize].pair_crossings(
+                    region,
+                    &light.corners,
+                    &crossed,
+                    self.clearances[k as usize],
+                ),
             };
         }
         self.pair_sees_past_all(region.len(), light, &crossed)

@@ -624,3 +624,5 @@ fn proven_dark_regions_under_random_sheets_see_no_light() {
         "{sheets_seen} sheets, {proven} regions proven"
     );
 }
+
+mod shell;

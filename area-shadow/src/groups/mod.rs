@@ -194,6 +194,16 @@ impl ConvexGroup {
         }
     }
 
+    /// A solid group that closes an open surface (a cup) as a shell for
+    /// joint-umbra proofs ([`crate::dark::Body::shell`]), besides its
+    /// pieces; `None` for other groups.
+    pub fn shell(&self) -> Option<crate::dark::Body> {
+        match &self.shape {
+            Shape::Solid(solid) => solid.shell(),
+            Shape::Flat(_) => None,
+        }
+    }
+
     /// The planes of a solid group's faces, each with the body behind it
     /// (planes may repeat); empty for a flat group.
     pub fn faces(&self) -> &[Plane] {

@@ -212,6 +212,30 @@ impl Solid {
         crate::dark::Body::new(self.faces.clone(), self.open.clone(), surface)
     }
 
+    /// The shell of a surface closed over its hole
+    /// ([`crate::dark::Body::shell`]): the body (its own solid, or the
+    /// one moved in: either lies behind every face plane of the closed
+    /// surface) as the core, with the surface's hull and caps. `None`
+    /// when the body closes no open surface.
+    pub(super) fn shell(&self) -> Option<crate::dark::Body> {
+        if !self.capped {
+            return None;
+        }
+        let core: Vec<ConvexPolygon> = convex_hull(&self.vertices)?
+            .iter()
+            .map(|(triangle, _)| ConvexPolygon::from_grid_points(triangle, 0).ok())
+            .collect::<Option<_>>()?;
+        let core: Vec<&ConvexPolygon> = core.iter().collect();
+        let mut corners: Vec<GridPoint> = self
+            .surface
+            .iter()
+            .flat_map(|(outline, _)| outline.iter().copied())
+            .collect();
+        corners.sort_unstable();
+        corners.dedup();
+        crate::dark::Body::shell(&core, self.hull.clone(), self.open.clone(), corners)
+    }
+
     /// Whether the body closes an open surface ([`Self::of_open_surface`]).
     pub(super) fn is_capped(&self) -> bool {
         self.capped

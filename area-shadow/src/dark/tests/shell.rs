@@ -1,0 +1,193 @@
+//! Shells: surfaces closed but for a hole (cups), whole or dented by the
+//! grid, blocking as the body inside them ([`Body::shell`]).
+
+use super::*;
+
+/// The triangles of a random convex hull of points around `centre` (radii
+/// `radii`), less one triangle or two that share an edge (the hole: flat,
+/// or four corners bent), and with one vertex pushed in towards the centre
+/// by `dent` of its distance when `dent > 0` (a surface the grid left
+/// concave).
+fn random_cup(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3], dent: f64) -> Vec<ConvexPolygon> {
+    let points: Vec<GridPoint> = (0..rng.random_range(6..14))
+        .map(|_| {
+            let u = unit(rng);
+            let c: [i64; 3] = std::array::from_fn(|k| (centre[k] + radii[k] * u[k]).round() as i64);
+            g(c[0], c[1], c[2])
+        })
+        .collect();
+    let Some(hull) = crate::groups::hull::convex_hull(&points) else {
+        return Vec::new();
+    };
+    let mut triangles: Vec<[GridPoint; 3]> = hull.into_iter().map(|(t, _)| t).collect();
+    let hole = rng.random_range(0..triangles.len());
+    let [a, b, c] = triangles.swap_remove(hole);
+    if rng.random::<bool>() {
+        // And the triangle across one of its edges.
+        let edges = [(b, a), (c, b), (a, c)];
+        if let Some(k) = triangles
+            .iter()
+            .position(|t| (0..3).any(|i| edges.contains(&(t[i], t[(i + 1) % 3]))))
+        {
+            triangles.swap_remove(k);
+        }
+    }
+    if dent > 0.0 {
+        let rim: Vec<GridPoint> = [a, b, c].to_vec();
+        let corners: Vec<GridPoint> = triangles.iter().flatten().copied().collect();
+        if let Some(&p) = corners.iter().find(|p| !rim.contains(p)) {
+            let at = p.to_f64();
+            let moved: [i64; 3] =
+                std::array::from_fn(|k| (at[k] + dent * (centre[k] - at[k])).round() as i64);
+            let q = g(moved[0], moved[1], moved[2]);
+            for t in &mut triangles {
+                for v in t.iter_mut() {
+                    if *v == p {
+                        *v = q;
+                    }
+                }
+            }
+        }
+    }
+    triangles
+        .iter()
+        .filter_map(|t| ConvexPolygon::from_grid_points(t, 0).ok())
+        .collect()
+}
+
+fn unit(rng: &mut Pcg64) -> [f64; 3] {
+    loop {
+        let v: [f64; 3] = std::array::from_fn(|_| rng.random_range(-1.0..1.0));
+        let length = vector::norm(v);
+        if (0.1..=1.0).contains(&length) {
+            break v.map(|c| c / length);
+        }
+    }
+}
+
+/// Random cups, whole and dented, over random floor squares (seeded):
+/// whatever is proven dark past a cup's shell alone is dark, every sampled
+/// segment from the region to the light meeting one of the cup's
+/// triangles; and the shells, dented ones included, do prove regions
+/// dark.
+#[test]
+fn proven_dark_regions_under_random_cups_see_no_light() {
+    let mut rng = Pcg64::seed_from_u64(17);
+    let source = light(-500, 500, 10_000);
+    let (mut shells, mut proven, mut proven_dented) = (0, 0, 0);
+    for round in 0..300 {
+        let centre = [
+            rng.random_range(-1500.0..1500.0),
+            rng.random_range(3000.0..7000.0),
+            rng.random_range(-1500.0..1500.0),
+        ];
+        let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+        let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
+        let cup = random_cup(&mut rng, centre, radii, dent);
+        let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
+        let Some(shell) = groups.iter().find_map(|group| group.shell()) else {
+            continue;
+        };
+        assert!(!shell.is_closed(), "a shell's boundary is no occluder");
+        shells += 1;
+        let t = 10_000.0 / (10_000.0 - centre[1]);
+        let shadow = [centre[0] * t, centre[2] * t];
+        for _ in 0..8 {
+            let (cx, cz, r) = (
+                (shadow[0] + rng.random_range(-1.2..1.2) * radii[0] * t).round() as i64,
+                (shadow[1] + rng.random_range(-1.2..1.2) * radii[2] * t).round() as i64,
+                rng.random_range(5..100),
+            );
+            let region = floor(cx, cz, r);
+            if !sees_none(&region, false, &source, &[], &[&shell]) {
+                continue;
+            }
+            proven += 1;
+            if dent > 0.0 {
+                proven_dented += 1;
+            }
+            for _ in 0..256 {
+                let k = [
+                    (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+                    0.0,
+                    (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+                ];
+                let l = [
+                    -500.0 + 1000.0 * rng.random::<f64>(),
+                    10_000.0,
+                    -500.0 + 1000.0 * rng.random::<f64>(),
+                ];
+                let through = cup.iter().any(|t| {
+                    let c = t.vertices_f64();
+                    segment_meets_triangle(k, l, [c[0], c[1], c[2]])
+                });
+                assert!(through, "segment {k:?} -> {l:?} passes the cup {cup:?}");
+            }
+        }
+    }
+    assert!(
+        shells >= 150 && proven >= 100 && proven_dented >= 30,
+        "{shells} shells, {proven} regions proven ({proven_dented} under dented cups)"
+    );
+}
+
+/// A pyramid cup whose square hole is bent (two corners 200 higher than
+/// the other two), closed by the two triangles over its higher diagonal:
+/// a segment passing just under that ridge enters by one cap and leaves
+/// by the other, meeting no side of the cup. The shell must not claim
+/// it (its ends are on opposite sides of the caps' planes), but does
+/// claim a light above the cup hidden from the floor under its apex.
+#[test]
+fn a_shell_lets_through_what_passes_in_and_out_by_its_caps() {
+    let [a, b, c, d, apex] = [
+        g(-1000, 0, -1000),
+        g(1000, 200, -1000),
+        g(1000, 0, 1000),
+        g(-1000, 200, 1000),
+        g(0, -2000, 0),
+    ];
+    let cup: Vec<ConvexPolygon> = [[a, b, apex], [b, c, apex], [c, d, apex], [d, a, apex]]
+        .iter()
+        .map(|t| ConvexPolygon::from_grid_points(t, 0).unwrap())
+        .collect();
+    let groups = convex_groups(&cup, &[Some(0); 4]);
+    let shell = groups
+        .iter()
+        .find_map(|group| group.shell())
+        .expect("the cup closes over its hole");
+    // The segment through (0, 150, 0) along (1, 0, 1) meets no side.
+    let (k, l) = ([-2000.0, 150.0, -2000.0], [2000.0, 150.0, 2000.0]);
+    assert!(!cup.iter().any(|t| {
+        let p = t.vertices_f64();
+        segment_meets_triangle(k, l, [p[0], p[1], p[2]])
+    }));
+    let region = {
+        let corners = [
+            g(-2010, 150, -2010),
+            g(-2010, 150, -1990),
+            g(-1990, 150, -1990),
+            g(-1990, 150, -2010),
+        ];
+        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+    };
+    let across = AreaSource::from_grid_points(&[
+        g(2010, 140, 1990),
+        g(2010, 160, 1990),
+        g(1990, 160, 2010),
+        g(1990, 140, 2010),
+    ])
+    .unwrap();
+    assert!(!sees_none(&region, true, &across, &[], &[&shell]));
+    // From above, the cup hides a small light from the floor under it.
+    let above = light(-100, 100, 10_000);
+    let under = {
+        let corners = [
+            g(-20, -3000, -20),
+            g(-20, -3000, 20),
+            g(20, -3000, 20),
+            g(20, -3000, -20),
+        ];
+        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+    };
+    assert!(sees_none(&under, false, &above, &[], &[&shell]));
+}
