@@ -72,7 +72,7 @@ pub(crate) fn face_points(mesh: &OutputMesh, f: usize) -> Vec<[f64; 3]> {
         .collect()
 }
 
-fn area(v: &[[f64; 3]]) -> f64 {
+pub(crate) fn area(v: &[[f64; 3]]) -> f64 {
     // Floor faces: the xz-plane area.
     let mut a = 0.0;
     for i in 0..v.len() {

@@ -3,6 +3,7 @@
 mod area;
 mod commands;
 mod csg;
+mod cup_and_panel;
 mod decimal;
 mod decomposition;
 mod demos;

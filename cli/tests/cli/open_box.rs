@@ -45,7 +45,7 @@ intensity = 1
 
 /// Whether the segment `p`-`l` crosses the convex polygon `q` (`None`:
 /// too close to its border or plane to tell in floating point).
-fn crosses(p: [f64; 3], l: [f64; 3], q: &[[f64; 3]]) -> Option<bool> {
+pub(crate) fn crosses(p: [f64; 3], l: [f64; 3], q: &[[f64; 3]]) -> Option<bool> {
     let mut n = [0.0; 3];
     for i in 0..q.len() {
         let c = cross(q[i], q[(i + 1) % q.len()]);
