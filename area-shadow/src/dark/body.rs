@@ -258,14 +258,8 @@ impl Body {
         let Some(shell) = &self.shell else {
             return Clearance::default();
         };
-        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
-            (0..region.len())
-                .map(|i| region.vertex_side(i, plane))
-                .collect()
-        };
-        let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
-            light.iter().map(|&p| side_of_point(plane, p)).collect()
-        };
+        let region_sides = region_sides(region);
+        let light_sides = light_sides(light);
         // Planes through an edge of the light and a corner of the hull.
         let n = light.len();
         let through_edges = (0..n).flat_map(|i| {
@@ -317,14 +311,8 @@ impl Body {
         light: &[GridPoint],
         clear: Clearance,
     ) -> Option<Entry> {
-        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
-            (0..region.len())
-                .map(|i| region.vertex_side(i, plane))
-                .collect()
-        };
-        let light_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
-            light.iter().map(|&p| side_of_point(plane, p)).collect()
-        };
+        let region_sides = region_sides(region);
+        let light_sides = light_sides(light);
         if let Some(shell) = &self.shell {
             // The light is outside the core: a segment from it meeting the
             // core enters by a face it sees.
@@ -444,11 +432,7 @@ impl Body {
         region: &'r ConvexPolygon,
         clear: Clearance,
     ) -> impl Fn(GridPoint) -> bool + 'r {
-        let region_sides = |plane: &Plane| -> SmallVec<[Side; 8]> {
-            (0..region.len())
-                .map(|i| region.vertex_side(i, plane))
-                .collect()
-        };
+        let region_sides = region_sides(region);
         let region_enters = self.enters_from(region_sides);
         let region_end = self
             .shell
@@ -507,3 +491,17 @@ impl Body {
 
 /// The sides of a region's corners and of a light's corners of a plane.
 type CornerSides = (SmallVec<[Side; 8]>, SmallVec<[Side; 8]>);
+
+/// The sides of the region's corners of a plane.
+fn region_sides(region: &ConvexPolygon) -> impl Fn(&Plane) -> SmallVec<[Side; 8]> + Copy + '_ {
+    move |plane| {
+        (0..region.len())
+            .map(|i| region.vertex_side(i, plane))
+            .collect()
+    }
+}
+
+/// The sides of the light's corners of a plane.
+fn light_sides(light: &[GridPoint]) -> impl Fn(&Plane) -> SmallVec<[Side; 8]> + Copy + '_ {
+    move |plane| light.iter().map(|&p| side_of_point(plane, p)).collect()
+}

@@ -534,6 +534,33 @@ fn segment_meets_triangle(k: [f64; 3], l: [f64; 3], [a, b, c]: [[f64; 3]; 3]) ->
         && (0.0..=1.0).contains(&t)
 }
 
+/// Checks that 256 random segments from the floor square of half-width
+/// `r` around `(cx, 0, cz)` to the light `x, z` in `[-500, 500]` at
+/// height 10 000 meet one of `triangles`.
+fn assert_segments_meet(
+    rng: &mut Pcg64,
+    (cx, cz, r): (i64, i64, i64),
+    triangles: &[ConvexPolygon],
+) {
+    for _ in 0..256 {
+        let k = [
+            (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+            0.0,
+            (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+        ];
+        let l = [
+            -500.0 + 1000.0 * rng.random::<f64>(),
+            10_000.0,
+            -500.0 + 1000.0 * rng.random::<f64>(),
+        ];
+        let through = triangles.iter().any(|t| {
+            let c = t.vertices_f64();
+            segment_meets_triangle(k, l, [c[0], c[1], c[2]])
+        });
+        assert!(through, "segment {k:?} -> {l:?} passes {triangles:?}");
+    }
+}
+
 /// Random sheets (the faces of a random convex hull that face one random
 /// way, as triangles of one object) over random floor squares (seeded):
 /// whatever is proven dark past a sheet's body is dark, every sampled
@@ -596,26 +623,7 @@ fn proven_dark_regions_under_random_sheets_see_no_light() {
                     continue;
                 }
                 proven += 1;
-                for _ in 0..256 {
-                    let k = [
-                        (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-                        0.0,
-                        (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-                    ];
-                    let l = [
-                        -500.0 + 1000.0 * rng.random::<f64>(),
-                        10_000.0,
-                        -500.0 + 1000.0 * rng.random::<f64>(),
-                    ];
-                    let through = triangles.iter().any(|t| {
-                        let c = t.vertices_f64();
-                        segment_meets_triangle(k, l, [c[0], c[1], c[2]])
-                    });
-                    assert!(
-                        through,
-                        "segment {k:?} -> {l:?} passes the sheet {triangles:?}"
-                    );
-                }
+                assert_segments_meet(&mut rng, (cx, cz, r), &triangles);
             }
         }
     }

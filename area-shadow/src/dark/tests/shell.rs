@@ -106,23 +106,7 @@ fn proven_dark_regions_under_random_cups_see_no_light() {
             if dent > 0.0 {
                 proven_dented += 1;
             }
-            for _ in 0..256 {
-                let k = [
-                    (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-                    0.0,
-                    (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-                ];
-                let l = [
-                    -500.0 + 1000.0 * rng.random::<f64>(),
-                    10_000.0,
-                    -500.0 + 1000.0 * rng.random::<f64>(),
-                ];
-                let through = cup.iter().any(|t| {
-                    let c = t.vertices_f64();
-                    segment_meets_triangle(k, l, [c[0], c[1], c[2]])
-                });
-                assert!(through, "segment {k:?} -> {l:?} passes the cup {cup:?}");
-            }
+            assert_segments_meet(&mut rng, (cx, cz, r), &cup);
         }
     }
     assert!(
