@@ -7,7 +7,7 @@
 //! parts of the light join with no overlap, and no proof that takes them
 //! one by one gets across the seam; as one body it needs none.
 
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
@@ -20,19 +20,44 @@ use crate::groups::hull::convex_hull;
 const MAX_SHEET_PIECES: usize = 64;
 
 /// The sheets among `pieces` (those with an owner, joined edge to edge
-/// with pieces of the same owner) that make a body with open faces: each
-/// with its pieces (indices, increasing) and the body. Sheets that close
-/// up (no open face) are left to the convex groups.
+/// with pieces of the same owner) that make a body with open faces, and
+/// the objects whose pieces, all together, tile faces of their hull, open
+/// or closed (pieces meeting in T-junctions, a box with a face cut in
+/// strips, make no edge-matched surface and so no convex group): each
+/// with its pieces (indices, increasing) and the body, in order of first
+/// piece. (An object that is also a convex group is left to the caller.)
 pub fn sheet_bodies(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<(Vec<u32>, Body)> {
-    components(pieces, owners)
-        .into_iter()
+    let sheets = components(pieces, owners);
+    let mut bodies: Vec<(Vec<u32>, Body)> = sheets
+        .iter()
         .filter(|sheet| (2..=MAX_SHEET_PIECES).contains(&sheet.len()))
         .filter_map(|sheet| {
             let members: Vec<&ConvexPolygon> = sheet.iter().map(|&k| &pieces[k as usize]).collect();
-            let body = sheet_body(&members)?;
-            Some((sheet, body))
+            let body = sheet_body(&members, false)?;
+            Some((sheet.clone(), body))
         })
-        .collect()
+        .collect();
+    let mut objects: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    for sheet in &sheets {
+        objects
+            .entry(owners[sheet[0] as usize].expect("sheets have owners"))
+            .or_default()
+            .extend_from_slice(sheet);
+    }
+    for mut members in objects.into_values() {
+        members.sort_unstable();
+        if !(2..=MAX_SHEET_PIECES).contains(&members.len())
+            || bodies.iter().any(|(sheet, _)| *sheet == members)
+        {
+            continue;
+        }
+        let polygons: Vec<&ConvexPolygon> = members.iter().map(|&k| &pieces[k as usize]).collect();
+        if let Some(body) = sheet_body(&polygons, true) {
+            bodies.push((members, body));
+        }
+    }
+    bodies.sort_unstable_by_key(|(members, _)| members[0]);
+    bodies
 }
 
 /// The pieces joined edge to edge (an edge of one the reverse of an edge
@@ -89,8 +114,8 @@ fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<Vec<u32>>
 /// The body of a sheet whose pieces tile faces of the hull of their
 /// corners (each piece in one face, the pieces of a face apart and their
 /// areas adding up to its area), with the faces no piece covers open;
-/// `None` otherwise, or when no face is open.
-fn sheet_body(pieces: &[&ConvexPolygon]) -> Option<Body> {
+/// `None` otherwise, or when no face is open and `closed` is not allowed.
+fn sheet_body(pieces: &[&ConvexPolygon], closed: bool) -> Option<Body> {
     let points: Vec<GridPoint> = pieces
         .iter()
         .flat_map(|p| (0..p.len()).filter_map(|i| p.vertex_grid_point(i)))
@@ -123,7 +148,7 @@ fn sheet_body(pieces: &[&ConvexPolygon]) -> Option<Body> {
         .filter(|(.., members)| members.is_empty())
         .map(|(plane, ..)| *plane)
         .collect();
-    if open.is_empty() {
+    if open.is_empty() && !closed {
         return None;
     }
     let all = faces.iter().map(|(plane, ..)| *plane).collect();

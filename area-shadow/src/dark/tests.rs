@@ -634,3 +634,54 @@ fn proven_dark_regions_under_random_sheets_see_no_light() {
 }
 
 mod shell;
+
+/// A box whose bottom is cut in two strips: their corners fall mid-edge
+/// on the faces beside them (T-junctions), so no edge-matched closed
+/// surface (and no convex group) is there, but the pieces tile the faces
+/// of their hull: one closed body. From the floor under the box, each
+/// ray to a light wider than the box crosses one strip or the other,
+/// changing over along the seam's shadow, which no proof taking the
+/// pieces one by one gets across; as a body they hide all of it.
+#[test]
+fn a_box_with_a_face_cut_in_strips_blocks_as_one_body() {
+    let mut faces = cuboid([-1000, 4000, -1000], [1000, 6000, 1000]);
+    let g32 = |x, y, z| GridPoint { x, y, z };
+    let strip = |x0: i32, x1: i32| {
+        let corners = [
+            g32(x0, 4000, -1000),
+            g32(x1, 4000, -1000),
+            g32(x1, 4000, 1000),
+            g32(x0, 4000, 1000),
+        ];
+        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+    };
+    faces.splice(2..3, [strip(-1000, 137), strip(137, 1000)]);
+    let owners = vec![Some(0); faces.len()];
+    assert!(
+        convex_groups(&faces, &owners).is_empty(),
+        "no convex group across the T-junctions"
+    );
+    let bodies = sheet_bodies(&faces, &owners);
+    let [(members, body)] = &bodies[..] else {
+        panic!("one body: {} found", bodies.len())
+    };
+    assert_eq!(members.len(), 7);
+    assert!(body.is_closed());
+    let source = light(-2000, 2000, 10_000);
+    let pieces: Vec<&ConvexPolygon> = faces.iter().collect();
+    let under = floor(0, 0, 100);
+    assert!(sees_none(&under, false, &source, &[], &[body]));
+    assert!(!sees_none(&under, false, &source, &pieces, &[]));
+    // Beyond the umbra (|x| <= 333 under the bottom), the light's far
+    // side passes the box.
+    assert!(!sees_none(
+        &floor(600, 0, 100),
+        false,
+        &source,
+        &[],
+        &[body]
+    ));
+    // A strip short of the face leaves a slit: no body.
+    faces[3] = strip(140, 1000);
+    assert!(sheet_bodies(&faces, &owners).is_empty());
+}
