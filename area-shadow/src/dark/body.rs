@@ -6,6 +6,7 @@ use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use smallvec::SmallVec;
 
+use super::shell::{Clearance, ShellSurface};
 use super::{Bounds, Occluder, Pairs, bounds};
 
 /// A convex body that blocks segments meeting it, in one of two ways.
@@ -41,108 +42,7 @@ pub struct Body {
     outward: Vec<Option<bool>>,
     /// For a shell: the closed surface around the core (`surface` is then
     /// the core's boundary, not occluders).
-    shell: Option<Box<Shell>>,
-}
-
-/// The closed surface around a shell's core (see [`Body::shell`]).
-#[derive(Debug, Clone, PartialEq)]
-struct Shell {
-    /// The planes of the surface's convex hull, facing out.
-    hull: Vec<Plane>,
-    /// The surface's corners.
-    corners: Vec<GridPoint>,
-    /// The planes of the caps over its hole, facing out.
-    caps: Vec<Plane>,
-}
-
-/// For a shell, planes that put points outside its surface's hull: a
-/// point of the receiver's plane (of the light's) on or in front of
-/// `region` (`light`) is outside it ([`Shell::separator`]).
-#[derive(Debug, Clone, Copy, Default)]
-pub(super) struct Clearance {
-    pub(super) region: Option<Plane>,
-    pub(super) light: Option<Plane>,
-}
-
-/// Where a set of points (a region's or a light's corners) lies for a
-/// [`Shell`].
-#[derive(Clone, Copy)]
-struct ShellEnd {
-    /// Outside the hull: on or in front of a separator (see
-    /// [`Clearance`]), or strictly in front of one of the hull's planes.
-    outside: bool,
-    /// Strictly on one side of every cap's plane, the same for all.
-    beside_caps: bool,
-}
-
-impl Shell {
-    /// Where points whose sides of a plane `sides` gives lie, with a
-    /// plane that puts those on or in front of it outside the hull.
-    fn end<S: IntoIterator<Item = Side>>(
-        &self,
-        sides: impl Fn(&Plane) -> S,
-        separator: Option<&Plane>,
-    ) -> ShellEnd {
-        let all = |plane: &Plane, side: Side| sides(plane).into_iter().all(|s| s == side);
-        let ahead = |plane: &Plane| sides(plane).into_iter().all(|s| s != Side::Back);
-        ShellEnd {
-            outside: separator.is_some_and(ahead) || self.hull.iter().any(|f| all(f, Side::Front)),
-            beside_caps: [Side::Front, Side::Back]
-                .into_iter()
-                .any(|side| self.caps.iter().all(|c| all(c, side))),
-        }
-    }
-
-    /// Among `own` (a plane), the hull's planes and `more`, one that puts
-    /// every point of `own` on or in front of it outside the hull, and the
-    /// points whose sides `sides` gives (in `own`) on or in front: the
-    /// hull behind or on it, and where it touches the hull (the hull of
-    /// its corners there) strictly on one side of `own`.
-    fn separator<S: IntoIterator<Item = Side>>(
-        &self,
-        own: &Plane,
-        sides: impl Fn(&Plane) -> S,
-        more: impl Iterator<Item = Plane>,
-    ) -> Option<Plane> {
-        let separates = |plane: Plane| -> Option<Plane> {
-            let (mut front, mut back) = (false, false);
-            for &p in &self.corners {
-                match side_of_point(&plane, p) {
-                    Side::Front => front = true,
-                    Side::Back => back = true,
-                    Side::On => {}
-                }
-            }
-            let plane = match (front, back) {
-                (true, true) => return None,
-                (true, false) => plane.flipped(),
-                _ => plane,
-            };
-            let mut touching = self
-                .corners
-                .iter()
-                .filter(|&&p| side_of_point(&plane, p) == Side::On)
-                .map(|&p| side_of_point(own, p));
-            let apart = match touching.next() {
-                None => true,
-                Some(Side::On) => false,
-                Some(first) => touching.all(|s| s == first),
-            };
-            (apart && sides(&plane).into_iter().all(|s| s != Side::Back)).then_some(plane)
-        };
-        std::iter::once(*own)
-            .chain(self.hull.iter().copied())
-            .chain(more)
-            .find_map(separates)
-    }
-
-    /// Whether a segment between these ends that meets the core meets an
-    /// occluder (see the type's docs).
-    fn blocks(&self, region: ShellEnd, light: ShellEnd) -> bool {
-        region.outside
-            && light.outside
-            && (self.caps.len() <= 1 || region.beside_caps || light.beside_caps)
-    }
+    shell: Option<Box<ShellSurface>>,
 }
 
 /// Which end of a segment is outside the body, for segments that enter it
@@ -152,6 +52,8 @@ enum Entry {
     Light,
     Region,
     Either,
+    /// Every segment is blocked (a shell's region inside it).
+    Hidden,
 }
 
 impl Body {
@@ -197,26 +99,27 @@ impl Body {
         })
     }
 
-    /// The shell (see the type's docs) of a closed surface with corners
-    /// `corners`, whose hull has face planes `hull` and whose caps have
-    /// planes `caps` (all facing out), about a convex core with boundary
+    /// The shell (see the type's docs) of a closed `surface` (occluders
+    /// and caps over their hole), about a convex core with boundary
     /// polygons `core` (facing out) that lies behind every face plane of
     /// the surface. `None` when a core polygon has a corner that is no
-    /// grid point, or no caps are given.
+    /// grid point, or the surface has no caps.
     ///
     /// Why it blocks: the surface's *winding number* about a point off it
     /// counts how many times it wraps the point (faces oriented out); a
     /// segment meets the surface wherever that number changes along it.
-    /// It is 0 outside the hull, and at least 1 at a point of the core off
-    /// the surface (every face turns its back to it). Take a segment with
-    /// both ends outside the hull that meets the core at `b`, and suppose
-    /// it meets no occluder. Then every point where it meets the surface
-    /// is on a cap, off the occluders (which hold the hole's rim). Either
-    /// the segment lies in a cap's plane, and then it meets the rim (it
-    /// passes a point of the cap and ends outside the hull), or it crosses
-    /// each cap's plane at most once; the number changes at `b` or between
-    /// `b` and each end, so the segment meets the caps at two points or
-    /// more, in two caps:
+    /// It is 0 outside the hull, and at least 1 at a point strictly behind
+    /// every face plane (every face turns its back to it), or of the core
+    /// off the surface.
+    ///
+    /// *From outside*: take a segment with both ends outside the hull that
+    /// meets the core at `b`, and suppose it meets no occluder. Then every
+    /// point where it meets the surface is on a cap, off the occluders
+    /// (which hold the hole's rim). Either the segment lies in a cap's
+    /// plane, and then it meets the rim (it passes a point of the cap and
+    /// ends outside the hull), or it crosses each cap's plane at most
+    /// once; the number changes at `b` or between `b` and each end, so
+    /// the segment meets the caps at two points or more, in two caps:
     ///
     /// - With one cap, that cannot be.
     /// - With several (the two triangles closing a bent hole), when all of
@@ -225,23 +128,23 @@ impl Body {
     ///   the same direction, and each crossing changes the number by one
     ///   the same way: it cannot come back to 0 at the other end.
     ///
-    /// So such a segment meets an occluder.
-    pub fn shell(
-        core: &[&ConvexPolygon],
-        hull: Vec<Plane>,
-        caps: Vec<Plane>,
-        corners: Vec<GridPoint>,
-    ) -> Option<Self> {
-        if caps.is_empty() {
+    /// *From inside* (a region in the cup, or on its walls facing in): when
+    /// the region is behind or on every face plane, the light strictly
+    /// behind every face plane the region touches, and the light outside
+    /// the hull, a segment from the region starts into points strictly
+    /// behind every face plane, so the number goes from at least 1 to 0
+    /// on the way: the segment meets the surface strictly between its
+    /// ends. When no segment from the region to the light meets a cap
+    /// (a plane separates each cap from them all), that is an occluder.
+    ///
+    /// So such segments meet an occluder.
+    pub fn shell(core: &[&ConvexPolygon], surface: ShellSurface) -> Option<Self> {
+        if surface.caps.is_empty() {
             return None;
         }
         let faces = core.iter().map(|p| *p.support()).collect();
         Some(Self {
-            shell: Some(Box::new(Shell {
-                hull,
-                caps,
-                corners,
-            })),
+            shell: Some(Box::new(surface)),
             ..Self::new(faces, Vec::new(), core)?
         })
     }
@@ -316,9 +219,12 @@ impl Body {
         if let Some(shell) = &self.shell {
             // The light is outside the core: a segment from it meeting the
             // core enters by a face it sees.
-            let region = shell.end(region_sides, clear.region.as_ref());
-            let light = shell.end(light_sides, clear.light.as_ref());
-            return shell.blocks(region, light).then_some(Entry::Light);
+            let region_end = shell.end(region_sides, clear.region.as_ref());
+            let light_end = shell.end(light_sides, clear.light.as_ref());
+            if shell.hides_from_inside(region_sides, light, light_end.outside) {
+                return Some(Entry::Hidden);
+            }
+            return shell.blocks(region_end, light_end).then_some(Entry::Light);
         }
         if self.enters_from(light_sides) {
             Some(Entry::Light)
@@ -387,7 +293,8 @@ impl Body {
         entry: Entry,
         mut crossed: SmallVec<[bool; 8]>,
     ) -> SmallVec<[bool; 8]> {
-        if !crossed.contains(&false) {
+        if entry == Entry::Hidden || !crossed.contains(&false) {
+            crossed.fill(true);
             return crossed;
         }
         for ((o, (ks, ls)), outward) in self.surface.iter().zip(sides).zip(&self.outward) {
@@ -446,7 +353,11 @@ impl Body {
         move |l: GridPoint| {
             let light_sides = |plane: &Plane| [side_of_point(plane, l)];
             let entry = if let (Some(shell), Some(region)) = (&self.shell, region_end) {
-                if !shell.blocks(region, shell.end(light_sides, clear.light.as_ref())) {
+                let light = shell.end(light_sides, clear.light.as_ref());
+                if shell.hides_from_inside(region_sides, &[l], light.outside) {
+                    return true;
+                }
+                if !shell.blocks(region, light) {
                     return false;
                 }
                 Entry::Light

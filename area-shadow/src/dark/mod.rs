@@ -84,11 +84,13 @@ mod frontier;
 mod leak;
 mod shaft;
 mod sheet;
+mod shell;
 mod vector;
 pub use body::Body;
-use body::Clearance;
 pub use shaft::Shaft;
 pub use sheet::sheet_bodies;
+use shell::Clearance;
+pub use shell::ShellSurface;
 
 /// A point counts as dark for a light, in floating point, when it gets at
 /// most this fraction of what all of the light would give there: rounding

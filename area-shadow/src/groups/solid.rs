@@ -48,6 +48,8 @@ pub(super) struct Solid {
     /// The planes of all the faces that closed an open surface, facing
     /// out (no occluder lies there).
     open: Vec<Plane>,
+    /// Those faces' corners (convex polygons, in the order of `open`).
+    cap_corners: Vec<Vec<GridPoint>>,
     /// The pieces (outline, support) of the surface it was made from,
     /// without the faces that closed it; empty for a hull.
     surface: Vec<(Vec<GridPoint>, Plane)>,
@@ -182,6 +184,7 @@ impl Solid {
                 capped: true,
                 caps,
                 open,
+                cap_corners: cap,
                 surface: outlines
                     .iter()
                     .zip(supports)
@@ -233,7 +236,27 @@ impl Solid {
             .collect();
         corners.sort_unstable();
         corners.dedup();
-        crate::dark::Body::shell(&core, self.hull.clone(), self.open.clone(), corners)
+        let faces = self
+            .surface
+            .iter()
+            .map(|(_, support)| self.outward(support))
+            .chain(self.open.iter().copied())
+            .collect();
+        let caps = self
+            .cap_corners
+            .iter()
+            .cloned()
+            .zip(self.open.iter().copied())
+            .collect();
+        crate::dark::Body::shell(
+            &core,
+            crate::dark::ShellSurface {
+                faces,
+                caps,
+                corners,
+                hull: self.hull.clone(),
+            },
+        )
     }
 
     /// Whether the body closes an open surface ([`Self::of_open_surface`]).
@@ -356,6 +379,7 @@ impl Solid {
             capped: false,
             caps: Vec::new(),
             open: Vec::new(),
+            cap_corners: Vec::new(),
             surface: Vec::new(),
         })
     }

@@ -175,3 +175,151 @@ fn a_shell_lets_through_what_passes_in_and_out_by_its_caps() {
     };
     assert!(sees_none(&under, false, &above, &[], &[&shell]));
 }
+
+/// The square of half-width `r` around `(x, y, z)`, facing up.
+fn level_square(x: i64, y: i64, z: i64, r: i64) -> ConvexPolygon {
+    let corners = [
+        g(x - r, y, z - r),
+        g(x - r, y, z + r),
+        g(x + r, y, z + r),
+        g(x + r, y, z - r),
+    ];
+    ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+}
+
+/// Checks that 256 random segments from the level square of half-width
+/// `r` around `(x, y, z)` to the light `x, z` in `[-500, 500]` at height
+/// 10 000 meet one of `triangles`.
+fn assert_segments_from_square_meet(
+    rng: &mut Pcg64,
+    (x, y, z, r): (i64, i64, i64, i64),
+    triangles: &[ConvexPolygon],
+) {
+    for _ in 0..256 {
+        let k = [
+            (x - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+            y as f64,
+            (z - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+        ];
+        let l = [
+            -500.0 + 1000.0 * rng.random::<f64>(),
+            10_000.0,
+            -500.0 + 1000.0 * rng.random::<f64>(),
+        ];
+        let through = triangles.iter().any(|t| {
+            let c = t.vertices_f64();
+            segment_meets_triangle(k, l, [c[0], c[1], c[2]])
+        });
+        assert!(through, "segment {k:?} -> {l:?} passes {triangles:?}");
+    }
+}
+
+/// Random cups, whole and dented, with random level squares inside them
+/// (seeded): whatever is proven dark past a cup's shell alone is dark,
+/// every sampled segment from the square to the light meeting one of the
+/// cup's triangles; and squares in cups whose hole looks away from the
+/// light are proven dark.
+#[test]
+fn proven_dark_regions_inside_random_cups_see_no_light() {
+    let mut rng = Pcg64::seed_from_u64(23);
+    let source = light(-500, 500, 10_000);
+    let (mut tried, mut proven) = (0, 0);
+    for round in 0..300 {
+        let centre = [
+            rng.random_range(-1500.0..1500.0),
+            rng.random_range(3000.0..7000.0),
+            rng.random_range(-1500.0..1500.0),
+        ];
+        let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+        let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
+        let cup = random_cup(&mut rng, centre, radii, dent);
+        let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
+        let Some(shell) = groups.iter().find_map(|group| group.shell()) else {
+            continue;
+        };
+        for _ in 0..8 {
+            let at: [i64; 3] = std::array::from_fn(|k| {
+                (centre[k] + rng.random_range(-0.4..0.4) * radii[k]).round() as i64
+            });
+            let r = rng.random_range(5..50);
+            tried += 1;
+            let region = level_square(at[0], at[1], at[2], r);
+            if !sees_none(&region, false, &source, &[], &[&shell]) {
+                continue;
+            }
+            proven += 1;
+            assert_segments_from_square_meet(&mut rng, (at[0], at[1], at[2], r), &cup);
+        }
+    }
+    assert!(
+        tried >= 2000 && proven >= 300,
+        "{tried} regions tried, {proven} proven"
+    );
+}
+
+/// A box open at the top, one wall cut along its diagonal, under a light
+/// low on that wall's side: the far wall's inside, low down, sees none of
+/// it (every segment crosses the cut wall, one triangle or the other);
+/// high up, it sees the light over the cut wall. The shell alone shows
+/// both from inside (no segment to the light meets the cap low down);
+/// sampled segments check the first.
+#[test]
+fn a_shell_hides_the_light_from_its_inside() {
+    let mut cup = cuboid([-1000, 4000, -1000], [1000, 6000, 1000]);
+    cup.remove(3);
+    // The wall in x = -1000 (now at 3), as two triangles.
+    let wall: Vec<GridPoint> = (0..4)
+        .map(|i| cup[3].vertex_grid_point(i).unwrap())
+        .collect();
+    let halves = [[wall[0], wall[1], wall[2]], [wall[0], wall[2], wall[3]]]
+        .map(|t| ConvexPolygon::from_grid_points(&t, 0).unwrap());
+    cup.splice(3..4, halves);
+    let shell = convex_groups(&cup, &vec![Some(0); cup.len()])
+        .iter()
+        .find_map(|group| group.shell())
+        .expect("the cup closes over its hole");
+    let source = AreaSource::from_grid_points(&[
+        g(-20_000, 7000, -1000),
+        g(-20_000, 7000, 1000),
+        g(-18_000, 7400, 1000),
+        g(-18_000, 7400, -1000),
+    ])
+    .unwrap();
+    // On the far wall, facing in (-x).
+    let on_wall = |y: i64| {
+        let corners = [
+            g(1000, y, 100),
+            g(1000, y + 200, 100),
+            g(1000, y + 200, -100),
+            g(1000, y, -100),
+        ];
+        ConvexPolygon::from_grid_points(&corners, 0).unwrap()
+    };
+    assert!(sees_none(&on_wall(4100), false, &source, &[], &[&shell]));
+    assert!(!sees_none(&on_wall(5790), false, &source, &[], &[&shell]));
+    let triangles: Vec<[[f64; 3]; 3]> = cup
+        .iter()
+        .flat_map(|p| {
+            let c = p.vertices_f64();
+            (1..c.len() - 1).map(move |i| [c[0], c[i], c[i + 1]])
+        })
+        .collect();
+    let mut rng = Pcg64::seed_from_u64(29);
+    for _ in 0..4000 {
+        let k = [
+            1000.0,
+            4100.0 + 200.0 * rng.random::<f64>(),
+            -100.0 + 200.0 * rng.random::<f64>(),
+        ];
+        let (u, v) = (rng.random::<f64>(), rng.random::<f64>());
+        let l = [
+            -20_000.0 + 2000.0 * u,
+            5000.0 + 400.0 * u,
+            -1000.0 + 2000.0 * v,
+        ];
+        assert!(
+            triangles.iter().any(|&t| segment_meets_triangle(k, l, t)),
+            "segment {k:?} -> {l:?} passes the cup"
+        );
+    }
+}
