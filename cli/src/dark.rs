@@ -4,8 +4,8 @@
 //! proven dark.
 //!
 //! The blockers are the shadow-casting pieces, the convex groups they make
-//! (with the shells of open surfaces closed over their hole, a cup's) and
-//! the open sheets of one object ([`sheet_bodies`]).
+//! (with the shells of open surfaces closed over their hole, a cup's, or
+//! holes, a tube's) and the open sheets of one object ([`sheet_bodies`]).
 //!
 //! `umbra shadow` finds those occluders with a uniform grid of their boxes
 //! and the shaft between the face and the light; `umbra dm` (and
@@ -14,7 +14,7 @@
 use std::collections::HashMap;
 
 use area_shadow::dark::{Body, Shaft, sees_none, sheet_bodies};
-use area_shadow::{AreaSource, Blocker, ShadowGroups};
+use area_shadow::{AreaSource, Blocker, ShadowGroups, holed_shells};
 use bsp_core::ConvexPolygon;
 
 use crate::decompose::Pieces;
@@ -119,6 +119,17 @@ impl<'a> Occluders<'a> {
                 .1
                 .push(bodies.len());
             bodies.push((body, bounds(&corners)));
+        }
+        // Surfaces open at several holes (a tube): their shells.
+        for (members, shell) in holed_shells(&pieces.polygons, &owners) {
+            let corners: Vec<[f64; 3]> = members
+                .iter()
+                .flat_map(|&k| pieces.polygons[k as usize].vertices_f64())
+                .collect();
+            by_object[objects[members[0] as usize] as usize]
+                .1
+                .push(bodies.len());
+            bodies.push((shell, bounds(&corners)));
         }
         for (k, p) in pieces.polygons.iter().enumerate() {
             if pieces.casts_shadows[k] && !covered[k] {

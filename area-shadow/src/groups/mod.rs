@@ -320,6 +320,43 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
     out
 }
 
+/// The most holes a surface closed into a shell may have
+/// ([`holed_shells`]): each bent one doubles the ways to close them.
+const MAX_HOLES: usize = 4;
+
+/// Shells ([`crate::dark::Body::shell`]) of open surfaces with several
+/// holes (a tube open at both ends): edge-connected pieces of one object
+/// (`objects` as for [`convex_groups`]) whose unmatched edges close into
+/// two cycles or more, each closed as a single hole is, the surface then
+/// convex or nearly so. Each with its pieces (ascending), in order of
+/// first piece. For joint-umbra proofs only: such a surface gets no umbra
+/// volume (a segment may pass in at one hole and out at another).
+pub fn holed_shells(
+    pieces: &[ConvexPolygon],
+    objects: &[Option<u32>],
+) -> Vec<(Vec<u32>, crate::dark::Body)> {
+    let (outlines, groups) = edge_connected(pieces, objects);
+    groups
+        .into_iter()
+        .filter_map(|members| {
+            let member_outlines: Vec<&[GridPoint]> = members
+                .iter()
+                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
+                .collect();
+            let holes = boundary_cycles(&member_outlines)?;
+            if !(2..=MAX_HOLES).contains(&holes.len()) {
+                return None;
+            }
+            let supports: Vec<Plane> = members
+                .iter()
+                .map(|&k| *pieces[k as usize].support())
+                .collect();
+            let shell = Solid::capped(&member_outlines, &supports, &holes)?.shell()?;
+            Some((members, shell))
+        })
+        .collect()
+}
+
 /// Whether an edge-connected group stays: its pieces are in no T-junction
 /// flat, or only in flats that give way to it (`blocked`).
 fn blocked_or_free(

@@ -144,54 +144,87 @@ impl Solid {
     /// behind both, and the segment enters by a face the point is in front
     /// of).
     pub(super) fn of_open_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
-        let mut hole = super::boundary_cycle(outlines)?;
-        hole.reverse();
-        let bent = hole.len() == 4
-            && Plane::through(hole[0], hole[1], hole[2])
-                .is_some_and(|plane| side_of_point(&plane, hole[3]) != Side::On);
-        let caps: Vec<Vec<Vec<GridPoint>>> = if bent {
-            let [a, b, c, d] = [hole[0], hole[1], hole[2], hole[3]];
-            vec![
-                vec![vec![a, b, c], vec![a, c, d]],
-                vec![vec![b, c, d], vec![b, d, a]],
-            ]
-        } else {
-            vec![vec![hole]]
-        };
-        caps.into_iter().find_map(|cap| {
-            let polygons: Vec<ConvexPolygon> = cap
-                .iter()
-                .map(|outline| ConvexPolygon::from_grid_points(outline, 0).ok())
-                .collect::<Option<_>>()?;
-            let mut closed: Vec<&[GridPoint]> = outlines.to_vec();
-            closed.extend(cap.iter().map(Vec::as_slice));
-            let mut planes = supports.to_vec();
-            planes.extend(polygons.iter().map(|p| *p.support()));
-            let solid = Self::of_surface(&closed, &planes)?;
-            let caps = if polygons.len() > 1 {
-                polygons
-                    .iter()
-                    .map(|p| solid.outward(p.support()))
-                    .collect()
-            } else {
-                Vec::new()
-            };
-            let open = polygons
-                .iter()
-                .map(|p| solid.outward(p.support()))
-                .collect();
-            Some(Self {
-                capped: true,
-                caps,
-                open,
-                cap_corners: cap,
-                surface: outlines
-                    .iter()
-                    .zip(supports)
-                    .map(|(o, s)| (o.to_vec(), *s))
-                    .collect(),
-                ..solid
+        let hole = super::boundary_cycle(outlines)?;
+        Self::capped(outlines, supports, &[hole])
+    }
+
+    /// The surface of `outlines` (with `supports`) closed over each of
+    /// its `holes` (boundary cycles) as [`Self::of_open_surface`] closes
+    /// one: each hole by itself if a planar convex polygon, a bent one of
+    /// four corners by the triangles of either diagonal (the first choice
+    /// that makes the surface convex, or nearly).
+    pub(super) fn capped(
+        outlines: &[&[GridPoint]],
+        supports: &[Plane],
+        holes: &[Vec<GridPoint>],
+    ) -> Option<Self> {
+        // Each hole's ways to be closed.
+        let options: Vec<Vec<Vec<Vec<GridPoint>>>> = holes
+            .iter()
+            .map(|hole| {
+                let mut hole = hole.clone();
+                hole.reverse();
+                let bent = hole.len() == 4
+                    && Plane::through(hole[0], hole[1], hole[2])
+                        .is_some_and(|plane| side_of_point(&plane, hole[3]) != Side::On);
+                if bent {
+                    let [a, b, c, d] = [hole[0], hole[1], hole[2], hole[3]];
+                    vec![
+                        vec![vec![a, b, c], vec![a, c, d]],
+                        vec![vec![b, c, d], vec![b, d, a]],
+                    ]
+                } else {
+                    vec![vec![hole]]
+                }
             })
+            .collect();
+        let choices: usize = options.iter().map(Vec::len).product();
+        (0..choices).find_map(|mut choice| {
+            let mut cap: Vec<Vec<GridPoint>> = Vec::new();
+            for ways in &options {
+                cap.extend(ways[choice % ways.len()].iter().cloned());
+                choice /= ways.len();
+            }
+            Self::closed_by(outlines, supports, cap)
+        })
+    }
+
+    /// The surface of `outlines` closed by the polygons `cap`, if it is
+    /// convex or nearly so.
+    fn closed_by(
+        outlines: &[&[GridPoint]],
+        supports: &[Plane],
+        cap: Vec<Vec<GridPoint>>,
+    ) -> Option<Self> {
+        let polygons: Vec<ConvexPolygon> = cap
+            .iter()
+            .map(|outline| ConvexPolygon::from_grid_points(outline, 0).ok())
+            .collect::<Option<_>>()?;
+        let mut closed: Vec<&[GridPoint]> = outlines.to_vec();
+        closed.extend(cap.iter().map(Vec::as_slice));
+        let mut planes = supports.to_vec();
+        planes.extend(polygons.iter().map(|p| *p.support()));
+        let solid = Self::of_surface(&closed, &planes)?;
+        let open: Vec<Plane> = polygons
+            .iter()
+            .map(|p| solid.outward(p.support()))
+            .collect();
+        let caps = if open.len() > 1 {
+            open.clone()
+        } else {
+            Vec::new()
+        };
+        Some(Self {
+            capped: true,
+            caps,
+            open,
+            cap_corners: cap,
+            surface: outlines
+                .iter()
+                .zip(supports)
+                .map(|(o, s)| (o.to_vec(), *s))
+                .collect(),
+            ..solid
         })
     }
 

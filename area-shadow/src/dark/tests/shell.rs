@@ -323,3 +323,84 @@ fn a_shell_hides_the_light_from_its_inside() {
         );
     }
 }
+
+/// The triangles of a random convex hull of points around `centre`
+/// (radii `radii`), less two that share no corner: a surface with two
+/// holes (a tube, roughly). Empty when no two such triangles are found.
+fn random_tube(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> Vec<ConvexPolygon> {
+    let points: Vec<GridPoint> = (0..rng.random_range(8..16))
+        .map(|_| {
+            let u = unit(rng);
+            let c: [i64; 3] = std::array::from_fn(|k| (centre[k] + radii[k] * u[k]).round() as i64);
+            g(c[0], c[1], c[2])
+        })
+        .collect();
+    let Some(hull) = crate::groups::hull::convex_hull(&points) else {
+        return Vec::new();
+    };
+    let mut triangles: Vec<[GridPoint; 3]> = hull.into_iter().map(|(t, _)| t).collect();
+    let first = triangles.swap_remove(rng.random_range(0..triangles.len()));
+    let Some(second) = triangles
+        .iter()
+        .position(|t| t.iter().all(|p| !first.contains(p)))
+    else {
+        return Vec::new();
+    };
+    triangles.swap_remove(second);
+    triangles
+        .iter()
+        .filter_map(|t| ConvexPolygon::from_grid_points(t, 0).ok())
+        .collect()
+}
+
+/// Random surfaces with two holes over random floor squares and with
+/// random level squares inside them (seeded): whatever is proven dark
+/// past their shells alone is dark, every sampled segment from the
+/// region to the light meeting one of their triangles; and the shells
+/// prove regions dark, outside and inside.
+#[test]
+fn proven_dark_regions_by_random_tubes_see_no_light() {
+    let mut rng = Pcg64::seed_from_u64(31);
+    let source = light(-500, 500, 10_000);
+    let (mut shells, mut below, mut inside) = (0, 0, 0);
+    for _ in 0..300 {
+        let centre = [
+            rng.random_range(-1500.0..1500.0),
+            rng.random_range(3000.0..7000.0),
+            rng.random_range(-1500.0..1500.0),
+        ];
+        let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+        let tube = random_tube(&mut rng, centre, radii);
+        let found = crate::holed_shells(&tube, &vec![Some(0); tube.len()]);
+        let [(members, shell)] = &found[..] else {
+            continue;
+        };
+        assert_eq!(members.len(), tube.len());
+        shells += 1;
+        let t = 10_000.0 / (10_000.0 - centre[1]);
+        for _ in 0..8 {
+            let (cx, cz, r) = (
+                (centre[0] * t + rng.random_range(-1.2..1.2) * radii[0] * t).round() as i64,
+                (centre[2] * t + rng.random_range(-1.2..1.2) * radii[2] * t).round() as i64,
+                rng.random_range(5..100),
+            );
+            if sees_none(&floor(cx, cz, r), false, &source, &[], &[shell]) {
+                below += 1;
+                assert_segments_meet(&mut rng, (cx, cz, r), &tube);
+            }
+            let at: [i64; 3] = std::array::from_fn(|k| {
+                (centre[k] + rng.random_range(-0.4..0.4) * radii[k]).round() as i64
+            });
+            let r = rng.random_range(5..50);
+            let region = level_square(at[0], at[1], at[2], r);
+            if sees_none(&region, false, &source, &[], &[shell]) {
+                inside += 1;
+                assert_segments_from_square_meet(&mut rng, (at[0], at[1], at[2], r), &tube);
+            }
+        }
+    }
+    assert!(
+        shells >= 150 && below >= 50 && inside >= 500,
+        "{shells} shells, {below} regions below proven, {inside} inside"
+    );
+}
