@@ -69,19 +69,7 @@ impl ShellSurface {
         more: impl Iterator<Item = Plane>,
     ) -> Option<Plane> {
         let separates = |plane: Plane| -> Option<Plane> {
-            let (mut front, mut back) = (false, false);
-            for &p in &self.corners {
-                match side_of_point(&plane, p) {
-                    Side::Front => front = true,
-                    Side::Back => back = true,
-                    Side::On => {}
-                }
-            }
-            let plane = match (front, back) {
-                (true, true) => return None,
-                (true, false) => plane.flipped(),
-                _ => plane,
-            };
+            let plane = facing_away(plane, &self.corners)?;
             let mut touching = self
                 .corners
                 .iter()
@@ -165,21 +153,10 @@ impl ShellSurface {
         let n = corners.len();
         (0..n).any(|i| {
             light.iter().any(|&l| {
-                let Some(through) = Plane::through(corners[i], corners[(i + 1) % n], l) else {
+                let Some(through) = Plane::through(corners[i], corners[(i + 1) % n], l)
+                    .and_then(|plane| facing_away(plane, corners))
+                else {
                     return false;
-                };
-                let (mut front, mut back) = (false, false);
-                for &c in corners {
-                    match side_of_point(&through, c) {
-                        Side::Front => front = true,
-                        Side::Back => back = true,
-                        Side::On => {}
-                    }
-                }
-                let through = match (front, back) {
-                    (true, true) => return false,
-                    (true, false) => through.flipped(),
-                    _ => through,
                 };
                 light
                     .iter()
@@ -187,5 +164,23 @@ impl ShellSurface {
                     && region_all(&through, Side::Front)
             })
         })
+    }
+}
+
+/// `plane`, or its flip, with all of `points` behind or on it; `None`
+/// when they lie on both sides.
+fn facing_away(plane: Plane, points: &[GridPoint]) -> Option<Plane> {
+    let (mut front, mut back) = (false, false);
+    for &p in points {
+        match side_of_point(&plane, p) {
+            Side::Front => front = true,
+            Side::Back => back = true,
+            Side::On => {}
+        }
+    }
+    match (front, back) {
+        (true, true) => None,
+        (true, false) => Some(plane.flipped()),
+        _ => Some(plane),
     }
 }

@@ -542,11 +542,22 @@ fn assert_segments_meet(
     (cx, cz, r): (i64, i64, i64),
     triangles: &[ConvexPolygon],
 ) {
+    assert_square_segments_meet(rng, (cx, 0, cz, r), triangles);
+}
+
+/// Checks that 256 random segments from the level square of half-width
+/// `r` around `(x, y, z)` to the light `x, z` in `[-500, 500]` at height
+/// 10 000 meet one of `triangles`.
+fn assert_square_segments_meet(
+    rng: &mut Pcg64,
+    (x, y, z, r): (i64, i64, i64, i64),
+    triangles: &[ConvexPolygon],
+) {
     for _ in 0..256 {
         let k = [
-            (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-            0.0,
-            (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+            (x - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+            y as f64,
+            (z - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
         ];
         let l = [
             -500.0 + 1000.0 * rng.random::<f64>(),

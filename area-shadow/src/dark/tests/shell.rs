@@ -9,17 +9,10 @@ use super::*;
 /// by `dent` of its distance when `dent > 0` (a surface the grid left
 /// concave).
 fn random_cup(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3], dent: f64) -> Vec<ConvexPolygon> {
-    let points: Vec<GridPoint> = (0..rng.random_range(6..14))
-        .map(|_| {
-            let u = unit(rng);
-            let c: [i64; 3] = std::array::from_fn(|k| (centre[k] + radii[k] * u[k]).round() as i64);
-            g(c[0], c[1], c[2])
-        })
-        .collect();
-    let Some(hull) = crate::groups::hull::convex_hull(&points) else {
+    let mut triangles = random_hull(rng, 6..14, centre, radii);
+    if triangles.is_empty() {
         return Vec::new();
-    };
-    let mut triangles: Vec<[GridPoint; 3]> = hull.into_iter().map(|(t, _)| t).collect();
+    }
     let hole = rng.random_range(0..triangles.len());
     let [a, b, c] = triangles.swap_remove(hole);
     if rng.random::<bool>() {
@@ -53,6 +46,27 @@ fn random_cup(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3], dent: f64) -> 
         .iter()
         .filter_map(|t| ConvexPolygon::from_grid_points(t, 0).ok())
         .collect()
+}
+
+/// The triangles of the convex hull of a random number (in `count`) of
+/// grid points around `centre` on the ellipsoid with radii `radii`; none
+/// when they span no volume.
+fn random_hull(
+    rng: &mut Pcg64,
+    count: std::ops::Range<usize>,
+    centre: [f64; 3],
+    radii: [f64; 3],
+) -> Vec<[GridPoint; 3]> {
+    let points: Vec<GridPoint> = (0..rng.random_range(count))
+        .map(|_| {
+            let u = unit(rng);
+            let c: [i64; 3] = std::array::from_fn(|k| (centre[k] + radii[k] * u[k]).round() as i64);
+            g(c[0], c[1], c[2])
+        })
+        .collect();
+    crate::groups::hull::convex_hull(&points)
+        .map(|hull| hull.into_iter().map(|(t, _)| t).collect())
+        .unwrap_or_default()
 }
 
 fn unit(rng: &mut Pcg64) -> [f64; 3] {
@@ -187,33 +201,6 @@ fn level_square(x: i64, y: i64, z: i64, r: i64) -> ConvexPolygon {
     ConvexPolygon::from_grid_points(&corners, 0).unwrap()
 }
 
-/// Checks that 256 random segments from the level square of half-width
-/// `r` around `(x, y, z)` to the light `x, z` in `[-500, 500]` at height
-/// 10 000 meet one of `triangles`.
-fn assert_segments_from_square_meet(
-    rng: &mut Pcg64,
-    (x, y, z, r): (i64, i64, i64, i64),
-    triangles: &[ConvexPolygon],
-) {
-    for _ in 0..256 {
-        let k = [
-            (x - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-            y as f64,
-            (z - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-        ];
-        let l = [
-            -500.0 + 1000.0 * rng.random::<f64>(),
-            10_000.0,
-            -500.0 + 1000.0 * rng.random::<f64>(),
-        ];
-        let through = triangles.iter().any(|t| {
-            let c = t.vertices_f64();
-            segment_meets_triangle(k, l, [c[0], c[1], c[2]])
-        });
-        assert!(through, "segment {k:?} -> {l:?} passes {triangles:?}");
-    }
-}
-
 /// Random cups, whole and dented, with random level squares inside them
 /// (seeded): whatever is proven dark past a cup's shell alone is dark,
 /// every sampled segment from the square to the light meeting one of the
@@ -248,7 +235,7 @@ fn proven_dark_regions_inside_random_cups_see_no_light() {
                 continue;
             }
             proven += 1;
-            assert_segments_from_square_meet(&mut rng, (at[0], at[1], at[2], r), &cup);
+            assert_square_segments_meet(&mut rng, (at[0], at[1], at[2], r), &cup);
         }
     }
     assert!(
@@ -328,17 +315,10 @@ fn a_shell_hides_the_light_from_its_inside() {
 /// (radii `radii`), less two that share no corner: a surface with two
 /// holes (a tube, roughly). Empty when no two such triangles are found.
 fn random_tube(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> Vec<ConvexPolygon> {
-    let points: Vec<GridPoint> = (0..rng.random_range(8..16))
-        .map(|_| {
-            let u = unit(rng);
-            let c: [i64; 3] = std::array::from_fn(|k| (centre[k] + radii[k] * u[k]).round() as i64);
-            g(c[0], c[1], c[2])
-        })
-        .collect();
-    let Some(hull) = crate::groups::hull::convex_hull(&points) else {
+    let mut triangles = random_hull(rng, 8..16, centre, radii);
+    if triangles.is_empty() {
         return Vec::new();
-    };
-    let mut triangles: Vec<[GridPoint; 3]> = hull.into_iter().map(|(t, _)| t).collect();
+    }
     let first = triangles.swap_remove(rng.random_range(0..triangles.len()));
     let Some(second) = triangles
         .iter()
@@ -395,7 +375,7 @@ fn proven_dark_regions_by_random_tubes_see_no_light() {
             let region = level_square(at[0], at[1], at[2], r);
             if sees_none(&region, false, &source, &[], &[shell]) {
                 inside += 1;
-                assert_segments_from_square_meet(&mut rng, (at[0], at[1], at[2], r), &tube);
+                assert_square_segments_meet(&mut rng, (at[0], at[1], at[2], r), &tube);
             }
         }
     }
