@@ -69,6 +69,17 @@ fn random_hull(
         .unwrap_or_default()
 }
 
+/// A random centre between the floor and the light, and radii around it.
+fn random_place(rng: &mut Pcg64) -> ([f64; 3], [f64; 3]) {
+    let centre = [
+        rng.random_range(-1500.0..1500.0),
+        rng.random_range(3000.0..7000.0),
+        rng.random_range(-1500.0..1500.0),
+    ];
+    let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+    (centre, radii)
+}
+
 fn unit(rng: &mut Pcg64) -> [f64; 3] {
     loop {
         let v: [f64; 3] = std::array::from_fn(|_| rng.random_range(-1.0..1.0));
@@ -90,12 +101,7 @@ fn proven_dark_regions_under_random_cups_see_no_light() {
     let source = light(-500, 500, 10_000);
     let (mut shells, mut proven, mut proven_dented) = (0, 0, 0);
     for round in 0..300 {
-        let centre = [
-            rng.random_range(-1500.0..1500.0),
-            rng.random_range(3000.0..7000.0),
-            rng.random_range(-1500.0..1500.0),
-        ];
-        let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+        let (centre, radii) = random_place(&mut rng);
         let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
         let cup = random_cup(&mut rng, centre, radii, dent);
         let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
@@ -212,12 +218,7 @@ fn proven_dark_regions_inside_random_cups_see_no_light() {
     let source = light(-500, 500, 10_000);
     let (mut tried, mut proven) = (0, 0);
     for round in 0..300 {
-        let centre = [
-            rng.random_range(-1500.0..1500.0),
-            rng.random_range(3000.0..7000.0),
-            rng.random_range(-1500.0..1500.0),
-        ];
-        let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+        let (centre, radii) = random_place(&mut rng);
         let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
         let cup = random_cup(&mut rng, centre, radii, dent);
         let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
@@ -344,12 +345,7 @@ fn proven_dark_regions_by_random_tubes_see_no_light() {
     let source = light(-500, 500, 10_000);
     let (mut shells, mut below, mut inside) = (0, 0, 0);
     for _ in 0..300 {
-        let centre = [
-            rng.random_range(-1500.0..1500.0),
-            rng.random_range(3000.0..7000.0),
-            rng.random_range(-1500.0..1500.0),
-        ];
-        let radii: [f64; 3] = std::array::from_fn(|_| rng.random_range(300.0..2000.0));
+        let (centre, radii) = random_place(&mut rng);
         let tube = random_tube(&mut rng, centre, radii);
         let found = crate::holed_shells(&tube, &vec![Some(0); tube.len()]);
         let [(members, shell)] = &found[..] else {
