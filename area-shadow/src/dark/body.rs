@@ -128,14 +128,20 @@ impl Body {
     ///   the same direction, and each crossing changes the number by one
     ///   the same way: it cannot come back to 0 at the other end.
     ///
-    /// *From inside* (a region in the cup, or on its walls facing in): when
-    /// the region is behind or on every face plane, the light strictly
-    /// behind every face plane the region touches, and the light outside
-    /// the hull, a segment from the region starts into points strictly
-    /// behind every face plane, so the number goes from at least 1 to 0
-    /// on the way: the segment meets the surface strictly between its
-    /// ends. When no segment from the region to the light meets a cap
-    /// (a plane separates each cap from them all), that is an occluder.
+    /// *From inside* (a region in the cup, or on its walls facing in): take
+    /// a point `c` strictly behind every face plane (the number is at
+    /// least 1 there). When, for every face, either the region is behind
+    /// or on its plane (the light strictly behind it where the region
+    /// touches it) or a plane through an edge of the face and `c` keeps
+    /// the face behind and the region strictly in front, a segment from
+    /// just past any point of the region towards the light to `c` meets
+    /// no face: the number is at least 1 there too. With the light
+    /// outside the hull, it goes to 0 on the way, so a segment from the
+    /// region meets the surface strictly between its ends. When no
+    /// segment from the region to the light meets a cap (a plane
+    /// separates each cap from them all), that is an occluder. (The
+    /// second way serves a wall of a cup the grid left concave: at a
+    /// crease it stands in front of the neighbour's plane.)
     ///
     /// So such segments meet an occluder.
     pub fn shell(core: &[&ConvexPolygon], surface: ShellSurface) -> Option<Self> {

@@ -8,8 +8,9 @@ use bsp_core::{GridPoint, Plane};
 /// the hole they leave (see [`Body::shell`](super::Body::shell)).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ShellSurface {
-    /// The planes of its faces, the occluders' and the caps', facing out.
-    pub faces: Vec<Plane>,
+    /// Its faces, the occluders' and the caps': each a convex polygon's
+    /// corners and its plane, facing out.
+    pub faces: Vec<(Vec<GridPoint>, Plane)>,
     /// The caps: each a convex polygon's corners and its plane, facing
     /// out.
     pub caps: Vec<(Vec<GridPoint>, Plane)>,
@@ -17,6 +18,8 @@ pub struct ShellSurface {
     pub corners: Vec<GridPoint>,
     /// The planes of its convex hull, facing out.
     pub hull: Vec<Plane>,
+    /// A grid point strictly behind every face's plane, if one is known.
+    pub inner: Option<GridPoint>,
 }
 
 /// For a shell, planes that put points outside its surface's hull: a
@@ -113,13 +116,31 @@ impl ShellSurface {
         }
         let light_all =
             |plane: &Plane, side: Side| light.iter().all(|&l| side_of_point(plane, l) == side);
-        for face in &self.faces {
+        // From just past each point of the region towards the light, a
+        // segment to `inner` meets no face: past it behind the face's
+        // plane (the region behind or on it, the light strictly behind
+        // where the region touches it), or a plane through an edge of the
+        // face and `inner` keeps the face behind and the region in front.
+        for (corners, plane) in &self.faces {
             let (mut front, mut on) = (false, false);
-            for side in region(face) {
+            for side in region(plane) {
                 front |= side == Side::Front;
                 on |= side == Side::On;
             }
-            if front || (on && !light_all(face, Side::Back)) {
+            // Behind or on it, and the light strictly behind where touched.
+            if !front && (!on || light_all(plane, Side::Back)) {
+                continue;
+            }
+            let Some(inner) = self.inner else {
+                return false;
+            };
+            let n = corners.len();
+            let apart = (0..n).any(|i| {
+                Plane::through(corners[i], corners[(i + 1) % n], inner)
+                    .and_then(|through| facing_away(through, corners))
+                    .is_some_and(|through| region(&through).into_iter().all(|s| s == Side::Front))
+            });
+            if !apart {
                 return false;
             }
         }

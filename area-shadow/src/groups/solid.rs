@@ -269,18 +269,33 @@ impl Solid {
             .collect();
         corners.sort_unstable();
         corners.dedup();
-        let faces = self
-            .surface
-            .iter()
-            .map(|(_, support)| self.outward(support))
-            .chain(self.open.iter().copied())
-            .collect();
-        let caps = self
+        let caps: Vec<(Vec<GridPoint>, Plane)> = self
             .cap_corners
             .iter()
             .cloned()
             .zip(self.open.iter().copied())
             .collect();
+        let faces: Vec<(Vec<GridPoint>, Plane)> = self
+            .surface
+            .iter()
+            .map(|(outline, support)| (outline.clone(), self.outward(support)))
+            .chain(caps.iter().cloned())
+            .collect();
+        // The body's centre, if strictly behind every face's plane.
+        let n = self.vertices.len() as f64;
+        let centre: [f64; 3] =
+            std::array::from_fn(|a| self.vertices.iter().map(|p| p.to_f64()[a]).sum::<f64>() / n);
+        let inner = GridPoint::new(
+            centre[0].round() as i64,
+            centre[1].round() as i64,
+            centre[2].round() as i64,
+        )
+        .ok()
+        .filter(|&c| {
+            faces
+                .iter()
+                .all(|(_, plane)| side_of_point(plane, c) == Side::Back)
+        });
         crate::dark::Body::shell(
             &core,
             crate::dark::ShellSurface {
@@ -288,6 +303,7 @@ impl Solid {
                 caps,
                 corners,
                 hull: self.hull.clone(),
+                inner,
             },
         )
     }

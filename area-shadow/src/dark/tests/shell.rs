@@ -380,3 +380,123 @@ fn proven_dark_regions_by_random_tubes_see_no_light() {
         "{shells} shells, {below} regions below proven, {inside} inside"
     );
 }
+
+/// A small parallelogram of `piece`'s plane around its centre, facing the
+/// other way (into a cup whose pieces face out): cut by planes across
+/// the two axes the plane's normal leans on least, `1/8` of the piece's
+/// extent along each from its centre.
+fn inside_of(piece: &ConvexPolygon) -> Option<ConvexPolygon> {
+    let support = piece.support().flipped();
+    let normal = support.normal();
+    let mut axes = [0, 1, 2];
+    axes.sort_by_key(|&a| normal[a].unsigned_abs());
+    let corners = piece.vertices_f64();
+    let centre = piece.centroid();
+    let mut edges = Vec::new();
+    for &axis in &axes[..2] {
+        let (lo, hi) = corners
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| {
+                (lo.min(c[axis]), hi.max(c[axis]))
+            });
+        let half = ((hi - lo) / 8.0).round().max(1.0) as i64;
+        for (sign, at) in [
+            (1, centre[axis].round() as i64 + half),
+            (-1, centre[axis].round() as i64 - half),
+        ] {
+            let mut n = [0_i64; 3];
+            n[axis] = sign;
+            let mut p = [0_i64; 3];
+            p[axis] = at;
+            edges.push(Plane::with_normal_through(n, g(p[0], p[1], p[2]))?);
+        }
+    }
+    // A cycle: +a, +b, -a, -b, or the other way round.
+    let cycle = [edges[0], edges[2], edges[1], edges[3]];
+    ConvexPolygon::from_planes(support, &cycle, 0)
+        .or_else(|_| {
+            let back: Vec<Plane> = cycle.iter().rev().copied().collect();
+            ConvexPolygon::from_planes(support, &back, 0)
+        })
+        .ok()
+}
+
+/// Random cups, whole and dented, with small regions of their own pieces
+/// that face in, towards some of the light, or take light on both sides
+/// (seeded): whatever is proven
+/// dark past a cup's shell alone is dark, every sampled segment from the
+/// region to the light it takes meeting another of the cup's
+/// triangles; and walls of dented cups are proven too.
+#[test]
+fn proven_dark_walls_of_random_cups_see_no_light() {
+    let mut rng = Pcg64::seed_from_u64(37);
+    let source = light(-500, 500, 10_000);
+    let (mut tried, mut proven, mut proven_dented) = (0, 0, 0);
+    for round in 0..300 {
+        let (centre, radii) = random_place(&mut rng);
+        let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
+        let cup = random_cup(&mut rng, centre, radii, dent);
+        let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
+        let Some(shell) = groups.iter().find_map(|group| group.shell()) else {
+            continue;
+        };
+        for (k, piece) in cup.iter().enumerate() {
+            let Some(region) = inside_of(piece) else {
+                continue;
+            };
+            // Half the walls take light on both sides; the others only
+            // walls whose inside faces some of the light.
+            let two_sided = k % 2 == 0;
+            if !two_sided
+                && source
+                    .vertices()
+                    .all(|l| side_of_point(region.support(), l) != Side::Front)
+            {
+                continue;
+            }
+            tried += 1;
+            if !sees_none(&region, two_sided, &source, &[], &[&shell]) {
+                continue;
+            }
+            proven += 1;
+            if dent > 0.0 {
+                proven_dented += 1;
+            }
+            let others: Vec<[[f64; 3]; 3]> = cup
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != k)
+                .map(|(_, t)| {
+                    let c = t.vertices_f64();
+                    [c[0], c[1], c[2]]
+                })
+                .collect();
+            let corners = region.vertices_f64();
+            let facing = region.support().unit_normal_f64();
+            for _ in 0..64 {
+                let w: Vec<f64> = corners.iter().map(|_| rng.random::<f64>()).collect();
+                let total: f64 = w.iter().sum();
+                let p: [f64; 3] = std::array::from_fn(|a| {
+                    corners.iter().zip(&w).map(|(c, w)| c[a] * w).sum::<f64>() / total
+                });
+                let l = [
+                    -500.0 + 1000.0 * rng.random::<f64>(),
+                    10_000.0,
+                    -500.0 + 1000.0 * rng.random::<f64>(),
+                ];
+                // A one-sided region takes light on its front only.
+                if !two_sided && vector::dot(facing, vector::sub(l, p)) <= 0.0 {
+                    continue;
+                }
+                assert!(
+                    others.iter().any(|&t| segment_meets_triangle(p, l, t)),
+                    "segment {p:?} -> {l:?} passes the cup {cup:?}"
+                );
+            }
+        }
+    }
+    assert!(
+        tried >= 2000 && proven >= 400 && proven_dented >= 200,
+        "{tried} walls tried, {proven} proven ({proven_dented} of dented cups)"
+    );
+}
