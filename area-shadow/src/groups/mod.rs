@@ -324,10 +324,12 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
 /// ([`holed_shells`]): each bent one doubles the ways to close them.
 const MAX_HOLES: usize = 4;
 
-/// Shells ([`crate::dark::Body::shell`]) of open surfaces with several
-/// holes (a tube open at both ends): edge-connected pieces of one object
-/// (`objects` as for [`convex_groups`]) whose unmatched edges close into
-/// two cycles or more, each closed as a single hole is, the surface then
+/// Shells ([`crate::dark::Body::shell`]) of the open surfaces the convex
+/// groups do not close: edge-connected pieces of one object (`objects`
+/// as for [`convex_groups`]) whose unmatched edges close into two cycles
+/// or more (a tube open at both ends), or into one that is neither a
+/// planar convex polygon nor four corners (a lidded cup's slot the grid
+/// bent), each closed by itself or a fan of triangles, the surface then
 /// convex or nearly so. Each with its pieces (ascending), in order of
 /// first piece. For joint-umbra proofs only: such a surface gets no umbra
 /// volume (a segment may pass in at one hole and out at another).
@@ -344,14 +346,20 @@ pub fn holed_shells(
                 .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
                 .collect();
             let holes = boundary_cycles(&member_outlines)?;
-            if !(2..=MAX_HOLES).contains(&holes.len()) {
+            if holes.len() > MAX_HOLES {
                 return None;
             }
             let supports: Vec<Plane> = members
                 .iter()
                 .map(|&k| *pieces[k as usize].support())
                 .collect();
-            let shell = Solid::capped(&member_outlines, &supports, &holes)?.shell()?;
+            // One hole the groups close already.
+            if holes.len() == 1
+                && Solid::capped(&member_outlines, &supports, &holes, false).is_some()
+            {
+                return None;
+            }
+            let shell = Solid::capped(&member_outlines, &supports, &holes, true)?.shell()?;
             Some((members, shell))
         })
         .collect()

@@ -27,6 +27,13 @@ use std::collections::HashSet;
 /// The farthest a vertex is moved towards the centre, in grid units.
 const MAX_NUDGE: f64 = 64.0;
 
+/// The most corners of a hole closed by a fan of triangles
+/// ([`Solid::capped`]).
+const MAX_FAN_CORNERS: usize = 12;
+
+/// The most ways to close a surface's holes tried ([`Solid::capped`]).
+const MAX_CAP_CHOICES: usize = 64;
+
 /// A closed convex surface: the body a group blocks light as.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) struct Solid {
@@ -145,18 +152,22 @@ impl Solid {
     /// of).
     pub(super) fn of_open_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
         let hole = super::boundary_cycle(outlines)?;
-        Self::capped(outlines, supports, &[hole])
+        Self::capped(outlines, supports, &[hole], false)
     }
 
     /// The surface of `outlines` (with `supports`) closed over each of
     /// its `holes` (boundary cycles) as [`Self::of_open_surface`] closes
     /// one: each hole by itself if a planar convex polygon, a bent one of
     /// four corners by the triangles of either diagonal (the first choice
-    /// that makes the surface convex, or nearly).
+    /// that makes the surface convex, or nearly). With `fans`, a hole of
+    /// more corners that is no planar convex polygon (bent by the grid,
+    /// or with a corner in line with its neighbours) may be closed by the
+    /// fan of triangles from any of its corners.
     pub(super) fn capped(
         outlines: &[&[GridPoint]],
         supports: &[Plane],
         holes: &[Vec<GridPoint>],
+        fans: bool,
     ) -> Option<Self> {
         // Each hole's ways to be closed.
         let options: Vec<Vec<Vec<Vec<GridPoint>>>> = holes
@@ -164,21 +175,37 @@ impl Solid {
             .map(|hole| {
                 let mut hole = hole.clone();
                 hole.reverse();
-                let bent = hole.len() == 4
+                if ConvexPolygon::from_grid_points(&hole, 0).is_ok() {
+                    return vec![vec![hole]];
+                }
+                let n = hole.len();
+                let bent = n == 4
                     && Plane::through(hole[0], hole[1], hole[2])
                         .is_some_and(|plane| side_of_point(&plane, hole[3]) != Side::On);
-                if bent {
-                    let [a, b, c, d] = [hole[0], hole[1], hole[2], hole[3]];
-                    vec![
-                        vec![vec![a, b, c], vec![a, c, d]],
-                        vec![vec![b, c, d], vec![b, d, a]],
-                    ]
+                // Four corners bent: either diagonal (a fan from either end).
+                let apexes = if bent {
+                    2
+                } else if fans && n <= MAX_FAN_CORNERS {
+                    n
                 } else {
-                    vec![vec![hole]]
-                }
+                    0
+                };
+                (0..apexes)
+                    .map(|apex| {
+                        (1..n - 1)
+                            .map(|k| {
+                                vec![hole[apex], hole[(apex + k) % n], hole[(apex + k + 1) % n]]
+                            })
+                            .collect()
+                    })
+                    .collect()
             })
             .collect();
-        let choices: usize = options.iter().map(Vec::len).product();
+        let choices = options
+            .iter()
+            .map(Vec::len)
+            .try_fold(1_usize, |all, n| all.checked_mul(n))
+            .filter(|&all| all <= MAX_CAP_CHOICES)?;
         (0..choices).find_map(|mut choice| {
             let mut cap: Vec<Vec<GridPoint>> = Vec::new();
             for ways in &options {

@@ -500,3 +500,51 @@ fn proven_dark_walls_of_random_cups_see_no_light() {
         "{tried} walls tried, {proven} proven ({proven_dented} of dented cups)"
     );
 }
+
+/// A hexagonal tube along `z` (walls as triangles), one corner of an end
+/// pushed out a little along `z` so that end's hexagon is bent: no planar cap closes
+/// it, a fan of triangles does. The tube is one shell with two holes,
+/// and from the floor under it the light above (within the tube's length,
+/// behind both ends) is hidden.
+#[test]
+fn a_tube_with_a_bent_end_is_closed_by_a_fan() {
+    let ring = |z: i64, lift: i64| -> Vec<GridPoint> {
+        (0..6)
+            .map(|i| {
+                let angle = std::f64::consts::PI / 3.0 * f64::from(i);
+                let (x, y) = (1000.0 * angle.cos(), 5000.0 + 1000.0 * angle.sin());
+                g(
+                    x.round() as i64,
+                    y.round() as i64,
+                    z + if i == 0 { lift } else { 0 },
+                )
+            })
+            .collect()
+    };
+    let (near, far) = (ring(-1000, 0), ring(1000, 7));
+    let mut tube = Vec::new();
+    for i in 0..6 {
+        let j = (i + 1) % 6;
+        // Facing out of the tube.
+        for t in [[near[i], near[j], far[j]], [near[i], far[j], far[i]]] {
+            tube.push(ConvexPolygon::from_grid_points(&t, 0).unwrap());
+        }
+    }
+    let mid = [0.0, 5000.0, 0.0];
+    for t in &tube {
+        let out = vector::dot(
+            t.support().unit_normal_f64(),
+            vector::sub(t.centroid(), mid),
+        );
+        assert!(out > 0.0, "the walls face out");
+    }
+    let found = crate::holed_shells(&tube, &vec![Some(0); tube.len()]);
+    let [(members, shell)] = &found[..] else {
+        panic!("one shell: {} found", found.len())
+    };
+    assert_eq!(members.len(), 12);
+    let source = light(-500, 500, 10_000);
+    assert!(sees_none(&floor(0, 0, 50), false, &source, &[], &[shell]));
+    let mut rng = Pcg64::seed_from_u64(41);
+    assert_segments_meet(&mut rng, (0, 0, 50), &tube);
+}
