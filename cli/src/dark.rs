@@ -121,7 +121,7 @@ impl<'a> Occluders<'a> {
             bodies.push((body, bounds(&corners)));
         }
         // Surfaces open at several holes (a tube): their shells.
-        for (members, shell) in holed_shells(&pieces.polygons, &owners) {
+        for (members, shell) in holed_shells(&pieces.polygons, &owners, &pieces.input_of) {
             let corners: Vec<[f64; 3]> = members
                 .iter()
                 .flat_map(|&k| pieces.polygons[k as usize].vertices_f64())

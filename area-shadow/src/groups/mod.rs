@@ -324,43 +324,73 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
 /// ([`holed_shells`]): each bent one doubles the ways to close them.
 const MAX_HOLES: usize = 4;
 
+/// The most pieces of a surface that does not close for which
+/// [`holed_shells`] tries it less one input polygon's pieces.
+const MAX_TRIMMED_PIECES: usize = 32;
+
 /// Shells ([`crate::dark::Body::shell`]) of the open surfaces the convex
 /// groups do not close: edge-connected pieces of one object (`objects`
 /// as for [`convex_groups`]) whose unmatched edges close into two cycles
 /// or more (a tube open at both ends), or into one that is neither a
 /// planar convex polygon nor four corners (a lidded cup's slot the grid
 /// bent), each closed by itself or a fan of triangles, the surface then
-/// convex or nearly so. Each with its pieces (ascending), in order of
-/// first piece. For joint-umbra proofs only: such a surface gets no umbra
-/// volume (a segment may pass in at one hole and out at another).
+/// convex or nearly so. Where the whole does not close, the pieces less
+/// those of one input polygon (`inputs[k]` is piece `k`'s) may: a cup
+/// whose lid meets its walls in T-junctions is a cup without the lid.
+/// Each with its pieces (ascending), in order of first piece. For
+/// joint-umbra proofs only: such a surface gets no umbra volume (a
+/// segment may pass in at one hole and out at another).
 pub fn holed_shells(
     pieces: &[ConvexPolygon],
     objects: &[Option<u32>],
+    inputs: &[u32],
 ) -> Vec<(Vec<u32>, crate::dark::Body)> {
     let (outlines, groups) = edge_connected(pieces, objects);
+    let shell_of = |members: &[u32], whole: bool| -> Option<crate::dark::Body> {
+        let member_outlines: Vec<&[GridPoint]> = members
+            .iter()
+            .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
+            .collect();
+        let holes = boundary_cycles(&member_outlines)?;
+        if holes.len() > MAX_HOLES {
+            return None;
+        }
+        let supports: Vec<Plane> = members
+            .iter()
+            .map(|&k| *pieces[k as usize].support())
+            .collect();
+        // One hole the groups close already.
+        if whole
+            && holes.len() == 1
+            && Solid::capped(&member_outlines, &supports, &holes, false).is_some()
+        {
+            return None;
+        }
+        Solid::capped(&member_outlines, &supports, &holes, true)?.shell()
+    };
     groups
         .into_iter()
         .filter_map(|members| {
-            let member_outlines: Vec<&[GridPoint]> = members
-                .iter()
-                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
-                .collect();
-            let holes = boundary_cycles(&member_outlines)?;
-            if holes.len() > MAX_HOLES {
+            if let Some(shell) = shell_of(&members, true) {
+                return Some((members, shell));
+            }
+            if members.len() > MAX_TRIMMED_PIECES {
                 return None;
             }
-            let supports: Vec<Plane> = members
-                .iter()
-                .map(|&k| *pieces[k as usize].support())
-                .collect();
-            // One hole the groups close already.
-            if holes.len() == 1
-                && Solid::capped(&member_outlines, &supports, &holes, false).is_some()
-            {
+            let mut dropped: Vec<u32> = members.iter().map(|&k| inputs[k as usize]).collect();
+            dropped.sort_unstable();
+            dropped.dedup();
+            if dropped.len() < 3 {
                 return None;
             }
-            let shell = Solid::capped(&member_outlines, &supports, &holes, true)?.shell()?;
-            Some((members, shell))
+            dropped.into_iter().find_map(|input| {
+                let rest: Vec<u32> = members
+                    .iter()
+                    .copied()
+                    .filter(|&k| inputs[k as usize] != input)
+                    .collect();
+                shell_of(&rest, false).map(|shell| (rest, shell))
+            })
         })
         .collect()
 }
