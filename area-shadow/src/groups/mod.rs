@@ -374,7 +374,12 @@ pub fn holed_shells(
             if let Some(shell) = shell_of(&members, true) {
                 return Some((members, shell));
             }
-            if members.len() > MAX_TRIMMED_PIECES {
+            // Only open surfaces, not too many pieces.
+            let member_outlines: Vec<&[GridPoint]> = members
+                .iter()
+                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
+                .collect();
+            if members.len() > MAX_TRIMMED_PIECES || boundary_cycles(&member_outlines).is_none() {
                 return None;
             }
             let mut dropped: Vec<u32> = members.iter().map(|&k| inputs[k as usize]).collect();
