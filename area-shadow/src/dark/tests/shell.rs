@@ -424,10 +424,10 @@ fn inside_of(piece: &ConvexPolygon) -> Option<ConvexPolygon> {
 
 /// Random cups, whole and dented, with small regions of their own pieces
 /// that face in, towards some of the light, or take light on both sides
-/// (seeded): whatever is proven
-/// dark past a cup's shell alone is dark, every sampled segment from the
-/// region to the light it takes meeting another of the cup's
-/// triangles; and walls of dented cups are proven too.
+/// (seeded): whatever is proven dark past a cup's shell alone is dark,
+/// every sampled segment from the region to the light it takes meeting
+/// another of the cup's triangles; and walls of dented cups are proven
+/// too.
 #[test]
 fn proven_dark_walls_of_random_cups_see_no_light() {
     let mut rng = Pcg64::seed_from_u64(37);
