@@ -27,7 +27,7 @@ const MAX_SHEET_PIECES: usize = 64;
 /// with its pieces (indices, increasing) and the body, in order of first
 /// piece. (An object that is also a convex group is left to the caller.)
 pub fn sheet_bodies(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<(Vec<u32>, Body)> {
-    let sheets = components(pieces, owners);
+    let (sheets, open) = components(pieces, owners);
     let mut bodies: Vec<(Vec<u32>, Body)> = sheets
         .iter()
         .filter(|sheet| (2..=MAX_SHEET_PIECES).contains(&sheet.len()))
@@ -37,16 +37,20 @@ pub fn sheet_bodies(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<(Ve
             Some((sheet.clone(), body))
         })
         .collect();
-    let mut objects: BTreeMap<u32, Vec<u32>> = BTreeMap::new();
+    let mut objects: BTreeMap<u32, (Vec<u32>, usize)> = BTreeMap::new();
     for sheet in &sheets {
-        objects
+        let (members, count) = objects
             .entry(owners[sheet[0] as usize].expect("sheets have owners"))
-            .or_default()
-            .extend_from_slice(sheet);
+            .or_default();
+        members.extend_from_slice(sheet);
+        *count += 1;
     }
-    for mut members in objects.into_values() {
+    for (mut members, count) in objects.into_values() {
         members.sort_unstable();
-        if !(2..=MAX_SHEET_PIECES).contains(&members.len())
+        // One sheet closed edge to edge is the convex groups' to take.
+        let closed = count == 1 && members.iter().all(|&k| !open[k as usize]);
+        if closed
+            || !(2..=MAX_SHEET_PIECES).contains(&members.len())
             || bodies.iter().any(|(sheet, _)| *sheet == members)
         {
             continue;
@@ -62,9 +66,10 @@ pub fn sheet_bodies(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<(Ve
 
 /// The pieces joined edge to edge (an edge of one the reverse of an edge
 /// of another with the same owner), as lists of indices in increasing
-/// order, ordered by their first piece. Pieces whose corners are not all
-/// grid points join nothing.
-fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<Vec<u32>> {
+/// order, ordered by their first piece; and per piece, whether it has an
+/// edge joined to none. Pieces whose corners are not all grid points join
+/// nothing.
+fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> (Vec<Vec<u32>>, Vec<bool>) {
     let corners = |p: &ConvexPolygon| -> Option<Vec<GridPoint>> {
         (0..p.len()).map(|i| p.vertex_grid_point(i)).collect()
     };
@@ -87,13 +92,17 @@ fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<Vec<u32>>
         }
         k
     }
+    let mut open = vec![false; pieces.len()];
     for (k, outline) in outlines.iter().enumerate() {
         let Some(c) = outline else { continue };
         for i in 0..c.len() {
             let Some(&other) = edges.get(&(c[(i + 1) % c.len()], c[i])) else {
+                open[k] = true;
                 continue;
             };
-            if owners[other as usize] == owners[k] {
+            if owners[other as usize] != owners[k] {
+                open[k] = true;
+            } else {
                 let (a, b) = (root(&mut parent, k as u32), root(&mut parent, other));
                 parent[a.max(b) as usize] = a.min(b);
             }
@@ -108,7 +117,7 @@ fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<Vec<u32>>
     }
     let mut sheets: Vec<Vec<u32>> = by_root.into_values().collect();
     sheets.sort_unstable_by_key(|s| s[0]);
-    sheets
+    (sheets, open)
 }
 
 /// The body of a sheet whose pieces tile faces of the hull of their
