@@ -340,6 +340,10 @@ const MAX_TRIMMED_PIECES: usize = 32;
 /// Each with its pieces (ascending), in order of first piece. For
 /// joint-umbra proofs only: such a surface gets no umbra volume (a
 /// segment may pass in at one hole and out at another).
+///
+/// # Panics
+///
+/// If `objects` or `inputs` is shorter than `pieces`.
 pub fn holed_shells(
     pieces: &[ConvexPolygon],
     objects: &[Option<u32>],
