@@ -350,41 +350,39 @@ pub fn holed_shells(
     inputs: &[u32],
 ) -> Vec<(Vec<u32>, crate::dark::Body)> {
     let (outlines, groups) = edge_connected(pieces, objects);
-    let shell_of = |members: &[u32], whole: bool| -> Option<crate::dark::Body> {
+    let closing = |members: &[u32], whole: bool| -> Closing {
         let member_outlines: Vec<&[GridPoint]> = members
             .iter()
             .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
             .collect();
-        let holes = boundary_cycles(&member_outlines)?;
+        let Some(holes) = boundary_cycles(&member_outlines) else {
+            return Closing::Not { open: false };
+        };
         if holes.len() > MAX_HOLES {
-            return None;
+            return Closing::Not { open: true };
         }
         let supports: Vec<Plane> = members
             .iter()
             .map(|&k| *pieces[k as usize].support())
             .collect();
-        // One hole the groups close already.
         if whole
             && holes.len() == 1
             && Solid::capped(&member_outlines, &supports, &holes, false).is_some()
         {
-            return None;
+            return Closing::ByGroups;
         }
-        Solid::capped(&member_outlines, &supports, &holes, true)?.shell()
+        match Solid::capped(&member_outlines, &supports, &holes, true).and_then(|s| s.shell()) {
+            Some(shell) => Closing::Shell(shell),
+            None => Closing::Not { open: true },
+        }
     };
     groups
         .into_iter()
         .filter_map(|members| {
-            if let Some(shell) = shell_of(&members, true) {
-                return Some((members, shell));
-            }
-            // Only open surfaces, not too many pieces.
-            let member_outlines: Vec<&[GridPoint]> = members
-                .iter()
-                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
-                .collect();
-            if members.len() > MAX_TRIMMED_PIECES || boundary_cycles(&member_outlines).is_none() {
-                return None;
+            match closing(&members, true) {
+                Closing::Shell(shell) => return Some((members, shell)),
+                Closing::Not { open: true } if members.len() <= MAX_TRIMMED_PIECES => {}
+                _ => return None,
             }
             let mut dropped: Vec<u32> = members.iter().map(|&k| inputs[k as usize]).collect();
             dropped.sort_unstable();
@@ -398,10 +396,24 @@ pub fn holed_shells(
                     .copied()
                     .filter(|&k| inputs[k as usize] != input)
                     .collect();
-                shell_of(&rest, false).map(|shell| (rest, shell))
+                match closing(&rest, false) {
+                    Closing::Shell(shell) => Some((rest, shell)),
+                    _ => None,
+                }
             })
         })
         .collect()
+}
+
+/// How the open surface of some pieces closes ([`holed_shells`]).
+enum Closing {
+    /// The convex groups close it (one hole, no fan needed).
+    ByGroups,
+    /// Into a shell.
+    Shell(crate::dark::Body),
+    /// Not: it is closed already (`open: false`), or its holes are too
+    /// many or close into no convex surface.
+    Not { open: bool },
 }
 
 /// Whether an edge-connected group stays: its pieces are in no T-junction
