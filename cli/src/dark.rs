@@ -104,24 +104,12 @@ impl<'a> Occluders<'a> {
             .map(|g| g.pieces.as_slice())
             .collect();
         grouped.sort_unstable();
-        let owners: Vec<Option<u32>> = (0..pieces.polygons.len())
-            .map(|k| pieces.casts_shadows[k].then_some(objects[k]))
-            .collect();
-        for (sheet, body) in sheet_bodies(&pieces.polygons, &owners) {
-            if grouped.binary_search(&sheet.as_slice()).is_ok() {
-                continue;
-            }
-            let corners: Vec<[f64; 3]> = sheet
-                .iter()
-                .flat_map(|&k| pieces.polygons[k as usize].vertices_f64())
-                .collect();
-            by_object[objects[sheet[0] as usize] as usize]
-                .1
-                .push(bodies.len());
-            bodies.push((body, bounds(&corners)));
-        }
-        // Surfaces open at several holes (a tube): their shells.
-        for (members, shell) in holed_shells(&pieces.polygons, &owners, &pieces.input_of) {
+        // A body of pieces `members` (of one object): listed by that
+        // object, with the box around the pieces.
+        let add_body = |by_object: &mut Vec<(Vec<usize>, Vec<usize>)>,
+                        bodies: &mut Vec<(Body, Bounds)>,
+                        members: &[u32],
+                        body: Body| {
             let corners: Vec<[f64; 3]> = members
                 .iter()
                 .flat_map(|&k| pieces.polygons[k as usize].vertices_f64())
@@ -129,7 +117,21 @@ impl<'a> Occluders<'a> {
             by_object[objects[members[0] as usize] as usize]
                 .1
                 .push(bodies.len());
-            bodies.push((shell, bounds(&corners)));
+            bodies.push((body, bounds(&corners)));
+        };
+        let owners: Vec<Option<u32>> = (0..pieces.polygons.len())
+            .map(|k| pieces.casts_shadows[k].then_some(objects[k]))
+            .collect();
+        for (sheet, body) in sheet_bodies(&pieces.polygons, &owners) {
+            if grouped.binary_search(&sheet.as_slice()).is_ok() {
+                continue;
+            }
+            add_body(&mut by_object, &mut bodies, &sheet, body);
+        }
+        // Surfaces open at several holes (a tube), or that close less one
+        // input polygon: their shells.
+        for (members, shell) in holed_shells(&pieces.polygons, &owners, &pieces.input_of) {
+            add_body(&mut by_object, &mut bodies, &members, shell);
         }
         for (k, p) in pieces.polygons.iter().enumerate() {
             if pieces.casts_shadows[k] && !covered[k] {
