@@ -227,7 +227,10 @@ impl Body {
             // core enters by a face it sees.
             let region_end = shell.end(region_sides, clear.region.as_ref());
             let light_end = shell.end(light_sides, clear.light.as_ref());
-            if shell.hides_from_inside(region_sides, light, light_end.outside) {
+            // A region outside the hull is never inside the surface.
+            if !region_end.outside
+                && shell.hides_from_inside(region_sides, light, light_end.outside)
+            {
                 return Some(Entry::Hidden);
             }
             return shell.blocks(region_end, light_end).then_some(Entry::Light);
@@ -360,7 +363,7 @@ impl Body {
             let light_sides = |plane: &Plane| [side_of_point(plane, l)];
             let entry = if let (Some(shell), Some(region)) = (&self.shell, region_end) {
                 let light = shell.end(light_sides, clear.light.as_ref());
-                if shell.hides_from_inside(region_sides, &[l], light.outside) {
+                if !region.outside && shell.hides_from_inside(region_sides, &[l], light.outside) {
                     return true;
                 }
                 if !shell.blocks(region, light) {

@@ -52,11 +52,21 @@ impl ShellSurface {
     ) -> ShellEnd {
         let all = |plane: &Plane, side: Side| sides(plane).into_iter().all(|s| s == side);
         let ahead = |plane: &Plane| sides(plane).into_iter().all(|s| s != Side::Back);
+        // Each cap's sides once: all strictly in front of every cap, or
+        // all strictly behind.
+        let (mut all_front, mut all_back) = (true, true);
+        for (_, cap) in &self.caps {
+            for side in sides(cap) {
+                all_front &= side == Side::Front;
+                all_back &= side == Side::Back;
+            }
+            if !all_front && !all_back {
+                break;
+            }
+        }
         ShellEnd {
             outside: separator.is_some_and(ahead) || self.hull.iter().any(|f| all(f, Side::Front)),
-            beside_caps: [Side::Front, Side::Back]
-                .into_iter()
-                .any(|side| self.caps.iter().all(|(_, c)| all(c, side))),
+            beside_caps: all_front || all_back,
         }
     }
 
