@@ -10,6 +10,12 @@ use umbra::{OutputMesh, load_ply};
 /// Floor 20 x 20 at y = 0, a 4 x 4 square at y = 5, a 2 x 2 light at
 /// y = 10 facing down: umbra |x|, |z| <= 3, penumbra out to 5.
 fn scene(square_x: f64) -> String {
+    floor_and_square(square_x) + AREA_LIGHT
+}
+
+/// The floor 20 x 20 at y = 0 and a 4 x 4 square at y = 5, moved by
+/// `square_x` along x.
+pub(crate) fn floor_and_square(square_x: f64) -> String {
     format!(
         r#"
 [[object]]
@@ -20,14 +26,17 @@ polygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]
 name = "square"
 polygons = [[[-2, 5, 2], [2, 5, 2], [2, 5, -2], [-2, 5, -2]]]
 translate = [{square_x}, 0, 0]
+"#
+    )
+}
 
+/// A 2 x 2 area light at y = 10 over the origin, facing down.
+pub(crate) const AREA_LIGHT: &str = r#"
 [[light]]
 type = "area"
 vertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]
 intensity = 2.0
-"#
-    )
-}
+"#;
 
 fn area(points: &[[f64; 3]]) -> f64 {
     let mut n = [0.0; 3];

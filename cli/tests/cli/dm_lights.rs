@@ -4,29 +4,17 @@
 //! the output is `umbra shadow`'s.
 
 use crate::area::floor_classes_for;
+use crate::dm::{AREA_LIGHT, floor_and_square};
 use crate::{folder, umbra};
 use umbra::{OutputMesh, load_ply};
 
 /// Floor 20 x 20, a 4 x 4 square at y = 5 (moved by `square_x`), a 2 x 2
 /// area light above it, a point light and a directional light.
 fn scene(square_x: f64, area_light: bool) -> String {
-    let area = if area_light {
-        "[[light]]\ntype = \"area\"\nvertices = [[-1, 10, -1], [1, 10, -1], [1, 10, 1], [-1, 10, 1]]\nintensity = 2.0\n"
-    } else {
-        ""
-    };
-    format!(
-        r#"
-[[object]]
-name = "floor"
-polygons = [[[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]]]
-
-[[object]]
-name = "square"
-polygons = [[[-2, 5, 2], [2, 5, 2], [2, 5, -2], [-2, 5, -2]]]
-translate = [{square_x}, 0, 0]
-
-{area}
+    let area = if area_light { AREA_LIGHT } else { "" };
+    floor_and_square(square_x)
+        + area
+        + r#"
 [[light]]
 type = "point"
 position = [3, 9, 1]
@@ -38,7 +26,6 @@ type = "directional"
 direction = [0.5, -1, 0.25]
 intensity = 0.5
 "#
-    )
 }
 
 fn run(dir: &std::path::Path, args: &[&str]) -> OutputMesh {
