@@ -24,7 +24,7 @@
 //! changed are evaluated again.
 
 use crate::cell::Cell;
-use crate::hash::{KeyMap, KeySet};
+use crate::hash::KeySet;
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
 use crate::tree::ReceiverDm;
 use area_shadow::dark::DARK_FRACTION;
@@ -172,13 +172,17 @@ impl DmScene {
         since.add(self.illuminate_pending())
     }
 
-    /// The receivers changed and not illuminated yet, illuminated.
+    /// The receivers changed and not illuminated yet, illuminated: those
+    /// of [`DmScene::unlit`] (a change illuminates the others it touches
+    /// as it goes).
     pub(crate) fn illuminate_pending(&mut self) -> IllumStats {
-        let pending: BTreeSet<PieceId> = self
-            .receivers
-            .iter()
-            .filter(|(r, dm)| dm.has_touched() || self.illum.get(*r).is_some_and(|s| !s.fresh))
-            .map(|(r, _)| r)
+        let pending: BTreeSet<PieceId> = std::mem::take(&mut self.unlit)
+            .into_iter()
+            .filter(|&r| {
+                self.receivers.get(r).is_some_and(|dm| {
+                    dm.has_touched() || self.illum.get(r).is_some_and(|s| !s.fresh)
+                })
+            })
             .collect();
         let (lights, pieces) = (&self.lights, &self.pieces);
         if pending.len() <= 2 {
@@ -200,28 +204,37 @@ impl DmScene {
             }
             return stats;
         }
-        let mut states: KeyMap<PieceId, &mut ReceiverIllum> = self
-            .illum
-            .iter_mut()
-            .filter(|(r, _)| pending.contains(r))
-            .collect();
-        let mut work: Vec<(PieceId, &mut ReceiverDm<PieceId>, &mut ReceiverIllum)> = self
-            .receivers
-            .iter_mut()
-            .filter_map(|(r, dm)| states.remove(&r).map(|state| (r, dm, state)))
-            .collect();
+        // The receivers taken out of the scene by key (a walk over every
+        // receiver would cost more than a few small ones' illumination),
+        // and put back after.
+        let mut work: Vec<(PieceId, ReceiverDm<PieceId>, ReceiverIllum)> = Vec::new();
+        for r in pending {
+            if !self.illum.contains_key(r) || !self.receivers.contains_key(r) {
+                continue;
+            }
+            if let (Some(dm), Some(state)) = (self.receivers.remove(r), self.illum.remove(r)) {
+                work.push((r, dm, state));
+            }
+        }
         // Big receivers first, so that no thread is left with one at the
         // end; each receiver a task of its own, so that while one thread
         // works on the biggest the other can take any of the rest (a run of
         // receivers split off together goes on one thread, and would hold
         // the other idle at the end).
         work.sort_by_key(|(_, dm, _)| std::cmp::Reverse(dm.cell_count()));
-        work.par_iter_mut()
+        let (lights, pieces) = (&self.lights, &self.pieces);
+        let stats = work
+            .par_iter_mut()
             .with_max_len(1)
             .map_init(VisiblePart::new, |scratch, (r, dm, state)| {
                 illuminate_receiver(lights, pieces, *r, dm, state, scratch)
             })
-            .reduce(IllumStats::default, IllumStats::add)
+            .reduce(IllumStats::default, IllumStats::add);
+        for (r, dm, state) in work {
+            self.receivers.insert(r, dm);
+            self.illum.insert(r, state);
+        }
+        stats
     }
 
     /// The irradiance at a vertex of a receiver's mesh (all lights, grid

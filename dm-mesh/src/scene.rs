@@ -12,7 +12,7 @@ use bsp_core::{ConvexPolygon, GridPoint, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use smallvec::SmallVec;
-use std::collections::HashMap;
+use std::collections::{BTreeSet, HashMap};
 use svbsp::PieceFlags;
 
 mod contact;
@@ -282,6 +282,12 @@ pub struct DmScene {
     /// Figures of the illumination that changes did since the last
     /// [`illuminate`](Self::illuminate) call.
     pub(crate) lit_since: IllumStats,
+    /// The receivers whose vertex irradiance may not be current: every
+    /// receiver made since the last illumination (before the first one,
+    /// all of them). A change that illuminates the receivers it touched
+    /// looks only here for the rest, not at every receiver of the scene
+    /// (the 10k hall's 10k: a tenth of a box's move).
+    pub(crate) unlit: BTreeSet<PieceId>,
 }
 
 impl DmScene {
@@ -311,6 +317,7 @@ impl DmScene {
             options,
             lit: false,
             lit_since: IllumStats::default(),
+            unlit: BTreeSet::new(),
         })
     }
 

@@ -37,14 +37,15 @@ type Removals = KeyMap<PieceId, BTreeSet<u32>>;
 /// Per receiver, the units that enter it (after tiling it to a depth).
 type Insertions = KeyMap<PieceId, Order>;
 /// One receiver's part of a change: units out, then units in, then its
-/// illumination if the scene keeps it.
-type Work<'a> = (
+/// illumination if the scene keeps it; the receiver's state is taken out
+/// of the scene for it, and put back after.
+type Work = (
     PieceId,
-    &'a mut ReceiverDm<PieceId>,
-    &'a mut ContactPlanes,
+    ReceiverDm<PieceId>,
+    ContactPlanes,
     Option<BTreeSet<u32>>,
     Option<Order>,
-    Option<&'a mut ReceiverIllum>,
+    Option<ReceiverIllum>,
 );
 
 impl DmScene {
@@ -125,6 +126,7 @@ impl DmScene {
             self.receivers.insert(key, receiver);
             self.illum.insert(key, ReceiverIllum::default());
             self.contacts.insert(key, ContactPlanes::default());
+            self.unlit.insert(key);
             self.overlap.insert(key, &self.pieces[key], true);
             added.push(key);
         }
@@ -425,6 +427,7 @@ impl DmScene {
             self.receivers.remove(p);
             self.illum.remove(p);
             self.contacts.remove(p);
+            self.unlit.remove(&p);
             if let Some(piece) = self.pieces.remove(p) {
                 left.insert(p, piece);
             }
@@ -497,34 +500,35 @@ impl DmScene {
         mut insertions: Insertions,
         left: &KeyMap<PieceId, Piece>,
     ) {
+        // The receivers changed, taken out of the scene (looked up by key:
+        // a walk over every receiver costs a tenth of a small move on the
+        // 10k hall).
+        let changed: BTreeSet<PieceId> =
+            removals.keys().chain(insertions.keys()).copied().collect();
+        let mut work: Vec<Work> = Vec::with_capacity(changed.len());
+        for r in changed {
+            if !self.receivers.contains_key(r) || !self.contacts.contains_key(r) {
+                continue;
+            }
+            if let (Some(dm), Some(contact)) = (self.receivers.remove(r), self.contacts.remove(r)) {
+                let illum = if self.lit { self.illum.remove(r) } else { None };
+                work.push((
+                    r,
+                    dm,
+                    contact,
+                    removals.remove(&r),
+                    insertions.remove(&r),
+                    illum,
+                ));
+            }
+        }
         let (lights, pieces, how) = (&self.lights, &self.pieces, self.options.deletion);
         let sources: Vec<AreaSource> = lights.iter().map(|l| l.source.clone()).collect();
-        let changed = |r: &PieceId| removals.contains_key(r) || insertions.contains_key(r);
-        let mut contacts: KeyMap<PieceId, &mut ContactPlanes> = self
-            .contacts
-            .iter_mut()
-            .filter(|(r, _)| changed(r))
-            .collect();
-        let mut illum: KeyMap<PieceId, &mut ReceiverIllum> = if self.lit {
-            self.illum.iter_mut().filter(|(r, _)| changed(r)).collect()
-        } else {
-            KeyMap::default()
-        };
-        let mut work: Vec<Work> = self
-            .receivers
-            .iter_mut()
-            .filter_map(|(r, dm)| {
-                let contact = contacts.remove(&r)?;
-                let (out, into) = (removals.remove(&r), insertions.remove(&r));
-                (out.is_some() || into.is_some())
-                    .then(|| (r, dm, contact, out, into, illum.remove(&r)))
-            })
-            .collect();
         let run = |(r, dm, contact, out, into, illum): &mut Work| {
             let piece = |o: PieceId| left.get(&o).unwrap_or_else(|| &pieces[o]);
             let entering = into.iter().flat_map(|(_, order)| order.iter().copied());
             contact.add(&pieces[*r], &sources, entering, piece);
-            let seen = &**contact;
+            let seen = &*contact;
             let planes = |occluder: PieceId, light: u8| {
                 seen.get(occluder, light, unit_planes(pieces, left, occluder, light))
             };
@@ -560,6 +564,14 @@ impl DmScene {
                 .map(run)
                 .reduce(IllumStats::default, IllumStats::add)
         };
+        for (r, dm, contact, _, _, illum) in work {
+            self.receivers.insert(r, dm);
+            self.contacts.insert(r, contact);
+            if let Some(illum) = illum {
+                self.illum.insert(r, illum);
+                self.unlit.remove(&r);
+            }
+        }
         self.lit_since = self.lit_since.add(stats);
         if self.lit {
             // New receivers that no unit reaches, not among the work.
