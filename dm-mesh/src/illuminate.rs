@@ -123,6 +123,70 @@ fn cover(cells: &[&Cell], light: usize) -> Cover {
     Cover::Occluders(units)
 }
 
+/// Case 2 at a vertex at `position` with cells `cells`: whether the umbra
+/// of `light` in one of them leaves the vertex dark. It does when the
+/// light does not reach a cell, and when an occluder making the umbra does
+/// not lie on the vertex (the closure argument). Where every such occluder
+/// lies on it, the vertex lies where they touch or pierce the receiver,
+/// the irradiance jumps there, and the vertex sees past them what the
+/// cells on their other side see, unless one is a convex solid that hides
+/// all of the light from its own boundary there.
+fn dark_by_umbra(
+    cells: &[&Cell],
+    light: usize,
+    dm: &ReceiverDm<PieceId>,
+    pieces: &SlotMap<PieceId, Piece>,
+    position: &VertexPosition,
+) -> bool {
+    if cells.iter().any(|c| c.unreached(light)) {
+        return true;
+    }
+    let mut umbrae: SmallVec<[u32; 4]> = cells
+        .iter()
+        .flat_map(|c| c.entries())
+        .filter(|e| e.umbra && usize::from(e.light) == light)
+        .map(|e| e.unit)
+        .collect();
+    umbrae.sort_unstable();
+    umbrae.dedup();
+    let within = dm.polygon().support();
+    let at = position.to_f64();
+    umbrae.iter().filter_map(|&u| dm.unit(u)).any(|(o, _)| {
+        let occluder = &pieces[o];
+        occluder
+            .holding(position, at, within)
+            .is_none_or(|held| occluder.hides_all_past(&held, light))
+    })
+}
+
+/// The units of `light` that every one of `cells` lists or culled: every
+/// occluder that can hide light of positive area from a vertex of them
+/// without lying on it (such a one hides some from all the points around
+/// the vertex, so each cell there lists it, or culled it under another's
+/// umbra).
+fn occluders_around(cells: &[&Cell], light: usize, dm: &ReceiverDm<PieceId>) -> Cover {
+    let reaching = |cell: &Cell| -> SmallVec<[u32; 4]> {
+        let listed = cell
+            .entries()
+            .iter()
+            .filter(|e| usize::from(e.light) == light)
+            .map(|e| e.unit);
+        let culled = cell
+            .culled
+            .iter()
+            .copied()
+            .filter(|&u| dm.unit(u).is_some_and(|(_, l)| usize::from(l) == light));
+        listed.chain(culled).collect()
+    };
+    let mut units = reaching(cells[0]);
+    for cell in &cells[1..] {
+        let other = reaching(cell);
+        units.retain(|u| other.contains(u));
+    }
+    units.sort_unstable();
+    Cover::Occluders(units)
+}
+
 impl IllumStats {
     /// The figures of evaluating one vertex with `covers`, clipping
     /// `comparisons` occluder polygons (kept apart from the values: a first
@@ -322,9 +386,13 @@ pub(crate) fn illuminate_receiver(
                 // decided; f64 would be ill-conditioned where a receiver
                 // pierces the light).
                 if position.side(light.source.support()) == Side::On {
-                    Cover::Dark
-                } else {
-                    cover(&cells, i)
+                    return Cover::Dark;
+                }
+                match cover(&cells, i) {
+                    Cover::Dark if !dark_by_umbra(&cells, i, dm, pieces, &position) => {
+                        occluders_around(&cells, i, dm)
+                    }
+                    other => other,
                 }
             })
             .collect();

@@ -41,6 +41,19 @@ const TILE_UNITS: usize = 16;
 /// At most `2^MAX_TILE_DEPTH` tiles per receiver.
 const MAX_TILE_DEPTH: u32 = 12;
 
+/// The bounding box of points (least and greatest corners).
+pub(crate) fn bounds_of(points: &[[f64; 3]]) -> [[f64; 3]; 2] {
+    points.iter().fold(
+        [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]],
+        |[lo, hi], p| {
+            [
+                std::array::from_fn(|a| lo[a].min(p[a])),
+                std::array::from_fn(|a| hi[a].max(p[a])),
+            ]
+        },
+    )
+}
+
 /// An area light: a convex polygon on the grid and its radiance.
 #[derive(Debug, Clone)]
 pub struct DmLight {
@@ -104,11 +117,16 @@ pub(crate) struct Piece {
     /// Grid-unit vertices (of a body, all its polygons'), for illumination
     /// and the overlap structure.
     pub(crate) outline: Vec<[f64; 3]>,
+    /// The outline's bounding box (least and greatest corners).
+    pub(crate) bounds: [[f64; 3]; 2],
     /// Of a body: its polygons. Empty for a polygon.
     pub(crate) members: Vec<Member>,
     /// Of a body: the lights (bit per light) under which it casts in place
     /// of its polygons.
     pub(crate) whole: u32,
+    /// Of a body: whether its polygons are the whole boundary of a convex
+    /// polyhedron ([`ConvexGroup::is_closed_convex`]).
+    pub(crate) solid: bool,
 }
 
 impl Piece {
@@ -160,6 +178,61 @@ impl Piece {
                 })
                 .map(|(m, _)| pieces[m.piece].outline.as_slice()),
         );
+    }
+
+    /// The members of a body whose planes hold a point on its boundary
+    /// (of a polygon, none), or `None` when the point is not on the piece:
+    /// in a polygon's plane (where a polygon whose umbra reaches the point
+    /// can only hold it), on a body's boundary (on a member's plane, in
+    /// front of none). The point, at about `at`, is known to lie in plane
+    /// `within` (a receiver's: the sides of a point on it are slow to
+    /// decide exactly, and need not be).
+    pub(crate) fn holding(
+        &self,
+        position: &VertexPosition,
+        at: [f64; 3],
+        within: &Plane,
+    ) -> Option<SmallVec<[usize; 4]>> {
+        if self.kind == PieceKind::Polygon {
+            let on = self.polygon.support().is_coincident(within)
+                || position.side(self.polygon.support()) == Side::On;
+            return on.then(SmallVec::new);
+        }
+        // Far off the body's box (beyond any rounding of the point's
+        // coordinates), the point is not on it: most points asked about
+        // lie in the body's umbra, away from it.
+        let [lo, hi] = self.bounds;
+        if (0..3).any(|a| {
+            let slack = 1e-9 * (1.0 + lo[a].abs().max(hi[a].abs()));
+            at[a] < lo[a] - slack || at[a] > hi[a] + slack
+        }) {
+            return None;
+        }
+        let mut held = SmallVec::new();
+        for (m, member) in self.members.iter().enumerate() {
+            if member.outward.is_coincident(within) {
+                held.push(m);
+                continue;
+            }
+            match position.side(&member.outward) {
+                Side::Front => return None,
+                Side::On => held.push(m),
+                Side::Back => {}
+            }
+        }
+        (!held.is_empty()).then_some(held)
+    }
+
+    /// Whether a point on the piece sees none of light `light` past the
+    /// piece's polygons `held` that hold it ([`Self::holding`]): the piece
+    /// is a convex solid and the light lies on or behind the plane of each
+    /// of them, so a segment to the light goes into the solid and out
+    /// through another polygon.
+    pub(crate) fn hides_all_past(&self, held: &[usize], light: usize) -> bool {
+        self.solid
+            && held
+                .iter()
+                .all(|&m| self.members[m].facing & (1 << light) == 0)
     }
 
     /// Whether under light `light` this piece is a body that casts its

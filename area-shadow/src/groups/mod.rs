@@ -115,6 +115,13 @@ impl ConvexGroup {
         matches!(self.shape, Shape::Flat(_))
     }
 
+    /// Whether the group is the whole boundary of a convex polyhedron, its
+    /// own solid (closed, not moved in): a segment from a point of it into
+    /// the solid leaves the solid through another of its pieces.
+    pub fn is_closed_convex(&self) -> bool {
+        matches!(&self.shape, Shape::Solid(solid) if solid.is_closed_and_exact())
+    }
+
     /// The planes of the group's umbra volume under `light`, each with the
     /// volume behind it: where the body hides all of the light. `None` when
     /// it has none: the body touches or crosses the light's plane, or (flat)

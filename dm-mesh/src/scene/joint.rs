@@ -329,6 +329,7 @@ impl DmScene {
                 members: &listed,
                 keys: members.clone(),
                 volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
+                solid: false,
             };
             let joint = self.attach_body(owner, flags, cast, &sources);
             for &o in &objects {

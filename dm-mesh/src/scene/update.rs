@@ -14,6 +14,7 @@
 use super::contact::ContactPlanes;
 use super::{
     DmScene, MAX_TILE_DEPTH, Member, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS,
+    bounds_of,
 };
 use crate::critical::{UnitPlanes, body_internal_planes, internal_planes};
 use crate::error::Error;
@@ -119,9 +120,11 @@ impl DmScene {
                 object: id,
                 flags,
                 volumes,
+                bounds: bounds_of(&outline),
                 outline,
                 members: Vec::new(),
                 whole: 0,
+                solid: false,
             });
             self.receivers.insert(key, receiver);
             self.illum.insert(key, ReceiverIllum::default());
@@ -148,6 +151,7 @@ impl DmScene {
                     members: &members,
                     keys: body.pieces.iter().map(|&k| added[k as usize]).collect(),
                     volumes,
+                    solid: body.is_closed_convex(),
                 };
                 self.attach_body(id, flags, cast, &sources)
             })
@@ -216,6 +220,7 @@ impl DmScene {
                     members: &members,
                     keys: pieces.iter().map(|&k| added[k as usize]).collect(),
                     volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
+                    solid: false,
                 };
                 made.push(self.attach_body(id, flags, cast, sources));
             }
@@ -273,6 +278,7 @@ impl DmScene {
             members,
             keys,
             volumes: body_volumes,
+            solid,
         } = cast;
         // The lights with some area in front of each member's outward
         // plane.
@@ -316,16 +322,18 @@ impl DmScene {
                 (_, None) => UnitPlanes::default(),
             })
             .collect();
+        let outline: Vec<[f64; 3]> = members
+            .iter()
+            .flat_map(|(polygon, _)| polygon.vertices_f64())
+            .collect();
         let piece = Piece {
             polygon: members[0].0.clone(),
             kind: PieceKind::Body,
             object: id,
             flags,
             volumes,
-            outline: members
-                .iter()
-                .flat_map(|(polygon, _)| polygon.vertices_f64())
-                .collect(),
+            bounds: bounds_of(&outline),
+            outline,
             members: keys
                 .into_iter()
                 .zip(outward)
@@ -337,6 +345,7 @@ impl DmScene {
                 })
                 .collect(),
             whole,
+            solid,
         };
         let key = self.pieces.insert(piece);
         self.overlap.insert(key, &self.pieces[key], false);
@@ -598,6 +607,8 @@ pub(super) struct BodyCast<'a> {
     pub(super) keys: Vec<PieceId>,
     /// Per light, its volumes.
     pub(super) volumes: Vec<BodyVolumes>,
+    /// Whether the polygons are the whole boundary of a convex polyhedron.
+    pub(super) solid: bool,
 }
 
 /// One bit per light, set where `set` holds.

@@ -35,24 +35,20 @@ pub fn check_vertices(t: &TestScene, scene: &mut DmScene) -> Result<(), TestCase
         } else {
             Sidedness::OneSided
         };
-        let occluders: Vec<&[[f64; 3]]> = casters
-            .iter()
-            .filter(|(c, _)| !c.support().is_coincident(own.support()))
-            .map(|(_, o)| o.as_slice())
-            .collect();
         for (f, _) in dm.cells() {
             for v in dm.mesh().face_vertices(f) {
                 let position = dm.mesh().vertex(v).unwrap().position;
                 // Where an occluder touches or pierces the receiver the
-                // irradiance jumps (a D0 discontinuity) and has no single
-                // value: a vertex on a caster's plane is left out.
-                let on_caster = casters.iter().any(|(c, _)| {
-                    !c.support().is_coincident(own.support())
-                        && position.side(c.support()) == bsp_core::Side::On
-                });
-                if on_caster {
-                    continue;
-                }
+                // irradiance jumps (a D0 discontinuity); a vertex there
+                // gets the light it sees past the casters it lies on.
+                let past: Vec<&[[f64; 3]]> = casters
+                    .iter()
+                    .filter(|(c, _)| {
+                        !c.support().is_coincident(own.support())
+                            && position.side(c.support()) != bsp_core::Side::On
+                    })
+                    .map(|(_, o)| o.as_slice())
+                    .collect();
                 let p = position.to_f64();
                 if position.side(t.light.support()) == bsp_core::Side::On {
                     // Edge-on to the light: nothing arrives (f64 is
@@ -62,7 +58,7 @@ pub fn check_vertices(t: &TestScene, scene: &mut DmScene) -> Result<(), TestCase
                     continue;
                 }
                 let got = scene.vertex_irradiance(r, v).unwrap();
-                let truth = visible_irradiance(&light, &occluders, p, n, sided, &mut scratch);
+                let truth = visible_irradiance(&light, &past, p, n, sided, &mut scratch);
                 let full = light.irradiance(p, n, sided);
                 // The contour integral sums terms of order pi (radiance 1)
                 // that cancel at grazing angles: its absolute error is
@@ -246,4 +242,115 @@ fn internal_discontinuities_cut_the_penumbra() {
         "interior penumbra vertices need a visible part"
     );
     check_vertices(&t, &mut scene).unwrap();
+}
+
+/// A wall pierces the floor, its umbra on one side and a plank's penumbra
+/// on the other: a vertex on the wall's trace has an umbra cell around it,
+/// yet sees the light past the wall it lies on (the irradiance jumps
+/// there; the closure argument of case 2 holds only off the umbra's
+/// occluder). Its value is the light past the plank, as `illum` gives it
+/// past every caster that does not hold the vertex.
+#[test]
+fn a_vertex_on_a_piercing_wall_sees_past_it() {
+    // The wall in the plane x = 0, from below the floor to y = 80; the
+    // light at x > 0, so the wall hides all of it just behind, near the
+    // floor; the plank between the light and the wall's foot.
+    let wall = ConvexPolygon::from_grid_points(
+        &[
+            gp(0, -20, -60),
+            gp(0, -20, 60),
+            gp(0, 80, 60),
+            gp(0, 80, -60),
+        ],
+        0,
+    )
+    .unwrap();
+    let plank = ConvexPolygon::from_grid_points(
+        &[
+            gp(10, 40, -30),
+            gp(10, 40, 30),
+            gp(40, 40, 30),
+            gp(40, 40, -30),
+        ],
+        0,
+    )
+    .unwrap();
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(300)], PieceFlags::default()),
+            (vec![wall.clone()], PieceFlags::default()),
+            (vec![plank], PieceFlags::default()),
+        ],
+        light: light(60, -20, 40, 40, 100, 0),
+    };
+    let (mut scene, ids) = t.build();
+    check_vertices(&t, &mut scene).unwrap();
+    // Some vertex on the wall's trace lies by an umbra cell and gets light
+    // (so the case above is met).
+    let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+    let dm = scene.receiver(floor_piece).unwrap();
+    let lit_by_umbra = dm.mesh().vertices().any(|(v, vertex)| {
+        vertex.position.side(wall.support()) == bsp_core::Side::On
+            && dm
+                .mesh()
+                .faces_around(v)
+                .flatten()
+                .any(|f| dm.class(&dm.mesh().face(f).unwrap().data, 0) == CellClass::Umbra)
+            && scene.vertex_irradiance(floor_piece, v).unwrap() > 0.0
+    });
+    assert!(lit_by_umbra);
+}
+
+/// A box standing on the floor, a plank's penumbra over its foot: the
+/// vertices at the foot lie on the box, by its umbra. On the side turned
+/// to the light they see the light past the faces through them, as
+/// `illum` gives it past the casters that do not hold them.
+#[test]
+fn a_box_foot_sees_past_the_faces_through_it() {
+    let plank = ConvexPolygon::from_grid_points(
+        &[
+            gp(20, 100, -10),
+            gp(20, 100, 10),
+            gp(40, 100, 10),
+            gp(40, 100, -10),
+        ],
+        0,
+    )
+    .unwrap();
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(300)], PieceFlags::default()),
+            (
+                cuboid([-30, 0, -30], [30, 50, 30]),
+                PieceFlags {
+                    closed_surface: true,
+                    ..PieceFlags::default()
+                },
+            ),
+            (vec![plank], PieceFlags::default()),
+        ],
+        light: light(40, -10, 40, 30, 140, 0),
+    };
+    let (mut scene, ids) = t.build();
+    check_vertices(&t, &mut scene).unwrap();
+    // Vertices at the foot, by an umbra cell, that get light.
+    let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+    let dm = scene.receiver(floor_piece).unwrap();
+    let foot: Vec<f64> = dm
+        .mesh()
+        .vertices()
+        .filter(|(v, vertex)| {
+            let [x, _, z] = vertex.position.to_f64();
+            let on = |c: f64| (c.abs() - 30.0).abs() < 1e-9;
+            let within = |c: f64| c.abs() <= 30.0 + 1e-9;
+            (on(x) && within(z) || on(z) && within(x))
+                && dm
+                    .mesh()
+                    .faces_around(*v)
+                    .flatten()
+                    .any(|f| dm.class(&dm.mesh().face(f).unwrap().data, 0) == CellClass::Umbra)
+        })
+        .map(|(v, _)| scene.vertex_irradiance(floor_piece, v).unwrap())
+        .collect();
+    assert!(foot.iter().any(|&e| e > 0.0), "{foot:?}");
 }
