@@ -6,7 +6,8 @@
 //!    closure of a region that sees all of it, so it is unoccluded;
 //! 2. one of them is in umbra (or the light does not reach it): the vertex
 //!    is in the closure of a region that sees none of the light, and gets
-//!    none;
+//!    none, unless every occluder making that umbra lies on the vertex
+//!    (below);
 //! 3. otherwise only the occluders listed by *every* cell around it can
 //!    hide any of the light from it (an occluder missing from one cell's
 //!    list has the vertex on its penumbra volume's boundary, where it hides
@@ -18,10 +19,14 @@
 //! Irradiance is continuous except where an occluder touches or pierces
 //! the receiver; a vertex on such a line gets its own value, the light it
 //! sees past occluders it lies on (so case 1 comes first, as in the paper).
+//! So case 2 holds only for an umbra made by an occluder off the vertex;
+//! where each one making it lies on the vertex, the vertex sees what the
+//! cells on their other side see, past the occluders every cell around
+//! lists or culled (a convex solid the light lies behind at the vertex
+//! still hides it all).
 //! A vertex whose cases and covering occluders are unchanged since the last
 //! call keeps its value: after a move only new vertices and those whose
-//! covering set
-//! changed are evaluated again.
+//! covering set changed are evaluated again.
 
 use crate::cell::Cell;
 use crate::hash::KeySet;
