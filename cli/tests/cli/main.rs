@@ -18,7 +18,6 @@ mod ply_files;
 mod properties;
 mod render;
 mod shadow;
-mod t_junctions;
 mod tilted_light;
 mod vectors;
 mod volumes;
