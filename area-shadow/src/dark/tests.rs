@@ -487,23 +487,8 @@ fn a_tent_of_triangles_hides_the_light_as_one_sheet() {
     assert!(!sees_none(&region, false, &source, &triangles, &[]));
 
     let mut rng = Pcg64::seed_from_u64(5);
-    for _ in 0..4000 {
-        let k = [
-            256.0 + 40.0 * rng.random::<f64>(),
-            0.0,
-            -267.0 + 40.0 * rng.random::<f64>(),
-        ];
-        let l = [
-            -100.0 + 200.0 * rng.random::<f64>(),
-            y as f64,
-            -500.0 + 200.0 * rng.random::<f64>(),
-        ];
-        let through = tent.iter().any(|t| {
-            let c = t.vertices_f64();
-            segment_meets_triangle(k, l, [c[0], c[1], c[2]])
-        });
-        assert!(through, "segment {k:?} -> {l:?} passes the tent");
-    }
+    let light = ([-100.0, 100.0], [-500.0, -300.0], y as f64);
+    assert_segments_to_meet(&mut rng, (276, 0, -247, 20), light, 4000, &tent);
 }
 
 /// Whether the segment `k`-`l` meets the triangle (Möller-Trumbore, with
@@ -550,25 +535,40 @@ fn assert_segments_meet(
 /// 10 000 meet one of `triangles`.
 fn assert_square_segments_meet(
     rng: &mut Pcg64,
-    (x, y, z, r): (i64, i64, i64, i64),
+    square: (i64, i64, i64, i64),
     triangles: &[ConvexPolygon],
 ) {
-    for _ in 0..256 {
+    let light = ([-500.0, 500.0], [-500.0, 500.0], 10_000.0);
+    assert_segments_to_meet(rng, square, light, 256, triangles);
+}
+
+/// Checks that `count` random segments from the level square of
+/// half-width `r` around `(x, y, z)` to the level rectangle `light` (its
+/// `x` and `z` ranges, its height) meet one of `polygons` (each fanned
+/// into triangles).
+fn assert_segments_to_meet(
+    rng: &mut Pcg64,
+    (x, y, z, r): (i64, i64, i64, i64),
+    (lx, lz, ly): ([f64; 2], [f64; 2], f64),
+    count: usize,
+    polygons: &[ConvexPolygon],
+) {
+    for _ in 0..count {
         let k = [
             (x - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
             y as f64,
             (z - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
         ];
         let l = [
-            -500.0 + 1000.0 * rng.random::<f64>(),
-            10_000.0,
-            -500.0 + 1000.0 * rng.random::<f64>(),
+            lx[0] + (lx[1] - lx[0]) * rng.random::<f64>(),
+            ly,
+            lz[0] + (lz[1] - lz[0]) * rng.random::<f64>(),
         ];
-        let through = triangles.iter().any(|t| {
-            let c = t.vertices_f64();
-            segment_meets_triangle(k, l, [c[0], c[1], c[2]])
+        let through = polygons.iter().any(|p| {
+            let c = p.vertices_f64();
+            (1..c.len() - 1).any(|i| segment_meets_triangle(k, l, [c[0], c[i], c[i + 1]]))
         });
-        assert!(through, "segment {k:?} -> {l:?} passes {triangles:?}");
+        assert!(through, "segment {k:?} -> {l:?} passes {polygons:?}");
     }
 }
 

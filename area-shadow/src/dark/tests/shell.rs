@@ -80,6 +80,43 @@ fn random_place(rng: &mut Pcg64) -> ([f64; 3], [f64; 3]) {
     (centre, radii)
 }
 
+/// A random floor square (centre `x`, `z`, half-width) about the shadow
+/// that the light high above casts of a body at `centre` with half-extents
+/// `radii`, reaching out a fifth past it.
+fn square_below(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> (i64, i64, i64) {
+    let t = 10_000.0 / (10_000.0 - centre[1]);
+    (
+        (centre[0] * t + rng.random_range(-1.2..1.2) * radii[0] * t).round() as i64,
+        (centre[2] * t + rng.random_range(-1.2..1.2) * radii[2] * t).round() as i64,
+        rng.random_range(5..100),
+    )
+}
+
+/// A random level square (centre, half-width) well inside a body at
+/// `centre` with half-extents `radii`.
+fn square_inside(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> ([i64; 3], i64) {
+    let at: [i64; 3] = std::array::from_fn(|k| {
+        (centre[k] + rng.random_range(-0.4..0.4) * radii[k]).round() as i64
+    });
+    (at, rng.random_range(5..50))
+}
+
+/// Round `round`'s random cup at a random place, dented every other
+/// round: its place, dent and pieces, and the shell its groups close, if
+/// any.
+fn cup_of_round(rng: &mut Pcg64, round: usize) -> (CupPlace, Vec<ConvexPolygon>, Option<Body>) {
+    let (centre, radii) = random_place(rng);
+    let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
+    let cup = random_cup(rng, centre, radii, dent);
+    let shell = convex_groups(&cup, &vec![Some(0); cup.len()])
+        .iter()
+        .find_map(|group| group.shell());
+    ((centre, radii, dent), cup, shell)
+}
+
+/// A random cup's centre, half-extents and dent.
+type CupPlace = ([f64; 3], [f64; 3], f64);
+
 fn unit(rng: &mut Pcg64) -> [f64; 3] {
     loop {
         let v: [f64; 3] = std::array::from_fn(|_| rng.random_range(-1.0..1.0));
@@ -101,23 +138,14 @@ fn proven_dark_regions_under_random_cups_see_no_light() {
     let source = light(-500, 500, 10_000);
     let (mut shells, mut proven, mut proven_dented) = (0, 0, 0);
     for round in 0..300 {
-        let (centre, radii) = random_place(&mut rng);
-        let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
-        let cup = random_cup(&mut rng, centre, radii, dent);
-        let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
-        let Some(shell) = groups.iter().find_map(|group| group.shell()) else {
+        let ((centre, radii, dent), cup, shell) = cup_of_round(&mut rng, round);
+        let Some(shell) = shell else {
             continue;
         };
         assert!(!shell.is_closed(), "a shell's boundary is no occluder");
         shells += 1;
-        let t = 10_000.0 / (10_000.0 - centre[1]);
-        let shadow = [centre[0] * t, centre[2] * t];
         for _ in 0..8 {
-            let (cx, cz, r) = (
-                (shadow[0] + rng.random_range(-1.2..1.2) * radii[0] * t).round() as i64,
-                (shadow[1] + rng.random_range(-1.2..1.2) * radii[2] * t).round() as i64,
-                rng.random_range(5..100),
-            );
+            let (cx, cz, r) = square_below(&mut rng, centre, radii);
             let region = floor(cx, cz, r);
             if !sees_none(&region, false, &source, &[], &[&shell]) {
                 continue;
@@ -218,18 +246,12 @@ fn proven_dark_regions_inside_random_cups_see_no_light() {
     let source = light(-500, 500, 10_000);
     let (mut tried, mut proven) = (0, 0);
     for round in 0..300 {
-        let (centre, radii) = random_place(&mut rng);
-        let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
-        let cup = random_cup(&mut rng, centre, radii, dent);
-        let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
-        let Some(shell) = groups.iter().find_map(|group| group.shell()) else {
+        let ((centre, radii, _), cup, shell) = cup_of_round(&mut rng, round);
+        let Some(shell) = shell else {
             continue;
         };
         for _ in 0..8 {
-            let at: [i64; 3] = std::array::from_fn(|k| {
-                (centre[k] + rng.random_range(-0.4..0.4) * radii[k]).round() as i64
-            });
-            let r = rng.random_range(5..50);
+            let (at, r) = square_inside(&mut rng, centre, radii);
             tried += 1;
             let region = level_square(at[0], at[1], at[2], r);
             if !sees_none(&region, false, &source, &[], &[&shell]) {
@@ -354,21 +376,13 @@ fn proven_dark_regions_by_random_tubes_see_no_light() {
         };
         assert_eq!(members.len(), tube.len());
         shells += 1;
-        let t = 10_000.0 / (10_000.0 - centre[1]);
         for _ in 0..8 {
-            let (cx, cz, r) = (
-                (centre[0] * t + rng.random_range(-1.2..1.2) * radii[0] * t).round() as i64,
-                (centre[2] * t + rng.random_range(-1.2..1.2) * radii[2] * t).round() as i64,
-                rng.random_range(5..100),
-            );
+            let (cx, cz, r) = square_below(&mut rng, centre, radii);
             if sees_none(&floor(cx, cz, r), false, &source, &[], &[shell]) {
                 below += 1;
                 assert_segments_meet(&mut rng, (cx, cz, r), &tube);
             }
-            let at: [i64; 3] = std::array::from_fn(|k| {
-                (centre[k] + rng.random_range(-0.4..0.4) * radii[k]).round() as i64
-            });
-            let r = rng.random_range(5..50);
+            let (at, r) = square_inside(&mut rng, centre, radii);
             let region = level_square(at[0], at[1], at[2], r);
             if sees_none(&region, false, &source, &[], &[shell]) {
                 inside += 1;
@@ -434,11 +448,8 @@ fn proven_dark_walls_of_random_cups_see_no_light() {
     let source = light(-500, 500, 10_000);
     let (mut tried, mut proven, mut proven_dented) = (0, 0, 0);
     for round in 0..300 {
-        let (centre, radii) = random_place(&mut rng);
-        let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
-        let cup = random_cup(&mut rng, centre, radii, dent);
-        let groups = convex_groups(&cup, &vec![Some(0); cup.len()]);
-        let Some(shell) = groups.iter().find_map(|group| group.shell()) else {
+        let ((_, _, dent), cup, shell) = cup_of_round(&mut rng, round);
+        let Some(shell) = shell else {
             continue;
         };
         for (k, piece) in cup.iter().enumerate() {
@@ -594,21 +605,6 @@ fn a_cup_with_a_lid_off_its_walls_is_a_shell_without_it() {
     let region = floor(2500, 0, 20);
     assert!(sees_none(&region, false, &source, &[], &[shell]));
     let mut rng = Pcg64::seed_from_u64(43);
-    for _ in 0..4000 {
-        let k = [
-            2480.0 + 40.0 * rng.random::<f64>(),
-            0.0,
-            -20.0 + 40.0 * rng.random::<f64>(),
-        ];
-        let l = [
-            -3000.0 + 2000.0 * rng.random::<f64>(),
-            10_000.0,
-            -500.0 + 1000.0 * rng.random::<f64>(),
-        ];
-        let through = pieces[..5].iter().any(|p| {
-            let c = p.vertices_f64();
-            (1..c.len() - 1).any(|i| segment_meets_triangle(k, l, [c[0], c[i], c[i + 1]]))
-        });
-        assert!(through, "segment {k:?} -> {l:?} passes the cup");
-    }
+    let light = ([-3000.0, -1000.0], [-500.0, 500.0], 10_000.0);
+    assert_segments_to_meet(&mut rng, (2500, 0, 0, 20), light, 4000, &pieces[..5]);
 }
