@@ -14,13 +14,13 @@ use slotmap::SecondaryMap;
 use svbsp::{Fragment, PieceFlags};
 
 use crate::atomic::Outputs;
+use crate::closed_surface::piece_flags;
 use crate::dark::{Occluders, proven_dark_past};
 use crate::decompose::{Pieces, SnappedLight};
 use crate::dm_lights::{LightMap, cut_by_other_lights};
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh};
 use crate::scene::Scene;
-use crate::shadow::piece_flags;
 use crate::stats::{LightStats, Seconds, Stats};
 
 /// Figures of the DM-trees (beside FORMATS.md §3's fields).

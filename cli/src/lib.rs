@@ -45,6 +45,7 @@
 //! ```
 
 mod atomic;
+mod closed_surface;
 mod csg;
 mod dark;
 mod decompose;

@@ -1,7 +1,6 @@
 //! The `umbra shadow` pipeline: scene in, classified and illuminated
 //! fragments out.
 
-use std::collections::HashMap;
 use std::time::Instant;
 
 use area_shadow::dark::{DARK_FRACTION, sees_none};
@@ -9,10 +8,11 @@ use area_shadow::{
     AreaSource, Class, ConformingMesh, LightFigures, SceneLight, ShadowGroups, conform_fragments,
     grid_fragments, subdivide_adaptive,
 };
-use bsp_core::{BuildOptions, ConvexPolygon, GridPoint};
+use bsp_core::{BuildOptions, ConvexPolygon};
 use rayon::prelude::*;
-use svbsp::{Fragment, LightSource, PieceFlags};
+use svbsp::{Fragment, LightSource};
 
+use crate::closed_surface::piece_flags;
 use crate::dark::Occluders;
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
@@ -344,78 +344,6 @@ pub(crate) fn piece_objects(scene: &Scene, pieces: &Pieces) -> Vec<u32> {
         .iter()
         .map(|&input| object_of_input[input as usize])
         .collect()
-}
-
-/// Per piece: casts, two-sided, and whether its object is a closed surface
-/// (every directed edge between grid points matched by its reverse exactly
-/// once), which lets faces turned away from a light skip the shadow pass.
-pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
-    let objects = piece_objects(scene, pieces);
-    let object_of = |k: usize| objects[k] as usize;
-    let mut edges: HashMap<(usize, GridPoint, GridPoint), u32> = HashMap::new();
-    for (k, piece) in pieces.polygons.iter().enumerate() {
-        for (a, b) in grid_edges(piece) {
-            *edges.entry((object_of(k), a, b)).or_insert(0) += 1;
-        }
-    }
-    let mut open = vec![false; scene.objects.len()];
-    for (&(object, a, b), &count) in &edges {
-        if count != 1 || edges.get(&(object, b, a)) != Some(&1) {
-            open[object] = true;
-        }
-    }
-    // A closed surface a light may shine into (the light on it or inside
-    // it) is taken as open: there its faces turned away from the light
-    // hide what its faces towards the light do not.
-    let mut points: Vec<Vec<GridPoint>> = vec![Vec::new(); scene.objects.len()];
-    for (k, piece) in pieces.polygons.iter().enumerate() {
-        points[object_of(k)].extend((0..piece.len()).filter_map(|i| piece.vertex_grid_point(i)));
-    }
-    for (object, points) in points.iter().enumerate() {
-        if !pieces
-            .lights
-            .iter()
-            .all(|light| light_clear_of(light, points))
-        {
-            open[object] = true;
-        }
-    }
-    (0..pieces.polygons.len())
-        .map(|k| PieceFlags {
-            casts_shadows: pieces.casts_shadows[k],
-            two_sided: pieces.two_sided[k],
-            closed_surface: !open[object_of(k)],
-        })
-        .collect()
-}
-
-/// Whether `light` lies clear of every solid whose surface has its
-/// vertices among `points` (see [`AreaSource::clear_of`]): a point light
-/// outside their bounding box; a directional light always (it comes from
-/// infinity).
-fn light_clear_of(light: &SnappedLight, points: &[GridPoint]) -> bool {
-    match light {
-        SnappedLight::Point(p) => {
-            let outside = |c: fn(&GridPoint) -> i32| {
-                points.iter().all(|q| c(q) < c(p)) || points.iter().all(|q| c(q) > c(p))
-            };
-            outside(|g| g.x) || outside(|g| g.y) || outside(|g| g.z)
-        }
-        SnappedLight::Directional(_) => true,
-        SnappedLight::Area(polygon) => {
-            AreaSource::new(polygon.clone()).is_ok_and(|light| light.clear_of(points))
-        }
-    }
-}
-
-fn grid_edges(piece: &ConvexPolygon) -> impl Iterator<Item = (GridPoint, GridPoint)> + '_ {
-    let n = piece.len();
-    (0..n).filter_map(move |i| {
-        Some((
-            piece.vertex_grid_point(i)?,
-            piece.vertex_grid_point((i + 1) % n)?,
-        ))
-    })
 }
 
 /// The scene's lights for `illum`, at their snapped positions so that

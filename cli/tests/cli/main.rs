@@ -10,6 +10,7 @@ mod demos;
 mod dm;
 mod dm_lights;
 mod errors;
+mod inward_surfaces;
 mod joint_umbra;
 mod joints;
 mod open_box;

@@ -1,0 +1,171 @@
+//! Which objects are closed surfaces bounding their inside, so that their
+//! faces turned away from a light may skip the shadow pass.
+//!
+//! From a light outside such a surface, a segment that reaches one of its
+//! faces turned away from the light has crossed a face turned towards it
+//! first: the faces towards the light cast the whole shadow. That needs
+//! more than every edge being shared: the faces must face *out*. A closed
+//! box wound inwards has its faces towards the light turned away by their
+//! planes, and skipping those would light its inside.
+
+use std::collections::HashMap;
+
+use bsp_core::{ConvexPolygon, GridPoint};
+use svbsp::PieceFlags;
+
+use crate::decompose::{Pieces, SnappedLight};
+use crate::scene::Scene;
+use crate::shadow::piece_objects;
+use area_shadow::AreaSource;
+
+/// Per piece: casts, two-sided, and whether its object is a closed surface
+/// facing out: every piece's corners on the grid, every directed edge
+/// between them matched by its reverse exactly once, each connected part
+/// enclosing a positive volume, and every light clear of it.
+pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
+    let objects = piece_objects(scene, pieces);
+    let object_of = |k: usize| objects[k] as usize;
+    let mut open = vec![false; scene.objects.len()];
+    // Each directed edge with the piece it bounds, `None` once two do.
+    let mut edges: HashMap<(usize, GridPoint, GridPoint), Option<usize>> = HashMap::new();
+    for (k, piece) in pieces.polygons.iter().enumerate() {
+        match grid_corners(piece) {
+            Some(corners) => {
+                for (a, b) in cyclic_pairs(&corners) {
+                    edges
+                        .entry((object_of(k), a, b))
+                        .and_modify(|owner| *owner = None)
+                        .or_insert(Some(k));
+                }
+            }
+            None => open[object_of(k)] = true,
+        }
+    }
+    let mut parts = Parts::new(pieces.polygons.len());
+    for (&(object, a, b), &owner) in &edges {
+        match (owner, edges.get(&(object, b, a))) {
+            (Some(k), Some(&Some(j))) => parts.join(k, j),
+            _ => open[object] = true,
+        }
+    }
+    // Six times the volume each connected part encloses (exact: grid
+    // coordinates below 2^31, so each term is below 2^95).
+    let mut volumes: HashMap<usize, i128> = HashMap::new();
+    for (k, piece) in pieces.polygons.iter().enumerate() {
+        if open[object_of(k)] {
+            continue;
+        }
+        if let Some(corners) = grid_corners(piece) {
+            *volumes.entry(parts.root(k)).or_insert(0) += six_volume_under(&corners);
+        }
+    }
+    for (&root, &volume) in &volumes {
+        if volume <= 0 {
+            open[object_of(root)] = true;
+        }
+    }
+    // A closed surface a light may shine into (the light on it or inside
+    // it) is taken as open: there its faces turned away from the light
+    // hide what its faces towards the light do not.
+    let mut points: Vec<Vec<GridPoint>> = vec![Vec::new(); scene.objects.len()];
+    for (k, piece) in pieces.polygons.iter().enumerate() {
+        points[object_of(k)].extend((0..piece.len()).filter_map(|i| piece.vertex_grid_point(i)));
+    }
+    for (object, points) in points.iter().enumerate() {
+        if !pieces
+            .lights
+            .iter()
+            .all(|light| light_clear_of(light, points))
+        {
+            open[object] = true;
+        }
+    }
+    (0..pieces.polygons.len())
+        .map(|k| PieceFlags {
+            casts_shadows: pieces.casts_shadows[k],
+            two_sided: pieces.two_sided[k],
+            closed_surface: !open[object_of(k)],
+        })
+        .collect()
+}
+
+/// The piece's corners, counter-clockwise seen from its front, when all
+/// are grid points.
+fn grid_corners(piece: &ConvexPolygon) -> Option<Vec<GridPoint>> {
+    (0..piece.len())
+        .map(|i| piece.vertex_grid_point(i))
+        .collect()
+}
+
+fn cyclic_pairs(corners: &[GridPoint]) -> impl Iterator<Item = (GridPoint, GridPoint)> + '_ {
+    corners
+        .iter()
+        .copied()
+        .zip(corners.iter().copied().cycle().skip(1))
+}
+
+/// Six times the signed volume of the cone from the origin over the
+/// polygon `corners` (positive when the polygon faces away from the
+/// origin); summed over a closed surface, six times the volume it
+/// encloses, positive when it faces out.
+fn six_volume_under(corners: &[GridPoint]) -> i128 {
+    let v = |p: &GridPoint| [i128::from(p.x), i128::from(p.y), i128::from(p.z)];
+    let a = v(&corners[0]);
+    corners[1..]
+        .windows(2)
+        .map(|w| {
+            let (b, c) = (v(&w[0]), v(&w[1]));
+            a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0])
+        })
+        .sum()
+}
+
+/// Connected parts of a surface: pieces joined across shared edges
+/// (union-find with path halving).
+struct Parts {
+    parent: Vec<usize>,
+}
+
+impl Parts {
+    fn new(count: usize) -> Self {
+        Self {
+            parent: (0..count).collect(),
+        }
+    }
+
+    fn root(&mut self, mut k: usize) -> usize {
+        while self.parent[k] != k {
+            self.parent[k] = self.parent[self.parent[k]];
+            k = self.parent[k];
+        }
+        k
+    }
+
+    fn join(&mut self, a: usize, b: usize) {
+        let (a, b) = (self.root(a), self.root(b));
+        // The smaller index becomes the root: the same parts whatever the
+        // order the edges come in.
+        let (low, high) = (a.min(b), a.max(b));
+        self.parent[high] = low;
+    }
+}
+
+/// Whether `light` lies clear of every solid whose surface has its
+/// vertices among `points` (see [`AreaSource::clear_of`]): a point light
+/// outside their bounding box; a directional light always (it comes from
+/// infinity).
+fn light_clear_of(light: &SnappedLight, points: &[GridPoint]) -> bool {
+    match light {
+        SnappedLight::Point(p) => {
+            let outside = |c: fn(&GridPoint) -> i32| {
+                points.iter().all(|q| c(q) < c(p)) || points.iter().all(|q| c(q) > c(p))
+            };
+            outside(|g| g.x) || outside(|g| g.y) || outside(|g| g.z)
+        }
+        SnappedLight::Directional(_) => true,
+        SnappedLight::Area(polygon) => {
+            AreaSource::new(polygon.clone()).is_ok_and(|light| light.clear_of(points))
+        }
+    }
+}
