@@ -16,9 +16,12 @@ pub struct PieceFlags {
     pub casts_shadows: bool,
     /// Whether its back side receives light too.
     pub two_sided: bool,
-    /// Whether it belongs to a closed surface (every edge shared by two
-    /// faces). The surface's faces towards the light then cast its whole
-    /// shadow, so a one-sided face turned away needs no filtering at all.
+    /// Whether it belongs to a closed surface facing out (every edge shared
+    /// by two faces, their fronts outside the volume they enclose) that no
+    /// light lies in. The surface's faces towards the light then cast its
+    /// whole shadow, so a one-sided face turned away needs no filtering at
+    /// all. (Wound inwards, the faces towards the light are the ones turned
+    /// away by their planes: such a surface must not set this.)
     pub closed_surface: bool,
 }
 
