@@ -60,7 +60,14 @@ pub fn write_ply(
     match encoding {
         PlyEncoding::Ascii => {
             for (p, e) in &mesh.vertices {
-                writeln!(w, "{:?} {:?} {:?} {:?}", p[0], p[1], p[2], e)?;
+                writeln!(
+                    w,
+                    "{:?} {:?} {:?} {:?}",
+                    p[0],
+                    p[1],
+                    p[2],
+                    unsigned_zero(*e)
+                )?;
             }
             for f in &mesh.faces {
                 write!(w, "{}", f.vertices.len())?;
@@ -77,7 +84,7 @@ pub fn write_ply(
                 for c in p {
                     buf.extend_from_slice(&c.to_le_bytes());
                 }
-                buf.extend_from_slice(&e.to_le_bytes());
+                buf.extend_from_slice(&unsigned_zero(*e).to_le_bytes());
                 w.write_all(&buf)?;
             }
             for f in &mesh.faces {
@@ -100,6 +107,13 @@ pub fn write_ply(
         }
     }
     Ok(())
+}
+
+/// `e` with a negative zero made positive: a sum of light that came to
+/// nothing may round to -0, which reads as "-0" in ASCII and means no
+/// less light than 0.
+fn unsigned_zero(e: f32) -> f32 {
+    e + 0.0
 }
 
 /// Writes `mesh` as PLY to `path`, atomically (see
@@ -412,6 +426,19 @@ mod tests {
             write_ply(&sample(), enc, &mut out).unwrap();
             assert_eq!(read_ply(&out).unwrap(), sample());
         }
+    }
+
+    #[test]
+    fn no_light_is_written_as_plus_zero() {
+        let mut mesh = sample();
+        mesh.vertices[0].1 = -0.0;
+        let mut ascii = Vec::new();
+        write_ply(&mesh, PlyEncoding::Ascii, &mut ascii).unwrap();
+        assert!(!String::from_utf8(ascii).unwrap().contains("-0.0"));
+        let mut binary = Vec::new();
+        write_ply(&mesh, PlyEncoding::BinaryLittleEndian, &mut binary).unwrap();
+        let read = read_ply(&binary).unwrap();
+        assert!(read.vertices[0].1.is_sign_positive());
     }
 
     #[test]
