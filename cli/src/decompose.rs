@@ -1,7 +1,8 @@
 //! From the scene's input polygons to convex planar pieces on one grid.
 //!
 //! Every input polygon is snapped to a single [`Grid`] laid over the scene
-//! and its lights, then:
+//! and its lights, its object's T-junctions welded (a corner on another
+//! face's edge made that face's corner too, module `weld`), then:
 //! - a planar convex face becomes one piece, as is;
 //! - a concave planar face, or a non-planar one, is cut into triangles by
 //!   ear clipping on its projection along the dominant axis of its exact
@@ -22,6 +23,7 @@ use bsp_core::{ConvexPolygon, Grid, GridPoint};
 
 use crate::error::{Error, Result};
 use crate::scene::{LightKind, Scene};
+use crate::weld::{ON_EDGE, weld_t_junctions};
 
 /// How much the grid's box is grown on every side, as a fraction of the
 /// scene's largest extent.
@@ -106,23 +108,32 @@ impl Pieces {
             max_snap_distance: 0.0,
             lights: Vec::with_capacity(scene.lights.len()),
         };
-        for (index, (object, polygon)) in scene.input_polygons().enumerate() {
-            let (snapped, moved) = grid.snap_all(&polygon.vertices).map_err(grid_error)?;
-            out.max_snap_distance = out.max_snap_distance.max(moved);
-            let input = index as u32;
-            let pieces = convex_pieces(&snapped);
-            if pieces.is_empty() {
-                out.dropped.push(input);
+        let mut index = 0_u32;
+        for o in &scene.objects {
+            let mut snapped = Vec::with_capacity(o.polygons.len());
+            for polygon in &o.polygons {
+                let (points, moved) = grid.snap_all(&polygon.vertices).map_err(grid_error)?;
+                out.max_snap_distance = out.max_snap_distance.max(moved);
+                snapped.push(points);
             }
-            let o = &scene.objects[object];
-            for piece in pieces {
-                let k = out.polygons.len() as u32;
-                out.polygons.push(piece.with_source(k));
-                out.input_of.push(input);
-                out.casts_shadows.push(o.casts_shadows);
-                out.two_sided.push(o.two_sided);
+            let input: Vec<&[[f64; 3]]> =
+                o.polygons.iter().map(|p| p.vertices.as_slice()).collect();
+            weld_t_junctions(&input, &mut snapped, ON_EDGE * grid.cell_size());
+            for points in snapped {
+                let pieces = convex_pieces(&points);
+                if pieces.is_empty() {
+                    out.dropped.push(index);
+                }
+                for piece in pieces {
+                    let k = out.polygons.len() as u32;
+                    out.polygons.push(piece.with_source(k));
+                    out.input_of.push(index);
+                    out.casts_shadows.push(o.casts_shadows);
+                    out.two_sided.push(o.two_sided);
+                }
+                out.input_polygons += 1;
+                index += 1;
             }
-            out.input_polygons += 1;
         }
         for (i, light) in scene.lights.iter().enumerate() {
             let snapped = match &light.kind {

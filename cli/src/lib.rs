@@ -67,6 +67,7 @@ mod stats;
 mod svg;
 mod transform;
 mod vec3;
+mod weld;
 
 pub use atomic::{Outputs, write_atomic};
 pub use bsp_core;

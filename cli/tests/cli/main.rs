@@ -19,6 +19,7 @@ mod ply_files;
 mod properties;
 mod render;
 mod shadow;
+mod t_junctions;
 mod tilted_light;
 mod vectors;
 mod volumes;

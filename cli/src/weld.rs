@@ -1,0 +1,243 @@
+//! T-junctions of an object welded before its faces are cut into pieces.
+//!
+//! A face whose edge runs through another face's corner (a face split in
+//! strips against an unsplit neighbour) is watertight in the input: the
+//! corner lies on the edge, up to floating point. Snapped to the grid
+//! apart, the corner and the edge part by up to half a grid step, and the
+//! crack between them lets light through (a thin lit line across a
+//! shadow). So a corner that lies on an edge of another face of its
+//! object, within [`ON_EDGE`] of a grid step, becomes a corner of that
+//! face too, at the same grid point: the face is then cut into pieces
+//! that meet the neighbours' exactly. Only an object's own faces are
+//! welded, so that a moved object's faces, and the others', stay as they
+//! are.
+
+use std::collections::HashMap;
+
+use bsp_core::GridPoint;
+
+use crate::vec3::{dot, sub};
+
+/// How near an edge a corner counts as on it, in grid steps: far below a
+/// step (so no gap the grid can hold is closed), far above the rounding of
+/// world coordinates.
+pub const ON_EDGE: f64 = 1e-3;
+
+/// Inserts into each face's snapped corners (`snapped[i]`, of the input
+/// corners `input[i]`, world units) the other faces' corners that lie on
+/// its edges strictly between their ends, within `tolerance` (world
+/// units), in order along the edge.
+pub fn weld_t_junctions(input: &[&[[f64; 3]]], snapped: &mut [Vec<GridPoint>], tolerance: f64) {
+    let corners = Corners::new(input, snapped);
+    if corners.points.is_empty() {
+        return;
+    }
+    for (face, raw) in input.iter().enumerate() {
+        let n = raw.len();
+        if n < 3 || snapped[face].len() != n {
+            continue;
+        }
+        let mut welded: Vec<GridPoint> = Vec::with_capacity(n);
+        for i in 0..n {
+            let (a, c) = (raw[i], raw[(i + 1) % n]);
+            welded.push(snapped[face][i]);
+            let mut on: Vec<(f64, GridPoint)> = corners
+                .near_segment(a, c, tolerance)
+                .filter(|&(_, g)| !snapped[face].contains(&g))
+                .filter_map(|(p, g)| along(a, c, p, tolerance).map(|t| (t, g)))
+                .collect();
+            on.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+            on.dedup_by_key(|x| x.1);
+            welded.extend(on.into_iter().map(|(_, g)| g));
+        }
+        snapped[face] = welded;
+    }
+}
+
+/// Where `p` lies along the segment from `a` to `c`, as a fraction
+/// strictly between its ends (more than `tolerance` from either), when it
+/// lies within `tolerance` of the segment.
+fn along(a: [f64; 3], c: [f64; 3], p: [f64; 3], tolerance: f64) -> Option<f64> {
+    let d = sub(c, a);
+    let length2 = dot(d, d);
+    if length2 == 0.0 {
+        return None;
+    }
+    let t = dot(sub(p, a), d) / length2;
+    let length = length2.sqrt();
+    if t * length <= tolerance || (1.0 - t) * length <= tolerance {
+        return None;
+    }
+    let foot = [a[0] + t * d[0], a[1] + t * d[1], a[2] + t * d[2]];
+    let off = sub(p, foot);
+    (dot(off, off) <= tolerance * tolerance).then_some(t)
+}
+
+/// An object's corners (input and snapped), bucketed in space.
+struct Corners {
+    points: Vec<([f64; 3], GridPoint)>,
+    /// Bucket side, world units.
+    side: f64,
+    buckets: HashMap<[i64; 3], Vec<usize>>,
+}
+
+/// Buckets an edge's box may span before its corners are all looked at
+/// instead.
+const MAX_BUCKETS: i64 = 512;
+
+impl Corners {
+    fn new(input: &[&[[f64; 3]]], snapped: &[Vec<GridPoint>]) -> Self {
+        let mut points: Vec<([f64; 3], GridPoint)> = input
+            .iter()
+            .zip(snapped)
+            .filter(|(raw, grid)| raw.len() == grid.len())
+            .flat_map(|(raw, grid)| raw.iter().copied().zip(grid.iter().copied()))
+            .collect();
+        points.sort_by_key(|x| x.1);
+        points.dedup_by_key(|x| x.1);
+        // Buckets about as long as an average edge.
+        let (mut total, mut edges) = (0.0, 0_usize);
+        for raw in input {
+            for i in 0..raw.len() {
+                let d = sub(raw[(i + 1) % raw.len()], raw[i]);
+                total += dot(d, d).sqrt();
+                edges += 1;
+            }
+        }
+        let side = if edges == 0 || total == 0.0 {
+            1.0
+        } else {
+            total / edges as f64
+        };
+        let mut buckets: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+        for (k, (p, _)) in points.iter().enumerate() {
+            buckets.entry(bucket(*p, side)).or_default().push(k);
+        }
+        Self {
+            points,
+            side,
+            buckets,
+        }
+    }
+
+    /// The corners within `margin` of the box of the segment from `a` to
+    /// `c` (and maybe others).
+    fn near_segment(
+        &self,
+        a: [f64; 3],
+        c: [f64; 3],
+        margin: f64,
+    ) -> impl Iterator<Item = ([f64; 3], GridPoint)> + '_ {
+        let lo = bucket(std::array::from_fn(|k| a[k].min(c[k]) - margin), self.side);
+        let hi = bucket(std::array::from_fn(|k| a[k].max(c[k]) + margin), self.side);
+        let span: i64 = (0..3).map(|k| hi[k] - lo[k] + 1).product();
+        let all = span > MAX_BUCKETS;
+        let mut found: Vec<usize> = if all {
+            (0..self.points.len()).collect()
+        } else {
+            let mut found = Vec::new();
+            for x in lo[0]..=hi[0] {
+                for y in lo[1]..=hi[1] {
+                    for z in lo[2]..=hi[2] {
+                        if let Some(ks) = self.buckets.get(&[x, y, z]) {
+                            found.extend(ks);
+                        }
+                    }
+                }
+            }
+            found
+        };
+        found.sort_unstable();
+        found.into_iter().map(|k| self.points[k])
+    }
+}
+
+fn bucket(p: [f64; 3], side: f64) -> [i64; 3] {
+    p.map(|c| (c / side).floor() as i64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gp(x: i64, y: i64, z: i64) -> GridPoint {
+        GridPoint::new(x, y, z).unwrap()
+    }
+
+    /// A square split in two strips against its unsplit neighbour: the
+    /// strips' corner on the shared edge becomes the neighbour's corner.
+    #[test]
+    fn a_corner_on_an_edge_is_welded_into_it() {
+        let big: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 0.0, 2.0],
+            [0.0, 0.0, 2.0],
+        ];
+        let low: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 0.0, 2.0],
+            [-2.0, 0.0, 2.0],
+            [-2.0, 0.0, 1.0],
+            [-2.0, 0.0, 0.0],
+        ];
+        // The neighbour's corner (0, 0, 1) lies on the big square's edge
+        // from (0, 0, 2) to (0, 0, 0), up to rounding.
+        let strip: Vec<[f64; 3]> =
+            vec![[0.0, 0.0, 1.0 + 1e-15], [-1.0, 0.0, 1.0], [-1.0, 0.0, 0.5]];
+        let input: Vec<&[[f64; 3]]> = vec![&big, &low, &strip];
+        let snap = |ps: &[[f64; 3]]| -> Vec<GridPoint> {
+            ps.iter()
+                .map(|p| {
+                    gp(
+                        (p[0] * 4.0).round() as i64,
+                        (p[1] * 4.0).round() as i64,
+                        (p[2] * 4.0).round() as i64,
+                    )
+                })
+                .collect()
+        };
+        let mut snapped: Vec<Vec<GridPoint>> = input.iter().map(|p| snap(p)).collect();
+        weld_t_junctions(&input, &mut snapped, 1e-3 * 0.25);
+        assert_eq!(
+            snapped[0],
+            vec![
+                gp(0, 0, 0),
+                gp(8, 0, 0),
+                gp(8, 0, 8),
+                gp(0, 0, 8),
+                gp(0, 0, 4)
+            ]
+        );
+        // The low face's edge along x = 0 holds it too; its own corners
+        // stay.
+        assert_eq!(
+            snapped[1],
+            vec![
+                gp(0, 0, 0),
+                gp(0, 0, 4),
+                gp(0, 0, 8),
+                gp(-8, 0, 8),
+                gp(-8, 0, 4),
+                gp(-8, 0, 0)
+            ]
+        );
+        assert_eq!(snapped[2].len(), 3);
+    }
+
+    /// A corner a grid step off the edge (a real gap) is left alone, and
+    /// so is one beyond the edge's ends.
+    #[test]
+    fn corners_off_the_edge_are_not_welded() {
+        let edge: Vec<[f64; 3]> = vec![[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 4.0, 0.0]];
+        let off: Vec<[f64; 3]> = vec![[2.0, -0.25, 0.0], [5.0, 0.0, 0.0], [3.0, -1.0, 0.0]];
+        let input: Vec<&[[f64; 3]]> = vec![&edge, &off];
+        let mut snapped: Vec<Vec<GridPoint>> = vec![
+            vec![gp(0, 0, 0), gp(16, 0, 0), gp(0, 16, 0)],
+            vec![gp(8, -1, 0), gp(20, 0, 0), gp(12, -4, 0)],
+        ];
+        let before = snapped.clone();
+        weld_t_junctions(&input, &mut snapped, 1e-3 * 0.25);
+        assert_eq!(snapped, before);
+    }
+}

@@ -1,0 +1,118 @@
+//! A plate made of a big quad and two small ones along its edge, meeting
+//! it in a T-junction: watertight in the input, so its shadow under a
+//! point light has no light in it. Snapped apart, the junction's corner
+//! and the big quad's edge would leave a crack a grid step wide at most,
+//! and a thin lit wedge across the shadow on the floor; welded (the corner
+//! made the big quad's too), the shadow is whole.
+
+use crate::{folder, umbra};
+use umbra::load_ply;
+
+/// The point light.
+const LIGHT: [f64; 3] = [0.23, 3.1, 0.37];
+
+/// The plate's corners turned by `turn` radians about y and tilted, at
+/// about y = 1.4: the big quad's, then the two small ones', each quad
+/// counter-clockwise seen from above.
+fn plate(turn: f64) -> [[[f64; 3]; 4]; 3] {
+    let (s, c) = turn.sin_cos();
+    let at = |x: f64, z: f64| -> [f64; 3] {
+        [
+            0.13 + c * x + s * z,
+            1.4 + 0.11 * x - 0.07 * z,
+            -0.21 - s * x + c * z,
+        ]
+    };
+    // The small quads share the big one's edge x = 0, split at z = m.
+    let m = 0.3 + 0.4 * (turn * 3.7).sin().abs();
+    [
+        [at(0.0, 0.0), at(0.0, 1.0), at(1.0, 1.0), at(1.0, 0.0)],
+        [at(-1.0, 0.0), at(-1.0, m), at(0.0, m), at(0.0, 0.0)],
+        [at(-1.0, m), at(-1.0, 1.0), at(0.0, 1.0), at(0.0, m)],
+    ]
+}
+
+fn scene(turn: f64) -> String {
+    let quads: Vec<String> = plate(turn)
+        .iter()
+        .map(|q| {
+            let corners: Vec<String> = q
+                .iter()
+                .map(|p| format!("[{:?}, {:?}, {:?}]", p[0], p[1], p[2]))
+                .collect();
+            format!("[{}]", corners.join(", "))
+        })
+        .collect();
+    format!(
+        "[[object]]\nname = \"floor\"\npolygons = [[[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]]\n\n\
+         [[object]]\nname = \"plate\"\npolygons = [{}]\ntwo_sided = true\n\n\
+         [[light]]\ntype = \"point\"\nposition = [{:?}, {:?}, {:?}]\nintensity = 5.0\n",
+        quads.join(", "),
+        LIGHT[0],
+        LIGHT[1],
+        LIGHT[2]
+    )
+}
+
+/// Where the light casts `p` on the floor (x, z).
+fn cast(p: [f64; 3]) -> [f64; 2] {
+    let t = LIGHT[1] / (LIGHT[1] - p[1]);
+    [
+        LIGHT[0] + t * (p[0] - LIGHT[0]),
+        LIGHT[2] + t * (p[2] - LIGHT[2]),
+    ]
+}
+
+/// How far inside the convex polygon `hull` (counter-clockwise in x, z as
+/// seen from above: clockwise in (x, z) coordinates) the point `q` lies;
+/// negative outside.
+fn depth_inside(hull: &[[f64; 2]], q: [f64; 2]) -> f64 {
+    let n = hull.len();
+    (0..n)
+        .map(|i| {
+            let (a, b) = (hull[i], hull[(i + 1) % n]);
+            let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
+            let len = (dx * dx + dz * dz).sqrt();
+            // Seen from above (+y), counter-clockwise: the inside is to the
+            // right in (x, z).
+            ((q[0] - a[0]) * dz - (q[1] - a[1]) * dx) / len
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+#[test]
+fn a_t_junction_casts_a_whole_shadow() {
+    for k in 0..8 {
+        let turn = 0.37 + 0.71 * f64::from(k);
+        let dir = folder(&[("scene.toml", &scene(turn))]);
+        let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "out.ply"]);
+        assert_eq!(run.code, 0, "{}", run.stderr);
+        let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        // The plate's shadow: the cast outline (the plate is a rectangle,
+        // planar, so its shadow is the quadrilateral of its cast corners).
+        let [big, low, high] = plate(turn);
+        let outline: Vec<[f64; 2]> = [low[0], high[1], big[2], big[3]]
+            .iter()
+            .map(|&p| cast(p))
+            .collect();
+        let mut lit_inside = Vec::new();
+        for face in mesh.faces.iter().filter(|f| f.source == 0) {
+            if face.lit_mask & 1 == 0 {
+                continue;
+            }
+            let n = face.vertices.len() as f64;
+            let centre = face.vertices.iter().fold([0.0; 2], |acc, &v| {
+                let p = mesh.vertices[v as usize].0;
+                [acc[0] + p[0] / n, acc[1] + p[2] / n]
+            });
+            let depth = depth_inside(&outline, centre);
+            if depth > 1e-4 {
+                lit_inside.push((centre, depth));
+            }
+        }
+        assert!(
+            lit_inside.is_empty(),
+            "turn {turn}: lit floor faces inside the plate's shadow: {lit_inside:?}"
+        );
+    }
+}
