@@ -116,3 +116,55 @@ fn a_t_junction_casts_a_whole_shadow() {
         );
     }
 }
+
+/// A triangle whose edge holds a neighbour's corner, turned so that the
+/// grid moves the corner off the edge: welded, the triangle is cut from
+/// its far corner, with no sliver along the edge (a nearly straight
+/// triangle of the edge's two ends and the welded corner, its plane
+/// anywhere: its corners' irradiance would take that plane's normal).
+#[test]
+fn a_welded_face_has_no_sliver() {
+    use umbra::{Pieces, Scene};
+    let mut welded = 0;
+    for k in 0..16 {
+        let turn = 0.29 + 0.83 * f64::from(k);
+        let (s, c) = turn.sin_cos();
+        let shift = 0.0173 * f64::from(k);
+        let at = |x: f64, y: f64, z: f64| -> String {
+            let p = [
+                c * x + s * z + 0.17 + shift,
+                y * 0.9 + 0.1 * x + 1.3 - 0.7 * shift,
+                -s * x + c * z - 0.11 + 0.3 * shift,
+            ];
+            format!("[{:?}, {:?}, {:?}]", p[0], p[1], p[2])
+        };
+        // The triangle's edge from (1, 0, 0) to (0, 0, 1) holds the two
+        // neighbours' shared corner.
+        let text = format!(
+            "[[object]]\nname = \"t\"\npolygons = [[{}, {}, {}], [{}, {}, {}], [{}, {}, {}]]\n",
+            at(0.0, 0.0, 0.0),
+            at(1.0, 0.0, 0.0),
+            at(0.0, 0.0, 1.0),
+            at(1.0, 0.0, 0.0),
+            at(1.0, 0.0, 1.0),
+            at(0.63, 0.0, 0.37),
+            at(0.63, 0.0, 0.37),
+            at(1.0, 0.0, 1.0),
+            at(0.0, 0.0, 1.0),
+        );
+        let dir = folder(&[("scene.toml", &text)]);
+        let scene = Scene::load(dir.path().join("scene.toml")).unwrap();
+        let pieces = Pieces::from_scene(&scene).unwrap();
+        let whole: f64 = pieces.pieces_of(0).map(|p| p.area()).sum();
+        welded += usize::from(pieces.pieces_of(0).count() > 1);
+        for piece in pieces.pieces_of(0) {
+            assert!(
+                piece.area() > 1e-3 * whole,
+                "turn {turn}: a sliver of area {} of {whole}",
+                piece.area()
+            );
+        }
+    }
+    // (The triangle took the corner, mostly off its plane or its edge.)
+    assert!(welded >= 8, "{welded} of 16 cut");
+}
