@@ -23,7 +23,7 @@ use bsp_core::{ConvexPolygon, Grid, GridPoint};
 
 use crate::error::{Error, Result};
 use crate::scene::{LightKind, Scene};
-use crate::weld::{ON_EDGE, weld_t_junctions};
+use crate::weld::{ON_EDGE, weld_t_junctions, welded_pieces};
 
 /// How much the grid's box is grown on every side, as a fraction of the
 /// scene's largest extent.
@@ -118,9 +118,9 @@ impl Pieces {
             }
             let input: Vec<&[[f64; 3]]> =
                 o.polygons.iter().map(|p| p.vertices.as_slice()).collect();
-            weld_t_junctions(&input, &mut snapped, ON_EDGE * grid.cell_size());
-            for points in snapped {
-                let pieces = convex_pieces(&points);
+            let welds = weld_t_junctions(&input, &snapped, ON_EDGE * grid.cell_size());
+            for (points, inserted) in snapped.iter().zip(&welds) {
+                let pieces = welded_pieces(points, inserted);
                 if pieces.is_empty() {
                     out.dropped.push(index);
                 }
@@ -230,6 +230,17 @@ pub fn convex_pieces(points: &[GridPoint]) -> Vec<ConvexPolygon> {
             ConvexPolygon::from_grid_points(&corners, 0).ok()
         })
         .collect()
+}
+
+/// The triangles (indices into `points`) that [`convex_pieces`] cuts a
+/// non-planar face into, before any merging; `None` when the face has
+/// repeated corners or no area.
+pub(crate) fn corner_triangles(points: &[GridPoint]) -> Option<Vec<[usize; 3]>> {
+    let n = points.len();
+    if n < 3 || (0..n).any(|i| points[i] == points[(i + 1) % n]) {
+        return None;
+    }
+    Projection::new(points).map(|projection| ear_clip(&projection))
 }
 
 /// Faces cut into more triangles than this keep their triangles (merging

@@ -18,63 +18,52 @@ use bsp_core::GridPoint;
 
 use crate::vec3::{dot, sub};
 
+mod cut;
+pub use cut::welded_pieces;
+
 /// How near an edge a corner counts as on it, in grid steps: far below a
 /// step (so no gap the grid can hold is closed), far above the rounding of
 /// world coordinates.
 pub const ON_EDGE: f64 = 1e-3;
 
-/// Inserts into each face's snapped corners (`snapped[i]`, of the input
-/// corners `input[i]`, world units) the other faces' corners that lie on
-/// its edges strictly between their ends, within `tolerance` (world
-/// units), in order along the edge.
-pub fn weld_t_junctions(input: &[&[[f64; 3]]], snapped: &mut [Vec<GridPoint>], tolerance: f64) {
+/// For each face (`snapped[i]`, of the input corners `input[i]`, world
+/// units), the other faces' corners to weld into each of its edges: those
+/// that lie on the edge from its corner `j` to corner `j + 1` strictly
+/// between its ends, within `tolerance` (world units), in order along the
+/// edge, at `[i][j]` ([`welded_pieces`] cuts the face with them).
+pub fn weld_t_junctions(
+    input: &[&[[f64; 3]]],
+    snapped: &[Vec<GridPoint>],
+    tolerance: f64,
+) -> Vec<Vec<Vec<GridPoint>>> {
     let corners = Corners::new(input, snapped);
-    if corners.points.is_empty() {
-        return;
-    }
-    for (face, raw) in input.iter().enumerate() {
-        let n = raw.len();
-        if n < 3 || snapped[face].len() != n {
-            continue;
-        }
-        let mut welded: Vec<GridPoint> = Vec::with_capacity(n);
-        // Per corner, its place in `welded`; per edge, whether it took any.
-        let mut place = Vec::with_capacity(n);
-        let mut took = Vec::with_capacity(n);
-        for i in 0..n {
-            let (a, c) = (raw[i], raw[(i + 1) % n]);
-            place.push(welded.len());
-            welded.push(snapped[face][i]);
-            let mut on: Vec<(f64, GridPoint)> = corners
-                .near_segment(a, c, tolerance)
-                .filter(|&k| !snapped[face].contains(&corners.points[k].1))
-                .filter(|&k| corners.edge_along(k, a, c, tolerance))
-                .filter_map(|k| {
-                    let (p, g) = corners.points[k];
-                    along(a, c, p, tolerance).map(|t| (t, g))
+    input
+        .iter()
+        .zip(snapped)
+        .map(|(raw, own)| {
+            let n = raw.len();
+            if corners.points.is_empty() || n < 3 || own.len() != n {
+                return vec![Vec::new(); own.len()];
+            }
+            (0..n)
+                .map(|i| {
+                    let (a, c) = (raw[i], raw[(i + 1) % n]);
+                    let mut on: Vec<(f64, GridPoint)> = corners
+                        .near_segment(a, c, tolerance)
+                        .filter(|&k| !own.contains(&corners.points[k].1))
+                        .filter(|&k| corners.edge_along(k, a, c, tolerance))
+                        .filter_map(|k| {
+                            let (p, g) = corners.points[k];
+                            along(a, c, p, tolerance).map(|t| (t, g))
+                        })
+                        .collect();
+                    on.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
+                    on.dedup_by_key(|x| x.1);
+                    on.into_iter().map(|(_, g)| g).collect()
                 })
-                .collect();
-            on.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
-            on.dedup_by_key(|x| x.1);
-            took.push(!on.is_empty());
-            welded.extend(on.into_iter().map(|(_, g)| g));
-        }
-        if welded.len() == n {
-            continue;
-        }
-        // The welded corners lie (about) on the face's edges: cut into
-        // triangles from a corner of its own with no welded corner on
-        // either edge, the face has no sliver along an edge (a triangle of
-        // two corners of one edge and one welded between them, nearly
-        // straight, its plane anywhere). Ear clipping tries the first
-        // corner's ear first, between the last corner and the second: with
-        // that corner last, each ear it cuts is one of its fan.
-        if let Some(apex) = (0..n).find(|&i| !took[i] && !took[(i + n - 1) % n]) {
-            let len = welded.len();
-            welded.rotate_left((place[apex] + 1) % len);
-        }
-        snapped[face] = welded;
-    }
+                .collect()
+        })
+        .collect()
 }
 
 /// Where `p` lies along the segment from `a` to `c`, as a fraction
@@ -271,32 +260,12 @@ mod tests {
                 })
                 .collect()
         };
-        let mut snapped: Vec<Vec<GridPoint>> = input.iter().map(|p| snap(p)).collect();
-        let before = snapped.clone();
-        weld_t_junctions(&input, &mut snapped, 1e-3 * 0.25);
-        assert!(
-            same_cycle(
-                &snapped[0],
-                &[
-                    gp(0, 0, 0),
-                    gp(8, 0, 0),
-                    gp(8, 0, 8),
-                    gp(0, 0, 8),
-                    gp(0, 0, 4)
-                ]
-            ),
-            "{:?}",
-            snapped[0]
-        );
-        // Its cutting starts at a corner of its own on no welded edge, so
-        // that corner goes last: (8, 0, 0) or (8, 0, 8).
-        assert!([gp(8, 0, 0), gp(8, 0, 8)].contains(snapped[0].last().unwrap()));
-        assert_eq!(snapped[1..], before[1..]);
-    }
-    /// Whether `a` is `b` started at another corner.
-    fn same_cycle(a: &[GridPoint], b: &[GridPoint]) -> bool {
-        a.len() == b.len()
-            && (0..b.len()).any(|k| (0..b.len()).all(|i| a[i] == b[(i + k) % b.len()]))
+        let snapped: Vec<Vec<GridPoint>> = input.iter().map(|p| snap(p)).collect();
+        let welds = weld_t_junctions(&input, &snapped, 1e-3 * 0.25);
+        // Into the big square's edge from (0, 0, 8) to (0, 0, 0) (its
+        // fourth), the strips' corner; nothing else anywhere.
+        assert_eq!(welds[0], [vec![], vec![], vec![], vec![gp(0, 0, 4)]]);
+        assert!(welds[1..].iter().flatten().all(Vec::is_empty));
     }
 
     /// A corner a grid step off the edge (a real gap) is left alone, and
@@ -306,12 +275,11 @@ mod tests {
         let edge: Vec<[f64; 3]> = vec![[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 4.0, 0.0]];
         let off: Vec<[f64; 3]> = vec![[2.0, -0.25, 0.0], [5.0, 0.0, 0.0], [3.0, -1.0, 0.0]];
         let input: Vec<&[[f64; 3]]> = vec![&edge, &off];
-        let mut snapped: Vec<Vec<GridPoint>> = vec![
+        let snapped: Vec<Vec<GridPoint>> = vec![
             vec![gp(0, 0, 0), gp(16, 0, 0), gp(0, 16, 0)],
             vec![gp(8, -1, 0), gp(20, 0, 0), gp(12, -4, 0)],
         ];
-        let before = snapped.clone();
-        weld_t_junctions(&input, &mut snapped, 1e-3 * 0.25);
-        assert_eq!(snapped, before);
+        let welds = weld_t_junctions(&input, &snapped, 1e-3 * 0.25);
+        assert!(welds.iter().flatten().all(Vec::is_empty));
     }
 }
