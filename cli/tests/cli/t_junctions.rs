@@ -5,6 +5,7 @@
 //! and a thin lit wedge across the shadow on the floor; welded (the corner
 //! made the big quad's too), the shadow is whole.
 
+use crate::area::floor_classes;
 use crate::{folder, umbra};
 use umbra::load_ply;
 
@@ -167,4 +168,95 @@ fn a_welded_face_has_no_sliver() {
     }
     // (The triangle took the corner, mostly off its plane or its edge.)
     assert!(welded >= 8, "{welded} of 16 cut");
+}
+
+/// A box's faces, the top cut in three strips and one side in two (their
+/// corners on the unsplit neighbours' edges), or whole.
+fn box_faces(split: bool) -> Vec<Vec<[f64; 3]>> {
+    let mut faces = vec![
+        vec![
+            [-1.0, -1.0, -1.0],
+            [-1.0, -1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+            [-1.0, 1.0, -1.0],
+        ],
+        vec![
+            [-1.0, -1.0, -1.0],
+            [1.0, -1.0, -1.0],
+            [1.0, -1.0, 1.0],
+            [-1.0, -1.0, 1.0],
+        ],
+        vec![
+            [-1.0, -1.0, -1.0],
+            [-1.0, 1.0, -1.0],
+            [1.0, 1.0, -1.0],
+            [1.0, -1.0, -1.0],
+        ],
+        vec![
+            [-1.0, -1.0, 1.0],
+            [1.0, -1.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [-1.0, 1.0, 1.0],
+        ],
+    ];
+    let (xs, ys): (&[f64], &[f64]) = if split {
+        (&[-1.0, -0.3, 0.4, 1.0], &[-1.0, 0.2, 1.0])
+    } else {
+        (&[-1.0, 1.0], &[-1.0, 1.0])
+    };
+    for w in xs.windows(2) {
+        faces.push(vec![
+            [w[0], 1.0, -1.0],
+            [w[0], 1.0, 1.0],
+            [w[1], 1.0, 1.0],
+            [w[1], 1.0, -1.0],
+        ]);
+    }
+    for w in ys.windows(2) {
+        faces.push(vec![
+            [1.0, w[0], -1.0],
+            [1.0, w[1], -1.0],
+            [1.0, w[1], 1.0],
+            [1.0, w[0], 1.0],
+        ]);
+    }
+    faces
+}
+
+fn box_scene(split: bool) -> String {
+    let faces: Vec<String> = box_faces(split).iter().map(|f| format!("{f:?}")).collect();
+    format!(
+        "[[object]]\nname = \"floor\"\npolygons = [[[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]]\n\n\
+         [[object]]\nname = \"box\"\npolygons = [{}]\ntranslate = [0.1, 1.5, -0.2]\n\
+         rotate_deg = [17, 33, -11]\nscale = [0.5, 0.4, 0.6]\n\n\
+         [[light]]\ntype = \"area\"\nvertices = [[-0.3, 4, -0.3], [0.3, 4, -0.3], [0.3, 4, 0.3], [-0.3, 4, 0.3]]\nintensity = 10\n",
+        faces.join(", ")
+    )
+}
+
+/// Welded, the box with faces split in strips is closed, and hides the
+/// light from the floor as the whole box does: its umbra is the body's,
+/// not the little each face hides alone (unwelded: 65 % of it). The welded
+/// corners lie up to half a grid step off their edges, and the body the
+/// box blocks as may be moved in by up to 64 grid steps (module
+/// `area_shadow::groups::solid`): about 2e-4 of this umbra's area.
+#[test]
+fn a_box_split_in_strips_shades_the_floor_as_the_whole_box() {
+    let dir = folder(&[
+        ("whole.toml", &box_scene(false)),
+        ("split.toml", &box_scene(true)),
+    ]);
+    for command in ["shadow", "dm"] {
+        let umbra_area = |name: &str| {
+            let run = umbra(dir.path(), &[command, name, "-o", "out.ply"]);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            floor_classes(&load_ply(&dir.path().join("out.ply")).unwrap())[2]
+        };
+        let (whole, split) = (umbra_area("whole.toml"), umbra_area("split.toml"));
+        assert!(whole > 2.0, "{command}: {whole}");
+        assert!(
+            split <= whole * (1.0 + 1e-9) && split >= whole * (1.0 - 2e-4),
+            "{command}: {split} vs {whole}"
+        );
+    }
 }
