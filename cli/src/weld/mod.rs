@@ -115,21 +115,21 @@ const MAX_BUCKETS: i64 = 512;
 
 impl Corners {
     fn new(input: &[&[[f64; 3]]], snapped: &[Vec<GridPoint>]) -> Self {
-        // Each corner of each face: (snapped, input, the input corners
-        // before and after it).
-        let mut all: Vec<(GridPoint, [f64; 3], [f64; 3], [f64; 3])> = input
+        // Each corner of each face: snapped, then input, with the input
+        // corners before and after it.
+        let mut all: Vec<(GridPoint, [[f64; 3]; 3])> = input
             .iter()
             .zip(snapped)
             .filter(|(raw, grid)| raw.len() == grid.len())
             .flat_map(|(raw, grid)| {
                 let n = raw.len();
-                (0..n).map(move |i| (grid[i], raw[i], raw[(i + n - 1) % n], raw[(i + 1) % n]))
+                (0..n).map(move |i| (grid[i], [raw[i], raw[(i + n - 1) % n], raw[(i + 1) % n]]))
             })
             .collect();
         all.sort_by_key(|x| x.0);
         let mut points: Vec<([f64; 3], GridPoint)> = Vec::new();
         let mut neighbours: Vec<Vec<[f64; 3]>> = Vec::new();
-        for (g, p, before, after) in all {
+        for (g, [p, before, after]) in all {
             if points.last().is_none_or(|last| last.1 != g) {
                 points.push((p, g));
                 neighbours.push(Vec::new());

@@ -4,29 +4,20 @@
 //! positive volume). Skipping the faces turned away from a light, as an
 //! outward closed surface allows, would light the inside box's far faces.
 
+use crate::t_junctions::box_faces;
 use crate::{folder, umbra};
 use umbra::load_ply;
 
 /// The faces of the cube `centre ± half`, counter-clockwise seen from
 /// outside, or reversed (`inward`).
 fn cube(centre: [f64; 3], half: f64, inward: bool) -> Vec<String> {
-    let corner = |i: usize| -> [f64; 3] {
-        std::array::from_fn(|k| centre[k] + if i >> k & 1 == 1 { half } else { -half })
-    };
-    // Corner indices (bit k: +half along axis k) of each face, wound
-    // counter-clockwise seen from outside.
-    let faces = [
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-    ];
-    faces
-        .iter()
-        .map(|f| {
-            let mut corners: Vec<[f64; 3]> = f.iter().map(|&i| corner(i)).collect();
+    box_faces(false)
+        .into_iter()
+        .map(|face| {
+            let mut corners: Vec<[f64; 3]> = face
+                .iter()
+                .map(|p| std::array::from_fn(|k| centre[k] + half * p[k]))
+                .collect();
             if inward {
                 corners.reverse();
             }

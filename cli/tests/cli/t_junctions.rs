@@ -170,9 +170,10 @@ fn a_welded_face_has_no_sliver() {
     assert!(welded >= 8, "{welded} of 16 cut");
 }
 
-/// A box's faces, the top cut in three strips and one side in two (their
-/// corners on the unsplit neighbours' edges), or whole.
-fn box_faces(split: bool) -> Vec<Vec<[f64; 3]>> {
+/// The faces of the box `[-1, 1]^3`, counter-clockwise seen from outside,
+/// the top cut in three strips and one side in two (their corners on the
+/// unsplit neighbours' edges), or whole.
+pub(crate) fn box_faces(split: bool) -> Vec<Vec<[f64; 3]>> {
     let mut faces = vec![
         vec![
             [-1.0, -1.0, -1.0],
