@@ -93,6 +93,7 @@ fn fan_out(t: [GridPoint; 3], sides: [Vec<GridPoint>; 3], out: &mut Vec<[GridPoi
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn gp(x: i64, y: i64, z: i64) -> GridPoint {
         GridPoint::new(x, y, z).unwrap()
@@ -169,6 +170,84 @@ mod tests {
                     .iter()
                     .any(|piece| (0..piece.len()).any(|i| piece.vertex_grid_point(i) == Some(*p)))
             );
+        }
+    }
+
+    /// Twice the area of the ring `points` seen from above (z).
+    fn twice_xy_area(points: &[GridPoint]) -> i64 {
+        (0..points.len())
+            .map(|i| {
+                let (a, b) = (points[i].to_i64(), points[(i + 1) % points.len()].to_i64());
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum()
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(300))]
+
+        /// A random convex face, near the plane z = x / 8 - y / 16, with
+        /// corners welded onto its edges a grid unit or so off them (at
+        /// least a tenth of the edge from its ends and from each other):
+        /// seen from above the pieces cover the ring once, every piece
+        /// keeps close to the face's plane (none facing back), and every
+        /// point of the ring is a corner of a piece.
+        #[test]
+        fn welded_pieces_cover_the_ring_and_keep_its_plane(
+            quad in any::<bool>(),
+            bumps in prop::collection::vec(-1i64..=1, 4),
+            spots in prop::collection::vec(prop::collection::vec((1u8..9, -1i64..=1, -1i64..=1, -1i64..=1), 0..3), 4),
+        ) {
+            let plane = |x: i64, y: i64, bump: i64| gp(x, y, x / 8 - y / 16 + bump);
+            let mut corners = vec![plane(0, 0, bumps[0]), plane(4000, 300, bumps[1]), plane(3700, 3900, bumps[2])];
+            if quad {
+                corners.push(plane(-200, 3500, bumps[3]));
+            }
+            let n = corners.len();
+            let inserted: Vec<Vec<GridPoint>> = (0..n)
+                .map(|i| {
+                    let (a, b) = (corners[i].to_i64(), corners[(i + 1) % n].to_i64());
+                    let mut tenths: Vec<_> = spots[i].clone();
+                    tenths.sort_by_key(|s| s.0);
+                    tenths.dedup_by_key(|s| s.0);
+                    tenths
+                        .iter()
+                        .map(|&(t, dx, dy, dz)| {
+                            let at = |k: usize| a[k] + (b[k] - a[k]) * i64::from(t) / 10;
+                            gp(at(0) + dx, at(1) + dy, at(2) + dz)
+                        })
+                        .collect()
+                })
+                .collect();
+            let pieces = welded_pieces(&corners, &inserted);
+            let ring: Vec<GridPoint> = corners
+                .iter()
+                .zip(&inserted)
+                .flat_map(|(c, on)| std::iter::once(*c).chain(on.iter().copied()))
+                .collect();
+            let covered: i64 = pieces
+                .iter()
+                .map(|piece| {
+                    let corners: Vec<GridPoint> =
+                        (0..piece.len()).map(|i| piece.vertex_grid_point(i).unwrap()).collect();
+                    twice_xy_area(&corners)
+                })
+                .sum();
+            prop_assert_eq!(covered, twice_xy_area(&ring));
+            for piece in &pieces {
+                let m = piece.support().normal().map(|c| c as f64);
+                // The face's normal is about (-1/8, 1/16, 1).
+                let face = [-0.125, 0.0625, 1.0];
+                let cos = (m[0] * face[0] + m[1] * face[1] + m[2] * face[2])
+                    / ((m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt()
+                        * (face[0] * face[0] + face[1] * face[1] + face[2] * face[2]).sqrt());
+                prop_assert!(cos > 0.99, "{:?}", m);
+            }
+            for p in &ring {
+                prop_assert!(pieces
+                    .iter()
+                    .any(|piece| (0..piece.len()).any(|i| piece.vertex_grid_point(i) == Some(*p))));
+            }
         }
     }
 }
