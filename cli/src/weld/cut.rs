@@ -21,11 +21,7 @@ pub fn welded_pieces(corners: &[GridPoint], inserted: &[Vec<GridPoint>]) -> Vec<
     if inserted.iter().all(Vec::is_empty) || inserted.len() != corners.len() {
         return convex_pieces(corners);
     }
-    let ring: Vec<GridPoint> = corners
-        .iter()
-        .zip(inserted)
-        .flat_map(|(c, on)| std::iter::once(*c).chain(on.iter().copied()))
-        .collect();
+    let ring = ring(corners, inserted);
     match ConvexPolygon::from_grid_points(&ring, 0) {
         Ok(piece) => return vec![piece],
         // Planarity is checked before convexity: the face is planar.
@@ -53,6 +49,15 @@ pub fn welded_pieces(corners: &[GridPoint], inserted: &[Vec<GridPoint>]) -> Vec<
     }
     out.into_iter()
         .filter_map(|t| ConvexPolygon::from_grid_points(&t, 0).ok())
+        .collect()
+}
+
+/// The face's corners with the welded ones in between, in order.
+fn ring(corners: &[GridPoint], inserted: &[Vec<GridPoint>]) -> Vec<GridPoint> {
+    corners
+        .iter()
+        .zip(inserted)
+        .flat_map(|(c, on)| std::iter::once(*c).chain(on.iter().copied()))
         .collect()
 }
 
@@ -135,29 +140,10 @@ mod tests {
         let inserted = [vec![], vec![gp(500, 501, 3)], vec![]];
         let pieces = welded_pieces(&corners, &inserted);
         // Seen from above (z), the pieces cover the ring once.
-        let twice_xy_area = |ring: &[GridPoint]| -> i64 {
-            (0..ring.len())
-                .map(|i| {
-                    let (a, b) = (ring[i].to_i64(), ring[(i + 1) % ring.len()].to_i64());
-                    a[0] * b[1] - a[1] * b[0]
-                })
-                .sum()
-        };
-        let ring: Vec<GridPoint> = corners
-            .iter()
-            .zip(&inserted)
-            .flat_map(|(c, on)| std::iter::once(*c).chain(on.iter().copied()))
-            .collect();
-        let covered: i64 = pieces
-            .iter()
-            .map(|piece| {
-                let corners: Vec<GridPoint> = (0..piece.len())
-                    .map(|i| piece.vertex_grid_point(i).unwrap())
-                    .collect();
-                twice_xy_area(&corners)
-            })
-            .sum();
-        assert_eq!(covered, twice_xy_area(&ring));
+        assert_eq!(
+            twice_xy_covered(&pieces),
+            twice_xy_area(&ring(&corners, &inserted))
+        );
         for piece in &pieces {
             let n = piece.support().normal().map(|c| c as f64);
             let cos = n[2] / (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
@@ -199,6 +185,19 @@ mod tests {
             .sum()
     }
 
+    /// Twice the area the pieces cover seen from above, counted with sign.
+    fn twice_xy_covered(pieces: &[ConvexPolygon]) -> i64 {
+        pieces
+            .iter()
+            .map(|piece| {
+                let corners: Vec<GridPoint> = (0..piece.len())
+                    .map(|i| piece.vertex_grid_point(i).unwrap())
+                    .collect();
+                twice_xy_area(&corners)
+            })
+            .sum()
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(300))]
 
@@ -236,20 +235,8 @@ mod tests {
                 })
                 .collect();
             let pieces = welded_pieces(&corners, &inserted);
-            let ring: Vec<GridPoint> = corners
-                .iter()
-                .zip(&inserted)
-                .flat_map(|(c, on)| std::iter::once(*c).chain(on.iter().copied()))
-                .collect();
-            let covered: i64 = pieces
-                .iter()
-                .map(|piece| {
-                    let corners: Vec<GridPoint> =
-                        (0..piece.len()).map(|i| piece.vertex_grid_point(i).unwrap()).collect();
-                    twice_xy_area(&corners)
-                })
-                .sum();
-            prop_assert_eq!(covered, twice_xy_area(&ring));
+            let ring = ring(&corners, &inserted);
+            prop_assert_eq!(twice_xy_covered(&pieces), twice_xy_area(&ring));
             for piece in &pieces {
                 let m = piece.support().normal().map(|c| c as f64);
                 // The face's normal is about (-1/8, 1/16, 1).
