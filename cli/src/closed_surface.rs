@@ -1,5 +1,6 @@
 //! Which objects are closed surfaces bounding their inside, so that their
-//! faces turned away from a light may skip the shadow pass.
+//! faces turned away from a light may skip the shadow pass, and which
+//! faces face the inside of a closed surface wound inwards.
 //!
 //! From a light outside such a surface, a segment that reaches one of its
 //! faces turned away from the light has crossed a face turned towards it
@@ -7,6 +8,14 @@
 //! more than every edge being shared: the faces must face *out*. A closed
 //! box wound inwards has its faces towards the light turned away by their
 //! planes, and skipping those would light its inside.
+//!
+//! The faces of such a box face its inside: from a point just in front of
+//! one, every segment to a light outside leaves the box through another of
+//! its faces. They see none of any light; the shadow passes would find that
+//! only where single occluders or convex bodies prove it (a box the grid
+//! bends is no exact body), so the pipelines mark them in umbra outright.
+//! (Both rules take each closed part to bound its inside once, as a solid's
+//! surface does.)
 
 use std::collections::HashMap;
 
@@ -18,13 +27,25 @@ use crate::scene::Scene;
 use crate::shadow::piece_objects;
 use area_shadow::AreaSource;
 
-/// Per piece: casts, two-sided, and whether its object is a closed surface
-/// facing out: every piece's corners on the grid, every directed edge
-/// between them matched by its reverse exactly once, each connected part
-/// enclosing a positive volume, and every light clear of it.
-pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
+/// What each piece's object is as a surface.
+pub(crate) struct Surfaces {
+    /// Per piece: casts, two-sided, and whether its object is a closed
+    /// surface facing out: every piece's corners on the grid, every
+    /// directed edge between them matched by its reverse exactly once, each
+    /// connected part enclosing a positive volume, and every light clear
+    /// of it.
+    pub flags: Vec<PieceFlags>,
+    /// Per piece: one-sided, of such an object but for its part enclosing a
+    /// negative volume (wound inwards): its front faces the part's inside,
+    /// which no light outside reaches.
+    pub facing_inside: Vec<bool>,
+}
+
+/// The pieces' objects as surfaces (see [`Surfaces`]).
+pub(crate) fn surfaces(scene: &Scene, pieces: &Pieces) -> Surfaces {
     let objects = piece_objects(scene, pieces);
     let object_of = |k: usize| objects[k] as usize;
+    // Objects that are no closed surface, or that some light shines into.
     let mut open = vec![false; scene.objects.len()];
     // Each directed edge with the piece it bounds, `None` once two do.
     let mut edges: HashMap<(usize, GridPoint, GridPoint), Option<usize>> = HashMap::new();
@@ -48,22 +69,6 @@ pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
             _ => open[object] = true,
         }
     }
-    // Six times the volume each connected part encloses (exact: grid
-    // coordinates below 2^31, so each term is below 2^95).
-    let mut volumes: HashMap<usize, i128> = HashMap::new();
-    for (k, piece) in pieces.polygons.iter().enumerate() {
-        if open[object_of(k)] {
-            continue;
-        }
-        if let Some(corners) = grid_corners(piece) {
-            *volumes.entry(parts.root(k)).or_insert(0) += six_volume_under(&corners);
-        }
-    }
-    for (&root, &volume) in &volumes {
-        if volume <= 0 {
-            open[object_of(root)] = true;
-        }
-    }
     // A closed surface a light may shine into (the light on it or inside
     // it) is taken as open: there its faces turned away from the light
     // hide what its faces towards the light do not.
@@ -80,13 +85,39 @@ pub(crate) fn piece_flags(scene: &Scene, pieces: &Pieces) -> Vec<PieceFlags> {
             open[object] = true;
         }
     }
-    (0..pieces.polygons.len())
-        .map(|k| PieceFlags {
-            casts_shadows: pieces.casts_shadows[k],
-            two_sided: pieces.two_sided[k],
-            closed_surface: !open[object_of(k)],
-        })
-        .collect()
+    // Six times the volume each connected part encloses (exact: grid
+    // coordinates below 2^31, so each term is below 2^95).
+    let mut volumes: HashMap<usize, i128> = HashMap::new();
+    for (k, piece) in pieces.polygons.iter().enumerate() {
+        if open[object_of(k)] {
+            continue;
+        }
+        if let Some(corners) = grid_corners(piece) {
+            *volumes.entry(parts.root(k)).or_insert(0) += six_volume_under(&corners);
+        }
+    }
+    let volume_of: Vec<Option<i128>> = (0..pieces.polygons.len())
+        .map(|k| volumes.get(&parts.root(k)).copied())
+        .collect();
+    // Faces out: every part of the object encloses a positive volume.
+    let mut faces_out: Vec<bool> = open.iter().map(|&o| !o).collect();
+    for (k, volume) in volume_of.iter().enumerate() {
+        if volume.is_some_and(|v| v <= 0) {
+            faces_out[object_of(k)] = false;
+        }
+    }
+    Surfaces {
+        flags: (0..pieces.polygons.len())
+            .map(|k| PieceFlags {
+                casts_shadows: pieces.casts_shadows[k],
+                two_sided: pieces.two_sided[k],
+                closed_surface: faces_out[object_of(k)],
+            })
+            .collect(),
+        facing_inside: (0..pieces.polygons.len())
+            .map(|k| !pieces.two_sided[k] && volume_of[k].is_some_and(|v| v < 0))
+            .collect(),
+    }
 }
 
 /// The piece's corners, counter-clockwise seen from its front, when all

@@ -14,7 +14,7 @@ use slotmap::SecondaryMap;
 use svbsp::{Fragment, PieceFlags};
 
 use crate::atomic::Outputs;
-use crate::closed_surface::piece_flags;
+use crate::closed_surface::{Surfaces, surfaces};
 use crate::dark::{Occluders, proven_dark_past};
 use crate::decompose::{Pieces, SnappedLight};
 use crate::dm_lights::{LightMap, cut_by_other_lights};
@@ -149,6 +149,9 @@ pub struct DmRun {
     /// Where the DM (area) lights stand among the scene's, and the point
     /// and directional lights cut into the cells at output.
     pub(crate) light_map: LightMap,
+    /// Per piece, whether it faces the inside of a closed surface wound
+    /// inwards: in umbra for every light ([`crate::closed_surface`]).
+    pub(crate) facing_inside: Vec<bool>,
 }
 
 /// The DM lights: the scene's area lights, in order (the others are cut
@@ -171,8 +174,7 @@ fn area_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<DmLight>> {
 }
 
 /// The pieces of each scene object, with the object's flags.
-fn grouped(scene: &Scene, pieces: &Pieces) -> Vec<(Vec<usize>, PieceFlags)> {
-    let flags = piece_flags(scene, pieces);
+fn grouped(scene: &Scene, pieces: &Pieces, flags: &[PieceFlags]) -> Vec<(Vec<usize>, PieceFlags)> {
     let object_of: Vec<usize> = scene.input_polygons().map(|(o, _)| o).collect();
     let mut out: Vec<(Vec<usize>, PieceFlags)> = scene
         .objects
@@ -212,28 +214,42 @@ pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Re
     let pieces = Pieces::from_scene_moving(scene, lengths)?;
     let lights = area_lights(scene, &pieces)?;
     let light_map = LightMap::of(scene, &pieces)?;
-    let groups = grouped(scene, &pieces);
+    let Surfaces {
+        flags,
+        facing_inside,
+    } = surfaces(scene, &pieces);
+    let groups = grouped(scene, &pieces, &flags);
     let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = groups
         .iter()
         .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
         .collect();
     let fresh = FreshDm::build(lights, objects, options)?;
     let groups = groups.into_iter().map(|g| g.0).collect();
-    Ok(DmRun::assemble(pieces, fresh, groups, light_map, started))
+    Ok(DmRun::assemble(
+        pieces,
+        fresh,
+        groups,
+        light_map,
+        facing_inside,
+        started,
+    ))
 }
 
 impl DmRun {
     /// The run of `fresh` (built from `pieces`, object `k` of the pieces
-    /// `groups[k]`), its figures timed from `started`.
+    /// `groups[k]`; `facing_inside` by piece), its figures timed from
+    /// `started`.
     fn assemble(
         pieces: Pieces,
         fresh: FreshDm,
         groups: Vec<Vec<usize>>,
         light_map: LightMap,
+        facing_inside: Vec<bool>,
         started: Instant,
     ) -> Self {
         let mut run = DmRun {
             light_map,
+            facing_inside,
             pieces,
             dm: fresh.dm,
             objects: fresh.ids.into_iter().zip(groups).collect(),
@@ -387,6 +403,8 @@ impl DmRun {
         };
         let lights = self.dm.lights().len();
         let two_sided = self.pieces.two_sided[k];
+        // Facing the inside of a closed surface wound inwards: no light.
+        let inside = self.facing_inside.get(k).copied().unwrap_or(false);
         let mut index: SecondaryMap<VertexKey, u32> = SecondaryMap::new();
         // Faces to prove dark: face, region, lights, objects to look past.
         let mut candidates: Vec<(usize, ConvexPolygon, u32, Vec<u32>)> = Vec::new();
@@ -402,7 +420,11 @@ impl DmRun {
                     None => {
                         let slot = mesh.vertices.len() as u32;
                         let p = receiver.mesh().vertex(v).map(|x| x.position.to_f64());
-                        let e = self.dm.vertex_irradiance(piece, v).unwrap_or(0.0);
+                        let e = if inside {
+                            0.0
+                        } else {
+                            self.dm.vertex_irradiance(piece, v).unwrap_or(0.0)
+                        };
                         let p = self.pieces.grid.grid_to_world(p.unwrap_or([0.0; 3]));
                         mesh.vertices.push((p, e as f32));
                         index.insert(v, slot);
@@ -418,6 +440,10 @@ impl DmRun {
                     CellClass::Umbra => umbra_mask |= 1 << i,
                     CellClass::Penumbra => penumbra_mask |= 1 << i,
                 }
+            }
+            if inside {
+                (lit_mask, umbra_mask, penumbra_mask) =
+                    (0, lit_mask | umbra_mask | penumbra_mask, 0);
             }
             // Cells in a joint umbra: penumbra for the volumes, every corner
             // dark, and proven to see none of the light (below).
@@ -631,6 +657,7 @@ impl DmRun {
             fresh,
             groups,
             self.light_map.clone(),
+            self.facing_inside.clone(),
             started,
         ))
     }

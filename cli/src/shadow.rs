@@ -12,7 +12,7 @@ use bsp_core::{BuildOptions, ConvexPolygon};
 use rayon::prelude::*;
 use svbsp::{Fragment, LightSource};
 
-use crate::closed_surface::piece_flags;
+use crate::closed_surface::{Surfaces, surfaces};
 use crate::dark::Occluders;
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
@@ -79,7 +79,10 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     let started = Instant::now();
     let pieces = Pieces::from_scene(scene)?;
     let lights = scene_lights(scene, &pieces)?;
-    let flags = piece_flags(scene, &pieces);
+    let Surfaces {
+        flags,
+        facing_inside,
+    } = surfaces(scene, &pieces);
     let objects = piece_objects(scene, &pieces);
     let groups = ShadowGroups::of_objects(&pieces.polygons, &flags, &objects);
     let out = area_shadow::compute_shadows_with_groups(
@@ -110,6 +113,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
         .filter(|(_, l)| matches!(l, SceneLight::Area(_)))
         .fold(0_u32, |m, (i, _)| m | (1 << i));
     let mut fragments = out.fragments;
+    settle_facing_inside(&mut fragments, &facing_inside, lights.len());
     let extent = scene_extent(&pieces.polygons);
     if let Some(n) = options.grid.filter(|&n| n > 0) {
         let cell = (extent / f64::from(n)).ceil().max(2.0) as i64;
@@ -294,6 +298,27 @@ pub(crate) fn settle_beyond_range<'a>(
                 fragment.lit_mask &= !bit;
                 fragment.umbra_mask |= bit;
             }
+        }
+    }
+}
+
+/// Marks umbra, for every light, each fragment of a piece facing the inside
+/// of a closed surface wound inwards (`facing_inside`, by piece): it sees
+/// none of any light ([`crate::closed_surface`]).
+pub(crate) fn settle_facing_inside(
+    fragments: &mut [Fragment],
+    facing_inside: &[bool],
+    lights: usize,
+) {
+    let all = if lights >= 32 {
+        u32::MAX
+    } else {
+        (1 << lights) - 1
+    };
+    for fragment in fragments {
+        if facing_inside[fragment.polygon.source() as usize] {
+            fragment.lit_mask = 0;
+            fragment.umbra_mask = all;
         }
     }
 }
