@@ -35,9 +35,10 @@ pub(crate) struct Surfaces {
     /// connected part enclosing a positive volume, and every light clear
     /// of it.
     pub flags: Vec<PieceFlags>,
-    /// Per piece: one-sided, of such an object but for its part enclosing a
-    /// negative volume (wound inwards): its front faces the part's inside,
-    /// which no light outside reaches.
+    /// Per piece: one-sided and casting shadows, of such an object but for
+    /// its part enclosing a negative volume (wound inwards): its front
+    /// faces the part's inside, which no light outside reaches (the part's
+    /// other faces block it).
     pub facing_inside: Vec<bool>,
 }
 
@@ -115,7 +116,11 @@ pub(crate) fn surfaces(scene: &Scene, pieces: &Pieces) -> Surfaces {
             })
             .collect(),
         facing_inside: (0..pieces.polygons.len())
-            .map(|k| !pieces.two_sided[k] && volume_of[k].is_some_and(|v| v < 0))
+            .map(|k| {
+                pieces.casts_shadows[k]
+                    && !pieces.two_sided[k]
+                    && volume_of[k].is_some_and(|v| v < 0)
+            })
             .collect(),
     }
 }

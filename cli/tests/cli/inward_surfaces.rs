@@ -91,3 +91,25 @@ fn an_inward_box_sees_none_of_any_light() {
         }
     }
 }
+
+/// An inward box that casts no shadow blocks nothing: its faces towards a
+/// light (the bottom, facing up into it) see all of it.
+#[test]
+fn an_inward_box_that_casts_nothing_is_lit_inside() {
+    for (light, commands) in [(POINT, &["shadow"][..]), (AREA, &["shadow", "dm"][..])] {
+        let text = format!(
+            "[[object]]\nname = \"box\"\npolygons = [{}]\ncasts_shadows = false\nrotate_deg = [10, 20, 5]\n\n{light}\n",
+            cube([0.0, 2.0, 0.0], 1.0, true).join(", ")
+        );
+        let dir = folder(&[("scene.toml", &text)]);
+        for command in commands {
+            let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+            assert_eq!(run.code, 0, "{}", run.stderr);
+            let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+            assert!(
+                mesh.faces.iter().any(|f| f.lit_mask == 1),
+                "{command} {light}"
+            );
+        }
+    }
+}
