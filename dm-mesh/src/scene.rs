@@ -198,12 +198,13 @@ impl Piece {
                 || position.side(self.polygon.support()) == Side::On;
             return on.then(SmallVec::new);
         }
-        // Far off the body's box (beyond any rounding of the point's
-        // coordinates), the point is not on it: most points asked about
-        // lie in the body's umbra, away from it.
+        // Outside the body's box the point is not on it: most points asked
+        // about lie in the body's umbra, away from it. (A filter: `at` is
+        // within `coordinate_error` of the exact point, so a coordinate
+        // beyond the box by more than that is beyond it exactly.)
         let [lo, hi] = self.bounds;
         if (0..3).any(|a| {
-            let slack = 1e-9 * (1.0 + lo[a].abs().max(hi[a].abs()));
+            let slack = VertexPosition::coordinate_error(at[a]);
             at[a] < lo[a] - slack || at[a] > hi[a] + slack
         }) {
             return None;

@@ -56,12 +56,22 @@ impl VertexPosition {
         }
     }
 
-    /// Coordinates in grid units (for output only).
+    /// Coordinates in grid units (for output, or to filter a decision by
+    /// [`Self::coordinate_error`]).
     pub fn to_f64(&self) -> [f64; 3] {
         match self {
             VertexPosition::Grid(p) => p.to_f64(),
             VertexPosition::Implicit(p) => p.to_f64(),
         }
+    }
+
+    /// A bound on how far a coordinate `c` of [`Self::to_f64`] lies from the
+    /// exact one, in grid units, with room for the rounding of a
+    /// comparison against it: below `2^-20` when taken from the filter
+    /// data, else three roundings of the exact homogeneous coordinates'
+    /// quotient (`predicates::implicit_to_f64`), each half an ulp.
+    pub fn coordinate_error(c: f64) -> f64 {
+        1.0 / f64::from(1_u32 << 19) + c.abs() * 4.0 * f64::EPSILON
     }
 
     /// Whether both are the same point, exactly.

@@ -21,6 +21,17 @@ pub fn floor(half: i64) -> ConvexPolygon {
     ConvexPolygon::from_grid_points(&pts, 0).unwrap()
 }
 
+/// The rectangle `x[0]..x[1]` by `z[0]..z[1]` at height `y`, facing up.
+pub fn level_rect(x: [i64; 2], y: i64, z: [i64; 2]) -> ConvexPolygon {
+    let pts = [
+        gp(x[0], y, z[0]),
+        gp(x[0], y, z[1]),
+        gp(x[1], y, z[1]),
+        gp(x[1], y, z[0]),
+    ];
+    ConvexPolygon::from_grid_points(&pts, 0).unwrap()
+}
+
 /// A parallelogram light at height `h`, rising by `tilt` along x, facing
 /// down.
 pub fn light(x0: i64, z0: i64, w: i64, d: i64, h: i64, tilt: i64) -> AreaSource {

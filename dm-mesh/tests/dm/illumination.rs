@@ -1,7 +1,7 @@
 //! Vertex irradiance: the three cases against the visible part of the
 //! light past every occluder of the scene, and against Monte Carlo.
 
-use crate::common::{TestScene, cuboid, floor, gp, light, scene, translated};
+use crate::common::{TestScene, cuboid, floor, gp, level_rect, light, scene, translated};
 use crate::oracle::{hidden, interior_samples};
 use bsp_core::ConvexPolygon;
 use dm_mesh::{CellClass, DmScene};
@@ -265,16 +265,7 @@ fn a_vertex_on_a_piercing_wall_sees_past_it() {
         0,
     )
     .unwrap();
-    let plank = ConvexPolygon::from_grid_points(
-        &[
-            gp(10, 40, -30),
-            gp(10, 40, 30),
-            gp(40, 40, 30),
-            gp(40, 40, -30),
-        ],
-        0,
-    )
-    .unwrap();
+    let plank = level_rect([10, 40], 40, [-30, 30]);
     let t = TestScene {
         objects: vec![
             (vec![floor(300)], PieceFlags::default()),
@@ -307,16 +298,7 @@ fn a_vertex_on_a_piercing_wall_sees_past_it() {
 /// `illum` gives it past the casters that do not hold them.
 #[test]
 fn a_box_foot_sees_past_the_faces_through_it() {
-    let plank = ConvexPolygon::from_grid_points(
-        &[
-            gp(20, 100, -10),
-            gp(20, 100, 10),
-            gp(40, 100, 10),
-            gp(40, 100, -10),
-        ],
-        0,
-    )
-    .unwrap();
+    let plank = level_rect([20, 40], 100, [-10, 10]);
     let t = TestScene {
         objects: vec![
             (vec![floor(300)], PieceFlags::default()),
