@@ -22,6 +22,7 @@
 use bsp_core::{ConvexPolygon, Grid, GridPoint};
 
 use crate::error::{Error, Result};
+use crate::input_frame::InputFrames;
 use crate::scene::{LightKind, Scene};
 use crate::weld::{ON_EDGE, weld_t_junctions, welded_pieces};
 
@@ -51,6 +52,9 @@ pub struct Pieces {
     pub max_snap_distance: f64,
     /// The lights on the grid, in scene order.
     pub lights: Vec<SnappedLight>,
+    /// Per input polygon, how points of its pieces are put back onto it
+    /// for output.
+    pub frames: InputFrames,
 }
 
 /// A light placed on the grid.
@@ -107,6 +111,7 @@ impl Pieces {
             dropped: Vec::new(),
             max_snap_distance: 0.0,
             lights: Vec::with_capacity(scene.lights.len()),
+            frames: InputFrames::new(grid),
         };
         let mut index = 0_u32;
         for o in &scene.objects {
@@ -114,6 +119,7 @@ impl Pieces {
             for polygon in &o.polygons {
                 let (points, moved) = grid.snap_all(&polygon.vertices).map_err(grid_error)?;
                 out.max_snap_distance = out.max_snap_distance.max(moved);
+                out.frames.push(&polygon.vertices, &points);
                 snapped.push(points);
             }
             let input: Vec<&[[f64; 3]]> =

@@ -357,7 +357,9 @@ impl DmRun {
                 .zip(&parts)
                 .flat_map(|(&(k, piece), part)| self.cell_fragments(k, piece, part))
                 .collect();
-            return cut_by_other_lights(cells, &self.pieces, &flags, &groups, &self.light_map);
+            let (mesh, figures) =
+                cut_by_other_lights(cells, &self.pieces, &flags, &groups, &self.light_map)?;
+            return Ok((self.pieces.frames.place(mesh).0, figures));
         }
         let mut mesh = OutputMesh {
             vertices: Vec::with_capacity(parts.iter().map(|p| p.vertices.len()).sum()),
@@ -371,7 +373,7 @@ impl DmRun {
                 face
             }));
         }
-        Ok((mesh, Vec::new()))
+        Ok((self.pieces.frames.place(mesh).0, Vec::new()))
     }
 
     /// The cells of one receiver (`piece`, of scene piece `k`) as exact
@@ -625,6 +627,14 @@ impl DmRun {
             figures.update_seconds.push(started.elapsed().as_secs_f64());
             figures.reilluminated_vertices.push(illum.evaluated as u64);
             states.push(moved);
+        }
+        // The input polygons went `steps * by`, their pieces as rounded.
+        let offset = by.map(|x| grid.length_to_units(x * f64::from(steps)).round() as i64);
+        let mut sources: Vec<u32> = ks.iter().map(|&k| self.pieces.input_of[k]).collect();
+        sources.dedup();
+        for source in sources {
+            let way = by.map(|x| x * f64::from(steps));
+            self.pieces.frames.translate(source, offset, way);
         }
         for (s, moved) in (1..=steps).zip(states) {
             for (&k, p) in ks.iter().zip(moved) {

@@ -150,7 +150,13 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
 
     let illum_started = Instant::now();
     let (mesh, lit) = illuminated_mesh(&fragments, &conforming, &illuminator, &pieces);
-    let light_irradiance: Vec<f64> = lit.per_light;
+    let (mesh, origin) = pieces.frames.place(mesh);
+    let lights = illum_lights.len();
+    let light_irradiance: Vec<f64> = origin
+        .iter()
+        .flat_map(|&v| &lit.per_light[v as usize * lights..(v as usize + 1) * lights])
+        .copied()
+        .collect();
     let illum = illum_started.elapsed().as_secs_f64();
 
     let class_count = |i: usize, class: Class| -> u64 {

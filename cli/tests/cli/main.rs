@@ -10,6 +10,7 @@ mod demos;
 mod dm;
 mod dm_lights;
 mod errors;
+mod input_frames;
 mod inward_surfaces;
 mod joint_umbra;
 mod joints;

@@ -1,0 +1,201 @@
+//! Fragments tile their input polygon, not its snapped copy: a thin needle,
+//! a speck and turned quads (snapped to the grid, a needle 150 grid steps
+//! wide misses its area by 6e-4) keep their area to rounding, lie in their
+//! input plane and have their corners where the input has them, in
+//! `shadow`, `dm` and after `update` moves one.
+
+use proptest::prelude::*;
+use umbra::{OutputMesh, Scene, dm_scene, shadow_scene};
+
+/// An object's polygons, turned by `turn` degrees about x, y and z and
+/// moved to `at`, as scene-file text.
+fn object(name: &str, polygons: &[Vec<[f64; 3]>], turn: [f64; 3], at: [f64; 3]) -> String {
+    let polygons: Vec<String> = polygons
+        .iter()
+        .map(|p| {
+            let corners: Vec<String> = p
+                .iter()
+                .map(|c| format!("[{:?}, {:?}, {:?}]", c[0], c[1], c[2]))
+                .collect();
+            format!("[{}]", corners.join(", "))
+        })
+        .collect();
+    format!(
+        "[[object]]\nname = \"{name}\"\npolygons = [{}]\nrotate_deg = [{:?}, {:?}, {:?}]\n\
+         translate = [{:?}, {:?}, {:?}]\ntwo_sided = true\n\n",
+        polygons.join(", "),
+        turn[0],
+        turn[1],
+        turn[2],
+        at[0],
+        at[1],
+        at[2]
+    )
+}
+
+/// A floor, a needle of width `width`, a speck of size `speck`, a turned
+/// plate and a turned dart (a concave quad) over it; `light` is the
+/// light's table.
+fn scene(width: f64, speck: f64, turn: f64, light: &str) -> Scene {
+    let floor = vec![vec![
+        [-3.0, 0.0, -3.0],
+        [-3.0, 0.0, 3.0],
+        [3.0, 0.0, 3.0],
+        [3.0, 0.0, -3.0],
+    ]];
+    let needle = vec![vec![
+        [-1.0, 0.0, -width],
+        [-1.0, 0.0, width],
+        [1.0, 0.0, width],
+        [1.0, 0.0, -width],
+    ]];
+    let speck = vec![vec![[0.0, 0.0, 0.0], [speck, 0.0, 0.0], [0.0, 0.0, -speck]]];
+    let plate = vec![vec![
+        [-0.5, 0.0, -0.4],
+        [-0.5, 0.0, 0.4],
+        [0.5, 0.0, 0.4],
+        [0.5, 0.0, -0.4],
+    ]];
+    let dart = vec![vec![
+        [0.0, 0.0, 0.0],
+        [0.6, 0.0, 0.5],
+        [0.0, 0.0, -0.5],
+        [-0.6, 0.0, 0.5],
+    ]];
+    let text = [
+        object("floor", &floor, [0.0; 3], [0.0; 3]),
+        object(
+            "needle",
+            &needle,
+            [-37.6 + turn, -131.7, 131.8],
+            [-0.37, 0.72, -0.08],
+        ),
+        object(
+            "speck",
+            &speck,
+            [0.0, 39.7 + turn, 0.0],
+            [0.91, 0.44, -0.93],
+        ),
+        object("plate", &plate, [21.0, 33.0 + turn, 7.0], [0.3, 1.1, 0.2]),
+        object("dart", &dart, [-13.0 + turn, 71.0, 5.0], [-0.8, 0.9, 0.7]),
+        light.to_string(),
+    ]
+    .concat();
+    Scene::from_toml_str(&text, "frames.toml").unwrap()
+}
+
+const POINT: &str = "[[light]]\ntype = \"point\"\nposition = [0.4, 3.2, -0.2]\n";
+const AREA: &str = "[[light]]\ntype = \"area\"\n\
+                    vertices = [[1.15, 3.1, -0.15], [0.97, 3.17, 0.24], [0.66, 3.26, -0.1]]\n";
+
+fn newell(points: &[[f64; 3]]) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    for (i, a) in points.iter().enumerate() {
+        let b = points[(i + 1) % points.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    n
+}
+
+fn length(v: [f64; 3]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Checks every input polygon of `scene` against its fragments in `mesh`:
+/// areas add up to its area (relative 1e-9), corners lie in its plane
+/// (1e-12 of its size), and each of its corners is an output vertex.
+fn assert_on_input(scene: &Scene, mesh: &OutputMesh, what: &str) {
+    for (source, (_, polygon)) in scene.input_polygons().enumerate() {
+        let input = &polygon.vertices;
+        let normal = newell(input);
+        let area = length(normal) / 2.0;
+        let unit = normal.map(|x| x / (2.0 * area));
+        let size = (0..input.len())
+            .map(|i| length([0, 1, 2].map(|a| input[i][a] - input[(i + 1) % input.len()][a])))
+            .fold(0.0, f64::max);
+        let offset: f64 = (0..3).map(|a| unit[a] * input[0][a]).sum();
+        let faces: Vec<Vec<[f64; 3]>> = mesh
+            .faces
+            .iter()
+            .filter(|f| f.source as usize == source)
+            .map(|f| {
+                f.vertices
+                    .iter()
+                    .map(|&v| mesh.vertices[v as usize].0)
+                    .collect()
+            })
+            .collect();
+        let sum: f64 = faces.iter().map(|f| length(newell(f)) / 2.0).sum();
+        assert!(
+            (sum - area).abs() <= 1e-9 * area,
+            "{what}: polygon {source}: fragments add up to {sum:e}, the polygon is {area:e}"
+        );
+        for p in faces.iter().flatten() {
+            let off: f64 = (0..3).map(|a| unit[a] * p[a]).sum::<f64>() - offset;
+            assert!(
+                off.abs() <= 1e-12 * size.max(1.0),
+                "{what}: polygon {source}: {p:?} is {off:e} off its plane"
+            );
+        }
+        for corner in input {
+            assert!(
+                faces.iter().flatten().any(|p| p == corner),
+                "{what}: polygon {source}: no fragment has its corner {corner:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn thin_and_small_polygons_keep_their_area() {
+    for (light, name) in [(POINT, "point"), (AREA, "area")] {
+        let scene = scene(1.78e-5, 1.02e-4, 0.0, light);
+        let shadow = shadow_scene(&scene).unwrap();
+        assert_on_input(&scene, &shadow.mesh, &format!("shadow, {name} light"));
+    }
+    let scene = scene(1.78e-5, 1.02e-4, 0.0, AREA);
+    let dm = dm_scene(&scene).unwrap();
+    assert_on_input(&scene, &dm.mesh().unwrap(), "dm");
+}
+
+#[test]
+fn a_moved_object_keeps_its_area_where_it_went() {
+    let at = scene(1.78e-5, 1.02e-4, 0.0, AREA);
+    let mut dm = dm_scene(&at).unwrap();
+    dm.move_steps(&at, "plate", [0.0123, -0.0456, 0.0789], 3, |_, _, _| {})
+        .unwrap();
+    // The scene with the plate where three steps took it.
+    let mut moved = at.clone();
+    let plate = moved
+        .objects
+        .iter_mut()
+        .find(|o| o.name == "plate")
+        .unwrap();
+    for p in &mut plate.polygons {
+        for v in &mut p.vertices {
+            *v = [
+                v[0] + 3.0 * 0.0123,
+                v[1] + 3.0 * -0.0456,
+                v[2] + 3.0 * 0.0789,
+            ];
+        }
+    }
+    assert_on_input(&moved, &dm.mesh().unwrap(), "update");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    #[test]
+    fn turned_polygons_keep_their_area(
+        width in 1e-6_f64..1e-2,
+        speck in 1e-5_f64..1e-2,
+        turn in -90.0_f64..90.0,
+    ) {
+        let scene = scene(width, speck, turn, AREA);
+        let shadow = shadow_scene(&scene).unwrap();
+        assert_on_input(&scene, &shadow.mesh, "shadow");
+    }
+}
