@@ -106,15 +106,24 @@ struct FreshDm {
 }
 
 impl FreshDm {
-    /// Builds and illuminates `objects` under `lights`, timing both.
+    /// Builds and illuminates `objects` under `lights`, timing both; light
+    /// falls on object `o`'s polygon `i` along `normals[o][i]`.
     fn build(
         lights: Vec<DmLight>,
         objects: Vec<(Vec<ConvexPolygon>, PieceFlags)>,
+        normals: &[Vec<[f64; 3]>],
         options: DmOptions,
     ) -> Result<Self> {
         let build_started = Instant::now();
         let (mut dm, ids) =
             DmScene::build_with(lights, objects, options).map_err(|e| Error::Dm(e.to_string()))?;
+        for (&id, normals) in ids.iter().zip(normals) {
+            let pieces = dm.object_pieces(id).unwrap_or_default().to_vec();
+            for (piece, &normal) in pieces.into_iter().zip(normals) {
+                dm.set_receiver_normal(piece, normal)
+                    .map_err(|e| Error::Dm(e.to_string()))?;
+            }
+        }
         let build_seconds = build_started.elapsed().as_secs_f64();
         let illum_started = Instant::now();
         let illum = dm.illuminate();
@@ -223,7 +232,8 @@ pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Re
         .iter()
         .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
         .collect();
-    let fresh = FreshDm::build(lights, objects, options)?;
+    let normals = normals_of(&pieces, groups.iter().map(|(ks, _)| ks));
+    let fresh = FreshDm::build(lights, objects, &normals, options)?;
     let groups = groups.into_iter().map(|g| g.0).collect();
     Ok(DmRun::assemble(
         pieces,
@@ -693,7 +703,13 @@ impl DmRun {
                 )
             })
             .collect();
-        FreshDm::build(self.dm.lights().to_vec(), objects, self.dm.options())
+        let normals = normals_of(&self.pieces, self.objects.iter().map(|(_, ks)| ks));
+        FreshDm::build(
+            self.dm.lights().to_vec(),
+            objects,
+            &normals,
+            self.dm.options(),
+        )
     }
 
     /// Recomputes the figures after updates (timings of the build kept).
@@ -715,6 +731,16 @@ impl DmRun {
         );
         self.stats.update = update;
     }
+}
+
+/// Per object (its pieces' indices), the normals light falls on.
+fn normals_of<'a>(
+    pieces: &Pieces,
+    objects: impl Iterator<Item = &'a Vec<usize>>,
+) -> Vec<Vec<[f64; 3]>> {
+    objects
+        .map(|ks| ks.iter().map(|&k| pieces.normals[k]).collect())
+        .collect()
 }
 
 fn translate(p: &ConvexPolygon, d: [i64; 3]) -> Option<ConvexPolygon> {

@@ -125,13 +125,7 @@ pub(crate) fn cut_by_other_lights(
     // Beyond a point light's range a cut fragment takes no part.
     settle_beyond_range(&mut fragments, map.others.iter().map(|(i, l)| (*i, l)));
     let (fragments, conforming) = conform_fragments(fragments, MAX_FACE_CORNERS);
-    let illuminator = Illuminator::new(
-        &map.illum,
-        &pieces.polygons,
-        &pieces.casts_shadows,
-        &pieces.two_sided,
-        &pieces.grid,
-    );
+    let illuminator = Illuminator::new(&map.illum, pieces);
     let (mesh, _) = illuminated_mesh(&fragments, &conforming, &illuminator, pieces);
     let figures = map
         .others

@@ -13,6 +13,8 @@ use illum::rayon::prelude::*;
 use illum::{FragmentClass, OccluderIndex, Sidedness, VertexPlan, VisiblePart, vertex_plan};
 use svbsp::Fragment;
 
+use crate::decompose::Pieces;
+
 /// A light as `illum` evaluates it.
 #[derive(Debug, Clone)]
 pub enum IllumLight {
@@ -31,6 +33,8 @@ pub struct Illuminator<'a> {
     pub lights: &'a [IllumLight],
     /// The pieces (grid units); fragment sources index them.
     pub pieces: &'a [ConvexPolygon],
+    /// Per piece, the unit normal light falls on (its input polygon's).
+    pub normals: &'a [[f64; 3]],
     /// Per piece: whether it receives on both sides.
     pub two_sided: &'a [bool],
     /// The grid, for world coordinates.
@@ -44,32 +48,29 @@ pub struct Illuminator<'a> {
 }
 
 impl<'a> Illuminator<'a> {
-    /// Sets up illumination; indexes the occluders when some light is an
-    /// area light.
-    pub fn new(
-        lights: &'a [IllumLight],
-        pieces: &'a [ConvexPolygon],
-        casts_shadows: &'a [bool],
-        two_sided: &'a [bool],
-        grid: &'a Grid,
-    ) -> Self {
+    /// Sets up illumination of `pieces` under `lights`; indexes the
+    /// occluders when some light is an area light.
+    pub fn new(lights: &'a [IllumLight], pieces: &'a Pieces) -> Self {
         let any_area = lights.iter().any(|l| matches!(l, IllumLight::Area(_)));
         let occluder_pieces: Vec<usize> = if any_area {
-            (0..pieces.len()).filter(|&k| casts_shadows[k]).collect()
+            (0..pieces.polygons.len())
+                .filter(|&k| pieces.casts_shadows[k])
+                .collect()
         } else {
             Vec::new()
         };
         let occluders = OccluderIndex::new(
             occluder_pieces
                 .iter()
-                .map(|&k| pieces[k].vertices_f64())
+                .map(|&k| pieces.polygons[k].vertices_f64())
                 .collect(),
         );
         Self {
             lights,
-            pieces,
-            two_sided,
-            grid,
+            pieces: &pieces.polygons,
+            normals: &pieces.normals,
+            two_sided: &pieces.two_sided,
+            grid: &pieces.grid,
             occluders,
             occluder_pieces,
         }
@@ -87,7 +88,7 @@ impl<'a> Illuminator<'a> {
     /// on piece `piece`, as `value` asks.
     fn value(&self, i: usize, value: Value, at: (&MeshPoint, [f64; 3]), piece: usize) -> f64 {
         let (exact, p) = at;
-        let normal = self.pieces[piece].support().unit_normal_f64();
+        let normal = self.normals[piece];
         let sidedness = self.sidedness(piece);
         match (&self.lights[i], value) {
             (_, Value::Zero) => 0.0,

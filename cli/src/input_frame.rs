@@ -244,29 +244,11 @@ impl PlaneMap {
     /// the two turn differently at some corner.
     fn new(from: &[[f64; 3]], to: &[[f64; 3]]) -> Option<Self> {
         let n = to.len();
-        let mut normal = [0.0; 3];
-        for i in 0..n {
-            let c = cross(to[i], to[(i + 1) % n]);
-            normal = [normal[0] + c[0], normal[1] + c[1], normal[2] + c[2]];
-        }
-        let length = norm(normal);
-        if !(length > 0.0 && length.is_finite()) {
-            return None;
-        }
-        let normal = normal.map(|x| x / length);
-        let centroid = to
-            .iter()
-            .fold([0.0; 3], |s, p| [s[0] + p[0], s[1] + p[1], s[2] + p[2]])
-            .map(|x| x / n as f64);
+        let normal = planar_normal(to)?;
+        let centroid = centroid(to);
         let size = (0..n)
             .map(|i| norm(sub(to[i], to[(i + 1) % n])))
             .fold(0.0, f64::max);
-        if to
-            .iter()
-            .any(|&p| dot(normal, sub(p, centroid)).abs() > PLANARITY * size)
-        {
-            return None;
-        }
         let k = (0..3).max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()))?;
         let (u, v) = ((k + 1) % 3, (k + 2) % 3);
         let from_origin = [from[0][u], from[0][v]];
@@ -341,6 +323,38 @@ impl PlaneMap {
             (self.offset - self.normal[self.u] * a - self.normal[self.v] * b) / self.normal[self.k];
         q
     }
+}
+
+/// The unit normal of a planar polygon (counter-clockwise seen from its
+/// front), `None` when it is degenerate or its corners stray from their
+/// mean plane by more than [`PLANARITY`] of its size.
+pub(crate) fn planar_normal(corners: &[[f64; 3]]) -> Option<[f64; 3]> {
+    let n = corners.len();
+    let mut normal = [0.0; 3];
+    for i in 0..n {
+        let c = cross(corners[i], corners[(i + 1) % n]);
+        normal = [normal[0] + c[0], normal[1] + c[1], normal[2] + c[2]];
+    }
+    let length = norm(normal);
+    if !(length > 0.0 && length.is_finite()) {
+        return None;
+    }
+    let normal = normal.map(|x| x / length);
+    let centroid = centroid(corners);
+    let size = (0..n)
+        .map(|i| norm(sub(corners[i], corners[(i + 1) % n])))
+        .fold(0.0, f64::max);
+    let planar = corners
+        .iter()
+        .all(|&p| dot(normal, sub(p, centroid)).abs() <= PLANARITY * size);
+    planar.then_some(normal)
+}
+
+fn centroid(points: &[[f64; 3]]) -> [f64; 3] {
+    points
+        .iter()
+        .fold([0.0; 3], |s, p| [s[0] + p[0], s[1] + p[1], s[2] + p[2]])
+        .map(|x| x / points.len() as f64)
 }
 
 type Matrix = [[f64; 3]; 3];

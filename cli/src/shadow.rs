@@ -98,13 +98,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
         message: e.to_string(),
     })?;
     let illum_lights = illum_lights(scene, &pieces)?;
-    let illuminator = Illuminator::new(
-        &illum_lights,
-        &pieces.polygons,
-        &pieces.casts_shadows,
-        &pieces.two_sided,
-        &pieces.grid,
-    );
+    let illuminator = Illuminator::new(&illum_lights, &pieces);
 
     let grid_started = Instant::now();
     let area_mask = lights

@@ -18,6 +18,12 @@ pub enum Error {
     /// The object handle names no object of the scene (removed already?).
     #[error("no such object (it was removed, or belongs to another scene)")]
     UnknownObject,
+    /// The piece handle names no receiver of the scene.
+    #[error("no such receiver (its object was moved or removed, or it belongs to another scene)")]
+    UnknownPiece,
+    /// A receiver normal must be finite and not zero.
+    #[error("a receiver normal must be finite and not zero")]
+    BadNormal,
     /// The light polygon is not usable for illumination.
     #[error("light {0}: {1}")]
     Light(usize, String),

@@ -29,6 +29,7 @@
 //! covering set changed are evaluated again.
 
 use crate::cell::Cell;
+use crate::error::Error;
 use crate::hash::KeySet;
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
 use crate::tree::ReceiverDm;
@@ -72,6 +73,9 @@ pub(crate) struct ReceiverIllum {
     /// Whether every vertex has been evaluated once.
     fresh: bool,
     values: SecondaryMap<VertexKey, VertexValue>,
+    /// The unit normal light falls on, when not the polygon's own
+    /// ([`DmScene::set_receiver_normal`]).
+    pub(crate) normal: Option<[f64; 3]>,
 }
 
 /// Figures of one [`DmScene::illuminate`] call.
@@ -224,6 +228,28 @@ impl IllumStats {
 }
 
 impl DmScene {
+    /// Sets the normal that light falls on at receiver `piece` in place of
+    /// its polygon's: the input polygon's, say, of which the polygon is a
+    /// copy snapped to the grid (a thin one's plane turns by up to a grid
+    /// step over its width). Only irradiance changes; the receiver's
+    /// values are computed anew at the next [`Self::illuminate`]. A move
+    /// keeps it for a polygon whose plane keeps its orientation.
+    ///
+    /// Errors: [`Error::UnknownPiece`] for no such receiver,
+    /// [`Error::BadNormal`] for a zero or non-finite `normal`.
+    pub fn set_receiver_normal(&mut self, piece: PieceId, normal: [f64; 3]) -> Result<(), Error> {
+        let length = normal.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(length > 0.0 && length.is_finite()) {
+            return Err(Error::BadNormal);
+        }
+        let state = self.illum.get_mut(piece).ok_or(Error::UnknownPiece)?;
+        state.normal = Some(normal.map(|x| x / length));
+        state.values.clear();
+        state.fresh = false;
+        self.unlit.insert(piece);
+        Ok(())
+    }
+
     /// Computes the irradiance at the vertices of every receiver changed
     /// since the last call (all of them the first time), keeping the value
     /// of every vertex whose covering occluders did not change. Receivers
@@ -346,7 +372,9 @@ pub(crate) fn illuminate_receiver(
     }
     let dm = &*dm;
     let piece = &pieces[r];
-    let normal = piece.polygon.support().unit_normal_f64();
+    let normal = state
+        .normal
+        .unwrap_or_else(|| piece.polygon.support().unit_normal_f64());
     let sided = if piece.flags.two_sided {
         Sidedness::TwoSided
     } else {

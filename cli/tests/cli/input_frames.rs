@@ -199,3 +199,102 @@ proptest! {
         assert_on_input(&scene, &shadow.mesh, "shadow");
     }
 }
+
+/// Irradiance from a polygon light of radiance `radiance` at `p` on a
+/// two-sided receiver of unit normal `n`: Lambert's contour integral,
+/// (1/2) sum of each edge's angle times the cosine between its plane
+/// through `p` and the receiver's.
+fn polygon_light(vertices: &[[f64; 3]], radiance: f64, p: [f64; 3], n: [f64; 3]) -> f64 {
+    let unit = |v: [f64; 3]| v.map(|x| x / length(v));
+    let rel: Vec<[f64; 3]> = vertices
+        .iter()
+        .map(|v| unit([0, 1, 2].map(|a| v[a] - p[a])))
+        .collect();
+    let mut sum = 0.0;
+    for i in 0..rel.len() {
+        let (a, b) = (rel[i], rel[(i + 1) % rel.len()]);
+        let c = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        let angle = (0..3)
+            .map(|k| a[k] * b[k])
+            .sum::<f64>()
+            .clamp(-1.0, 1.0)
+            .acos();
+        sum += angle * (0..3).map(|k| unit(c)[k] * n[k]).sum::<f64>();
+    }
+    (radiance * sum / 2.0).abs()
+}
+
+#[test]
+fn a_needle_is_lit_along_its_input_normal() {
+    // Its snapped copy, 8 grid steps wide, is turned by about a degree.
+    let needle = vec![vec![
+        [-1.0, 0.0, -8e-7],
+        [-1.0, 0.0, 8e-7],
+        [1.0, 0.0, 8e-7],
+        [1.0, 0.0, -8e-7],
+    ]];
+    let floor = vec![vec![
+        [-3.0, 0.0, -3.0],
+        [-3.0, 0.0, 3.0],
+        [3.0, 0.0, 3.0],
+        [3.0, 0.0, -3.0],
+    ]];
+    let light = [[0.4, 3.2, -0.2], [0.9, 3.3, -0.1], [0.6, 3.25, 0.4]];
+    let text = [
+        object("floor", &floor, [0.0; 3], [0.0; 3]),
+        object(
+            "needle",
+            &needle,
+            [-37.6, -131.7, 131.8],
+            [-0.37, 0.72, -0.08],
+        ),
+    ]
+    .concat();
+    let point = format!("{text}{POINT}intensity = 2.0\n");
+    let area = format!(
+        "{text}[[light]]\ntype = \"area\"\nintensity = 1.5\nvertices = [{}]\n",
+        light
+            .map(|v| format!("[{:?}, {:?}, {:?}]", v[0], v[1], v[2]))
+            .join(", ")
+    );
+    let point = Scene::from_toml_str(&point, "point.toml").unwrap();
+    let area = Scene::from_toml_str(&area, "area.toml").unwrap();
+    let input = &point.objects[1].polygons[0].vertices;
+    let normal = newell(input).map(|x| x / length(newell(input)));
+    let dot = |a: [f64; 3], b: [f64; 3]| (0..3).map(|k| a[k] * b[k]).sum::<f64>();
+    let check = |mesh: &OutputMesh, expected: &dyn Fn([f64; 3]) -> f64, what: &str| {
+        let mut seen = 0;
+        for face in mesh.faces.iter().filter(|f| f.source == 1) {
+            for &v in &face.vertices {
+                let (p, e) = mesh.vertices[v as usize];
+                let want = expected(p);
+                assert!(
+                    (f64::from(e) - want).abs() <= 1e-5 * want,
+                    "{what}: {e} at {p:?}, expected {want}"
+                );
+                seen += 1;
+            }
+        }
+        assert!(seen >= 4, "{what}: the needle has {seen} vertices");
+    };
+    let at_point = |p: [f64; 3]| {
+        let d = [0.4 - p[0], 3.2 - p[1], -0.2 - p[2]];
+        2.0 * dot(d, normal).abs() / length(d).powi(3)
+    };
+    check(
+        &shadow_scene(&point).unwrap().mesh,
+        &at_point,
+        "shadow, point light",
+    );
+    let at_area = |p: [f64; 3]| polygon_light(&light, 1.5, p, normal);
+    check(
+        &shadow_scene(&area).unwrap().mesh,
+        &at_area,
+        "shadow, area light",
+    );
+    check(&dm_scene(&area).unwrap().mesh().unwrap(), &at_area, "dm");
+}

@@ -370,11 +370,13 @@ impl DmScene {
         polygons: Option<(Vec<ConvexPolygon>, PieceFlags)>,
     ) -> Result<(), Error> {
         let mut seeds = self.touching(id);
+        let normals = self.receiver_normals(id);
         let mut gone = self.take(id)?;
         let mut added = match polygons {
             Some((polygons, flags)) => self.attach(id, polygons, flags)?,
             None => Vec::new(),
         };
+        self.keep_receiver_normals(&normals, &added);
         seeds.insert(id);
         let (joined, parted) = self.reconcile_joints(&seeds);
         gone.extend(parted);
@@ -384,6 +386,41 @@ impl DmScene {
         let insertions = self.insertions(&added);
         self.apply(removals, insertions, &left);
         Ok(())
+    }
+
+    /// The receiver normals set on an object's polygons, in order, with
+    /// their planes' normals.
+    fn receiver_normals(&self, id: ObjectId) -> Vec<([i64; 3], Option<[f64; 3]>)> {
+        let Some(object) = self.objects.get(id) else {
+            return Vec::new();
+        };
+        object
+            .pieces
+            .iter()
+            .map(|&p| {
+                let normal = self.illum.get(p).and_then(|s| s.normal);
+                (self.pieces[p].polygon.support().normal(), normal)
+            })
+            .collect()
+    }
+
+    /// Gives the new polygons (leading `added`) the receiver normals
+    /// their predecessors had, where the plane kept its orientation.
+    fn keep_receiver_normals(
+        &mut self,
+        normals: &[([i64; 3], Option<[f64; 3]>)],
+        added: &[PieceId],
+    ) {
+        for (&(plane, normal), &p) in normals.iter().zip(added) {
+            let (Some(normal), Some(piece)) = (normal, self.pieces.get(p)) else {
+                continue;
+            };
+            if piece.kind == PieceKind::Polygon && piece.polygon.support().normal() == plane {
+                if let Some(state) = self.illum.get_mut(p) {
+                    state.normal = Some(normal);
+                }
+            }
+        }
     }
 
     /// Takes an object's pieces from it (polygons, bodies and the joint

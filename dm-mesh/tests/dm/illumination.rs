@@ -336,3 +336,85 @@ fn a_box_foot_sees_past_the_faces_through_it() {
         .collect();
     assert!(foot.iter().any(|&e| e > 0.0), "{foot:?}");
 }
+
+/// The normal set on a receiver is the one light falls on (the light's
+/// own irradiance at each vertex a plank leaves unoccluded, along that
+/// normal), kept when the receiver moves parallel to itself and dropped
+/// when its plane turns; bad normals and gone receivers are errors.
+#[test]
+fn a_receiver_normal_set_is_what_light_falls_on() {
+    let area = light(-20, -20, 40, 40, 100, 0);
+    let corners: Vec<[f64; 3]> = area.vertices().map(|g| g.to_f64()).collect();
+    let own_light = illum::AreaLight::new(&corners, 1.0).unwrap();
+    let plank = level_rect([-10, 10], 50, [-3, 3]);
+    let flags = PieceFlags {
+        casts_shadows: true,
+        ..PieceFlags::default()
+    };
+    let objects = vec![(vec![floor(200)], flags), (vec![plank], flags)];
+    let dm_light = dm_mesh::DmLight::new(area.clone(), 1.0).unwrap();
+    let (mut scene, ids) = DmScene::build(vec![dm_light], objects).unwrap();
+    let tilted = [0.2, 1.0, 0.1].map(|x: f64| x / 1.05_f64.sqrt());
+    let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+    scene
+        .set_receiver_normal(floor_piece, [0.4, 2.0, 0.2])
+        .unwrap();
+    // Vertices the plank leaves unoccluded get the whole light along
+    // `normal`; returns how many there were.
+    let check = |scene: &DmScene, normal: [f64; 3]| -> usize {
+        let piece = scene.object_pieces(ids[0]).unwrap()[0];
+        let dm = scene.receiver(piece).unwrap();
+        let mut free = 0;
+        for (f, _) in dm.cells() {
+            for v in dm.mesh().face_vertices(f) {
+                let p = dm.mesh().vertex(v).unwrap().position.to_f64();
+                let whole = own_light.irradiance(p, normal, Sidedness::OneSided);
+                let got = scene.vertex_irradiance(piece, v).unwrap();
+                if (got - whole).abs() <= 1e-9 * whole {
+                    free += 1;
+                } else {
+                    // Only the plank's shadow may take light away.
+                    assert!(got < whole, "{got} above the whole light {whole} at {p:?}");
+                }
+            }
+        }
+        free
+    };
+    scene.illuminate();
+    assert!(check(&scene, tilted) >= 4);
+    // Moved parallel to itself (the floor down by 1): the normal stays.
+    let down = translated(&floor(200), [0, -1, 0]);
+    scene.move_object(ids[0], vec![down]).unwrap();
+    scene.illuminate();
+    assert!(check(&scene, tilted) >= 4);
+    // Turned (a floor tilted along x): its own normal again.
+    let turned = ConvexPolygon::from_grid_points(
+        &[
+            gp(-200, -20, 200),
+            gp(200, 20, 200),
+            gp(200, 20, -200),
+            gp(-200, -20, -200),
+        ],
+        0,
+    )
+    .unwrap();
+    let own = turned.support().unit_normal_f64();
+    scene.move_object(ids[0], vec![turned]).unwrap();
+    scene.illuminate();
+    assert!(check(&scene, own) >= 4);
+    // Errors.
+    let piece = scene.object_pieces(ids[0]).unwrap()[0];
+    assert_eq!(
+        scene.set_receiver_normal(piece, [0.0; 3]),
+        Err(dm_mesh::Error::BadNormal)
+    );
+    assert_eq!(
+        scene.set_receiver_normal(piece, [f64::NAN, 1.0, 0.0]),
+        Err(dm_mesh::Error::BadNormal)
+    );
+    scene.remove_object(ids[0]).unwrap();
+    assert_eq!(
+        scene.set_receiver_normal(piece, [0.0, 1.0, 0.0]),
+        Err(dm_mesh::Error::UnknownPiece)
+    );
+}
