@@ -7,22 +7,29 @@
 //! miss its area by a visible fraction (a needle 150 grid steps wide, by
 //! 6e-4).
 //!
-//! Triangles and planar quadrilaterals are mapped back exactly, by the one
-//! projective map of the plane that takes each snapped corner to its input
-//! corner (an affine map for a triangle). It takes straight lines to
-//! straight lines, so fragments stay convex, keep their shared edges and
-//! their T-vertices on the edges they touch, and tile the input polygon
-//! exactly, up to the rounding of their coordinates; a fragment corner at a
-//! polygon corner is written as the input has it. The map works in the
-//! coordinate plane that the input polygon's plane projects onto best, so a
-//! snapped quadrilateral bent into two triangles maps onto the input plane
-//! as well. Other polygons (five corners or more, or not planar) are
-//! written as snapped.
+//! Triangles and planar quadrilaterals are mapped back exactly: each
+//! point of the snapped copy goes where a map taking every snapped corner
+//! to its input corner, and every snapped side onto the input side, takes
+//! it. A triangle's map is affine; a convex quad's bilinear (each point
+//! moves by an average of its corners' moves, however thin the quad: the
+//! projective map through the same corners, which would keep lines
+//! straight, moves the middle of a needle by hundreds of grid steps); a
+//! concave quad's projective, where it moves no point much farther than
+//! the corners. The fragments' outlines list every vertex on their sides
+//! (the meshes are conforming), so with each vertex placed on the input
+//! polygon they still share their sides, and tile the input polygon
+//! exactly, up to the rounding of their coordinates; a fragment corner at
+//! a polygon corner is written as the input has it. The map works in the
+//! coordinate plane that the input polygon's plane projects onto best, so
+//! a snapped quad bent into two triangles maps onto the input plane as
+//! well. A polygon whose map would turn a face over (a sliver thinner than
+//! its corners' moves), and other polygons (five corners or more, or not
+//! planar) are written as snapped.
 //!
 //! Nothing decided in the exact kernel changes: the map only moves where
 //! the output coordinates are written, by at most about a grid step.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use bsp_core::{Grid, GridPoint, VertexPosition};
 use smallvec::SmallVec;
@@ -59,7 +66,7 @@ struct Corner {
     input: [f64; 3],
 }
 
-/// A projective map between two nearly equal planar polygons, in the
+/// A map between two nearly equal planar polygons, worked in the
 /// coordinate plane of axes `u`, `v` (the input plane's normal is largest
 /// along the third axis `k`).
 #[derive(Debug, Clone)]
@@ -70,14 +77,29 @@ struct PlaneMap {
     /// Snapped corner 0 in the coordinate plane: points are mapped relative
     /// to it, so that the map's entries stay well scaled.
     from_origin: [f64; 2],
-    /// Input corner 0, where `from_origin` goes.
-    to_origin: [f64; 2],
-    /// Homogeneous 3 x 3 matrix, relative coordinates to relative
-    /// coordinates.
-    h: [[f64; 3]; 3],
+    /// Input corner 0.
+    to_origin: [f64; 3],
     /// The input plane `normal . x = offset` (unit normal).
     normal: [f64; 3],
     offset: f64,
+    kind: MapKind,
+}
+
+#[derive(Debug, Clone)]
+enum MapKind {
+    /// A projective map (affine for a triangle): homogeneous 3 x 3 matrix
+    /// from coordinates relative to `from_origin` to coordinates (`u`,
+    /// `v`) relative to `to_origin`.
+    Projective([[f64; 3]; 3]),
+    /// Bilinear interpolation of the input corners (relative to
+    /// `to_origin`) at the snapped quad's bilinear coordinates of a point:
+    /// each point moves by an average of the corners' moves, however thin
+    /// the quad (a projective map can move a thin quad's middle by many
+    /// grid steps).
+    Bilinear {
+        from: [[f64; 2]; 4],
+        to: [[f64; 3]; 4],
+    },
 }
 
 impl InputFrames {
@@ -121,13 +143,7 @@ impl InputFrames {
     /// vertex shared by faces of polygons that place it differently is
     /// written once for each place.
     pub fn place(&self, mesh: OutputMesh) -> (OutputMesh, Vec<u32>) {
-        let moves = |s: u32| {
-            self.frames
-                .get(s as usize)
-                .and_then(Option::as_deref)
-                .is_some_and(|f| f.map.is_some())
-        };
-        if !mesh.faces.iter().any(|f| moves(f.source)) {
+        if !mesh.faces.iter().any(|f| self.frame(f.source).is_some()) {
             let origin = (0..mesh.vertices.len() as u32).collect();
             return (mesh, origin);
         }
@@ -141,11 +157,22 @@ impl InputFrames {
         // polygons' places for it) in `others`.
         let mut first = vec![u32::MAX; vertices.len()];
         let mut others: HashMap<(u32, [u64; 3]), u32> = HashMap::new();
+        // Polygons whose map would turn a face over (a sliver thinner than
+        // its corners' moves) are written as snapped.
+        let turned: HashSet<u32> = faces
+            .iter()
+            .filter(|face| {
+                self.frame(face.source).is_some_and(|frame| {
+                    let corners = face.vertices.iter().map(|&v| vertices[v as usize].0);
+                    frame.turns_over(&self.grid, corners)
+                })
+            })
+            .map(|face| face.source)
+            .collect();
         for face in &mut faces {
             let frame = self
-                .frames
-                .get(face.source as usize)
-                .and_then(Option::as_deref);
+                .frame(face.source)
+                .filter(|_| !turned.contains(&face.source));
             for slot in &mut face.vertices {
                 let v = *slot;
                 let (p, e) = vertices[v as usize];
@@ -178,7 +205,39 @@ impl InputFrames {
     }
 }
 
+impl InputFrames {
+    /// The frame of input polygon `source`, if it moves points.
+    fn frame(&self, source: u32) -> Option<&Frame> {
+        self.frames
+            .get(source as usize)
+            .and_then(Option::as_deref)
+            .filter(|f| f.map.is_some())
+    }
+}
+
 impl Frame {
+    /// Whether placing the face of `corners` (world units) would reverse
+    /// its turning sense in the coordinate plane of the map.
+    fn turns_over(&self, grid: &Grid, corners: impl Iterator<Item = [f64; 3]>) -> bool {
+        let Some(map) = &self.map else {
+            return false;
+        };
+        let (mut before, mut after) = (0.0, 0.0);
+        let corners: SmallVec<[[f64; 3]; 8]> = corners.collect();
+        let origin = corners.first().copied().unwrap_or_default();
+        let placed_origin = self.place(grid, origin);
+        for (i, &p) in corners.iter().enumerate() {
+            let q = corners[(i + 1) % corners.len()];
+            let (a, b) = (map.flat(p), map.flat(q));
+            let o = map.flat(origin);
+            before += (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+            let (a, b) = (map.flat(self.place(grid, p)), map.flat(self.place(grid, q)));
+            let o = map.flat(placed_origin);
+            after += (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+        }
+        before != 0.0 && (after == 0.0 || (after > 0.0) != (before > 0.0))
+    }
+
     /// `None` for a polygon with no corners to keep.
     fn new(grid: &Grid, input: &[[f64; 3]], snapped: &[GridPoint]) -> Option<Self> {
         if input.len() != snapped.len() {
@@ -240,89 +299,177 @@ impl Frame {
 impl PlaneMap {
     /// The map taking the corners `from` (a snapped polygon, possibly bent
     /// along a diagonal) to `to` (a planar polygon), 3 or 4 of each in the
-    /// same order; `None` when `to` is not planar, either is degenerate or
-    /// the two turn differently at some corner.
+    /// same order: affine for a triangle, bilinear for a convex quad,
+    /// projective for a concave one. `None` when `to` is not planar, either
+    /// is degenerate, the two turn differently at some corner, or the map
+    /// would move some point much farther than the corners moved.
     fn new(from: &[[f64; 3]], to: &[[f64; 3]]) -> Option<Self> {
         let n = to.len();
         let normal = planar_normal(to)?;
-        let centroid = centroid(to);
         let size = (0..n)
             .map(|i| norm(sub(to[i], to[(i + 1) % n])))
             .fold(0.0, f64::max);
         let k = (0..3).max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()))?;
         let (u, v) = ((k + 1) % 3, (k + 2) % 3);
         let from_origin = [from[0][u], from[0][v]];
-        let to_origin = [to[0][u], to[0][v]];
         let flat = |p: &[f64; 3], o: [f64; 2]| [p[u] - o[0], p[v] - o[1]];
         let a: SmallVec<[[f64; 2]; 4]> = from.iter().map(|p| flat(p, from_origin)).collect();
-        let b: SmallVec<[[f64; 2]; 4]> = to.iter().map(|p| flat(p, to_origin)).collect();
+        let b: SmallVec<[[f64; 2]; 4]> = to.iter().map(|p| flat(p, [to[0][u], to[0][v]])).collect();
         // Same non-zero turn at every corner: the same shape, so the map
         // keeps the side each fragment faces.
         let turn = |q: &[[f64; 2]], i: usize| {
             let (p0, p1, p2) = (q[i], q[(i + 1) % n], q[(i + 2) % n]);
             (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p1[1] - p0[1]) * (p2[0] - p0[0])
         };
+        let turns: SmallVec<[f64; 4]> = (0..n).map(|i| turn(&b, i)).collect();
         if (0..n).any(|i| {
-            let (s, t) = (turn(&a, i), turn(&b, i));
+            let (s, t) = (turn(&a, i), turns[i]);
             s == 0.0 || t == 0.0 || (s > 0.0) != (t > 0.0)
         }) {
             return None;
         }
-        let h = if n == 3 {
-            mul(
+        let convex = turns.iter().all(|&t| (t > 0.0) == (turns[0] > 0.0));
+        let kind = if n == 3 {
+            MapKind::Projective(mul(
                 &affine_from_triangle(&b)?,
                 &inverse(&affine_from_triangle(&a)?)?,
-            )
+            ))
+        } else if convex {
+            let relative = |p: &[f64; 3]| sub(*p, to[0]);
+            MapKind::Bilinear {
+                from: [a[0], a[1], a[2], a[3]],
+                to: [
+                    relative(&to[0]),
+                    relative(&to[1]),
+                    relative(&to[2]),
+                    relative(&to[3]),
+                ],
+            }
         } else {
-            mul(&from_unit_square(&b)?, &inverse(&from_unit_square(&a)?)?)
+            MapKind::Projective(mul(
+                &from_unit_square(&b)?,
+                &inverse(&from_unit_square(&a)?)?,
+            ))
         };
         let map = Self {
             u,
             v,
             k,
             from_origin,
-            to_origin,
-            h,
+            to_origin: to[0],
             normal,
-            offset: dot(normal, centroid),
+            offset: dot(normal, centroid(to)),
+            kind,
         };
-        // The map must keep every corner's side of the line at infinity
-        // (then so does all of the polygon, their convex hull) and take it
-        // where it belongs.
-        let sign = map.h[2][2].signum();
+        // The corners land where they belong (a projective map keeps them
+        // on its side of the line at infinity: then all of the polygon,
+        // their convex hull, stays there), and the middle of the polygon
+        // and of its sides move about as far as the corners did.
+        let moved = from
+            .iter()
+            .zip(to)
+            .map(|(p, q)| norm(sub(*p, *q)))
+            .fold(0.0, f64::max);
+        let sign = map.weight(from[0]).signum();
         let lands = from.iter().zip(to).all(|(p, q)| {
-            let w = map.weight(*p);
-            w * sign > 0.0 && norm(sub(map.apply(*p), *q)) <= 1e-6 * size
+            map.weight(*p) * sign > 0.0 && norm(sub(map.apply(*p), *q)) <= 1e-6 * size
         });
-        lands.then_some(map)
+        let middles = (0..n)
+            .map(|i| mid(from[i], from[(i + 1) % n]))
+            .chain([centroid(from)]);
+        let tame = middles
+            .into_iter()
+            .all(|p| norm(sub(map.apply(p), p)) <= 4.0 * moved + 1e-9 * size);
+        (lands && tame).then_some(map)
     }
 
-    /// The homogeneous weight of the point `p`.
+    /// The homogeneous weight of the point `p` (1 for a bilinear map).
     fn weight(&self, p: [f64; 3]) -> f64 {
-        let x = [
+        match &self.kind {
+            MapKind::Projective(h) => {
+                let x = self.flat(p);
+                h[2][0] * x[0] + h[2][1] * x[1] + h[2][2]
+            }
+            MapKind::Bilinear { .. } => 1.0,
+        }
+    }
+
+    /// `p` in the coordinate plane, relative to `from_origin`.
+    fn flat(&self, p: [f64; 3]) -> [f64; 2] {
+        [
             p[self.u] - self.from_origin[0],
             p[self.v] - self.from_origin[1],
-        ];
-        self.h[2][0] * x[0] + self.h[2][1] * x[1] + self.h[2][2]
+        ]
     }
 
     /// The image of `p` on the input plane.
     fn apply(&self, p: [f64; 3]) -> [f64; 3] {
-        let x = [
-            p[self.u] - self.from_origin[0],
-            p[self.v] - self.from_origin[1],
-            1.0,
-        ];
-        let y = [0, 1, 2].map(|r| self.h[r][0] * x[0] + self.h[r][1] * x[1] + self.h[r][2] * x[2]);
-        let a = self.to_origin[0] + y[0] / y[2];
-        let b = self.to_origin[1] + y[1] / y[2];
-        let mut q = [0.0; 3];
-        q[self.u] = a;
-        q[self.v] = b;
-        q[self.k] =
-            (self.offset - self.normal[self.u] * a - self.normal[self.v] * b) / self.normal[self.k];
-        q
+        let x = self.flat(p);
+        match &self.kind {
+            MapKind::Projective(h) => {
+                let y = [0, 1, 2].map(|r| h[r][0] * x[0] + h[r][1] * x[1] + h[r][2]);
+                let a = self.to_origin[self.u] + y[0] / y[2];
+                let b = self.to_origin[self.v] + y[1] / y[2];
+                let mut q = [0.0; 3];
+                q[self.u] = a;
+                q[self.v] = b;
+                q[self.k] = (self.offset - self.normal[self.u] * a - self.normal[self.v] * b)
+                    / self.normal[self.k];
+                q
+            }
+            MapKind::Bilinear { from, to } => {
+                let [s, t] = bilinear_coordinates(from, x);
+                let q = [0, 1, 2].map(|c| {
+                    let (q0, q1, q2, q3) = (to[0][c], to[1][c], to[2][c], to[3][c]);
+                    q0 + s * (q1 - q0) + t * (q3 - q0) + s * t * (q0 - q1 + q2 - q3)
+                });
+                [0, 1, 2].map(|c| self.to_origin[c] + q[c])
+            }
+        }
     }
+}
+
+/// The coordinates `(s, t)` of `x` in the bilinear patch of the convex
+/// quad `q` (corner 0 at `(0, 0)`, 1 at `(1, 0)`, 2 at `(1, 1)`, 3 at
+/// `(0, 1)`): Newton's method from the parallelogram of corners 0, 1, 3,
+/// which a nearly parallelogram quad (a snapped one) all but is.
+fn bilinear_coordinates(q: &[[f64; 2]; 4], x: [f64; 2]) -> [f64; 2] {
+    let e = [q[1][0] - q[0][0], q[1][1] - q[0][1]];
+    let f = [q[3][0] - q[0][0], q[3][1] - q[0][1]];
+    let g = [
+        q[0][0] - q[1][0] + q[2][0] - q[3][0],
+        q[0][1] - q[1][1] + q[2][1] - q[3][1],
+    ];
+    let h = [x[0] - q[0][0], x[1] - q[0][1]];
+    let solve = |a: [f64; 2], b: [f64; 2], r: [f64; 2]| {
+        let det = a[0] * b[1] - a[1] * b[0];
+        [
+            (r[0] * b[1] - r[1] * b[0]) / det,
+            (a[0] * r[1] - a[1] * r[0]) / det,
+        ]
+    };
+    let mut st = solve(e, f, h);
+    for _ in 0..16 {
+        let [s, t] = st;
+        let residual = [0, 1].map(|c| e[c] * s + f[c] * t + g[c] * s * t - h[c]);
+        let step = solve(
+            [e[0] + g[0] * t, e[1] + g[1] * t],
+            [f[0] + g[0] * s, f[1] + g[1] * s],
+            residual,
+        );
+        if !(step[0].is_finite() && step[1].is_finite()) {
+            break;
+        }
+        st = [s - step[0], t - step[1]];
+        if step[0].abs() + step[1].abs() <= 4.0 * f64::EPSILON * (1.0 + s.abs() + t.abs()) {
+            break;
+        }
+    }
+    st
+}
+
+fn mid(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|c| 0.5 * (a[c] + b[c]))
 }
 
 /// The unit normal of a planar polygon (counter-clockwise seen from its
@@ -442,15 +589,116 @@ mod tests {
         [0, 1, 2].map(|k| a[k] + t * (b[k] - a[k]))
     }
 
+    /// The largest distance between `a[i]` and `b[i]`.
+    fn farthest(a: &[[f64; 3]], b: &[[f64; 3]]) -> f64 {
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| norm(sub(*p, *q)))
+            .fold(0.0, f64::max)
+    }
+
     #[test]
-    fn corners_go_to_their_input_corners_and_lines_stay_lines() {
+    fn a_convex_quad_maps_corner_to_corner_side_to_side_moving_no_point_farther() {
         let (input, snapped) = quads(1e-3);
         let map = PlaneMap::new(&snapped, &input).expect("a mappable quad");
+        assert!(matches!(map.kind, MapKind::Bilinear { .. }));
         for (s, p) in snapped.iter().zip(&input) {
             assert!(norm(sub(map.apply(*s), *p)) < 1e-14, "{s:?}");
         }
-        // Points along a snapped diagonal land on the input diagonal, in
-        // the input plane.
+        let normal = newell(&input);
+        let moved = farthest(&snapped, &input);
+        for i in 0..4 {
+            let (s0, s1) = (snapped[i], snapped[(i + 1) % 4]);
+            let (p0, p1) = (input[i], input[(i + 1) % 4]);
+            for t in [0.1, 0.37, 0.5, 0.93] {
+                // Along a side: onto the input side, at the same fraction.
+                let q = map.apply(between(s0, s1, t));
+                assert!(
+                    norm(sub(q, between(p0, p1, t))) < 1e-14,
+                    "side {i}, t = {t}"
+                );
+                // Inside: in the input plane, moved no farther than a corner.
+                let inner = between(between(s0, s1, t), snapped[(i + 2) % 4], 0.6);
+                let q = map.apply(inner);
+                assert!(dot(sub(q, input[0]), normal).abs() < 1e-14);
+                assert!(norm(sub(q, inner)) <= moved * (1.0 + 1e-9));
+            }
+        }
+    }
+
+    #[test]
+    fn a_needle_moves_its_middle_no_farther_than_its_corners() {
+        // 2000 long, 1 wide; the corners move by up to 0.005 across it.
+        let input = [
+            [0.0, 0.0, 0.0],
+            [2000.0, 0.0, 0.0],
+            [2000.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let moves = [
+            [0.004, -0.003, 0.0],
+            [-0.002, 0.005, 0.0],
+            [0.003, -0.004, 0.0],
+            [-0.005, 0.002, 0.0],
+        ];
+        let snapped: Vec<[f64; 3]> = input
+            .iter()
+            .zip(moves)
+            .map(|(p, m)| [0, 1, 2].map(|c| p[c] + m[c]))
+            .collect();
+        let map = PlaneMap::new(&snapped, &input).expect("a mappable needle");
+        let moved = farthest(&snapped, &input);
+        for t in [0.25, 0.5, 0.75] {
+            let p = between(
+                between(snapped[0], snapped[1], t),
+                between(snapped[3], snapped[2], t),
+                0.5,
+            );
+            assert!(
+                norm(sub(map.apply(p), p)) <= moved * (1.0 + 1e-9),
+                "t = {t}"
+            );
+        }
+        // The projective map through the same corners moves the middle by
+        // hundreds of times as far.
+        let flat = |q: &[[f64; 3]]| -> Vec<[f64; 2]> { q.iter().map(|p| [p[0], p[1]]).collect() };
+        let h = mul(
+            &from_unit_square(&flat(&input)).unwrap(),
+            &inverse(&from_unit_square(&flat(&snapped)).unwrap()).unwrap(),
+        );
+        let p = between(
+            between(snapped[0], snapped[1], 0.5),
+            between(snapped[3], snapped[2], 0.5),
+            0.5,
+        );
+        let y = [0, 1, 2].map(|r| h[r][0] * p[0] + h[r][1] * p[1] + h[r][2]);
+        let q = [y[0] / y[2], y[1] / y[2], 0.0];
+        assert!(norm(sub(q, p)) > 100.0 * moved, "{q:?}");
+    }
+
+    #[test]
+    fn a_concave_quad_maps_projectively_lines_staying_lines() {
+        // A dart: corner 2 turns the other way.
+        let at = |x: f64, z: f64| [x, 0.3 * x - 0.2 * z + 1.0, z];
+        let input = [at(0.0, 0.0), at(2.0, -1.0), at(0.8, 0.0), at(2.0, 1.0)];
+        let moves = [
+            [1.0, -0.5, 0.3],
+            [-0.7, 0.2, 1.0],
+            [0.4, 0.9, -1.0],
+            [-1.0, -1.0, 0.6],
+        ];
+        let snapped: Vec<[f64; 3]> = input
+            .iter()
+            .zip(moves)
+            .map(|(p, m)| [0, 1, 2].map(|c| p[c] + 1e-3 * m[c]))
+            .collect();
+        let map = PlaneMap::new(&snapped, &input).expect("a mappable dart");
+        assert!(matches!(map.kind, MapKind::Projective(_)));
+        for (s, p) in snapped.iter().zip(&input) {
+            assert!(norm(sub(map.apply(*s), *p)) < 1e-14, "{s:?}");
+        }
+        // Points along the snapped line from corner 0 to corner 2 land on
+        // the input line, in the input plane.
         let normal = newell(&input);
         for t in [0.1, 0.37, 0.5, 0.93] {
             let q = map.apply(between(snapped[0], snapped[2], t));

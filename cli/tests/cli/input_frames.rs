@@ -298,3 +298,57 @@ fn a_needle_is_lit_along_its_input_normal() {
     );
     check(&dm_scene(&area).unwrap().mesh().unwrap(), &at_area, "dm");
 }
+
+/// A needle 20000 long and 11 wide through a floor, on a grid step of
+/// about 0.005 (a scene of the black-box checker): a projective map of its
+/// corners moved its crossing with the floor 0.84 below the floor.
+const THROUGH: &str = r#"
+[[object]]
+name = "floor"
+polygons = [ [[-3,0,-3],[-3,0,3],[3,0,3],[3,0,-3]] ]
+scale = 10000
+
+[[object]]
+name = "needle"
+polygons = [ [[-1,0,-0.00057255634840135486],[-1,0,0.00057255634840135486],[1,0,0.00057255634840135486],[1,0,-0.00057255634840135486]] ]
+translate = [893.80848091161533,5364.0814253179051,645.44196669858775]
+rotate_deg = [-53.122099641553504,174.90421022807379,66.576474738094021]
+scale = 10000
+
+[[light]]
+type = "area"
+vertices = [[5961.9517855497461,29557.543766465315,7479.3455652460143], [-536.11016904326675,30917.289566644609,2994.6058877579262], [11646.604715402349,28756.45924665036,-1598.9130317194658]]
+intensity = 0.60288143072733047
+
+[[light]]
+type = "point"
+position = [19897.126921999967,37440.209473241339,11510.905011656929]
+"#;
+
+#[test]
+fn a_needle_through_the_floor_meets_it_on_the_floor() {
+    let scene = Scene::from_toml_str(THROUGH, "through.toml").unwrap();
+    let step = umbra::Pieces::from_scene(&scene).unwrap().grid.cell_size();
+    let corners = &scene.objects[1].polygons[0].vertices;
+    for mesh in [
+        shadow_scene(&scene).unwrap().mesh,
+        dm_scene(&scene).unwrap().mesh().unwrap(),
+    ] {
+        let crossing: Vec<[f64; 3]> = mesh
+            .faces
+            .iter()
+            .filter(|f| f.source == 1)
+            .flat_map(|f| f.vertices.iter().map(|&v| mesh.vertices[v as usize].0))
+            .filter(|p| !corners.contains(p) && p[1].abs() < 1000.0 * step)
+            .collect();
+        assert!(!crossing.is_empty());
+        for p in crossing {
+            assert!(
+                p[1].abs() <= step,
+                "{p:?} is {} grid steps off the floor",
+                p[1] / step
+            );
+        }
+        assert_on_input(&scene, &mesh, "through");
+    }
+}
