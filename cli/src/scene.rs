@@ -637,13 +637,28 @@ const LIGHT_STRAIGHT: f64 = 1e-7;
 /// non-zero area (in `f64`, relative to its size; the exact check runs
 /// again after snapping) and returns them without the vertices in line
 /// with their neighbours (a square given with a vertex mid-edge, say).
-fn check_convex_planar(v: &[[f64; 3]]) -> std::result::Result<Vec<[f64; 3]>, String> {
-    let n = v.len();
+fn check_convex_planar(given: &[[f64; 3]]) -> std::result::Result<Vec<[f64; 3]>, String> {
+    let n = given.len();
     if n < 3 {
         return Err(format!(
             "an area light needs at least 3 vertices, found {n}"
         ));
     }
+    // Checked relative to vertex 0 and scaled to unit size, so that no
+    // square overflows however large the coordinates.
+    let origin = given[0];
+    let scale = given
+        .iter()
+        .flat_map(|p| (0..3).map(move |k| (p[k] - origin[k]).abs()))
+        .fold(0.0, f64::max);
+    if !scale.is_finite() {
+        return Err("its extent overflows a 64-bit float".into());
+    }
+    let scale = if scale > 0.0 { scale } else { 1.0 };
+    let v: Vec<[f64; 3]> = given
+        .iter()
+        .map(|p| [0, 1, 2].map(|k| (p[k] - origin[k]) / scale))
+        .collect();
     let size = (0..n)
         .map(|i| norm(sub(v[(i + 1) % n], v[i])))
         .fold(0.0, f64::max);
@@ -697,7 +712,7 @@ fn check_convex_planar(v: &[[f64; 3]]) -> std::result::Result<Vec<[f64; 3]>, Str
             return Err(format!("not convex at vertex {} ({how})", (i + 1) % n));
         }
         turning += s.atan2(along);
-        kept.push(v[(i + 1) % n]);
+        kept.push(given[(i + 1) % n]);
     }
     if (turning - std::f64::consts::TAU).abs() > 1e-6 {
         return Err("not convex (the outline winds more than once)".into());

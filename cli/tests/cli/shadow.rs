@@ -364,3 +364,56 @@ range = 2.0
         );
     }
 }
+
+/// The floor's share of each class (lit, penumbra, umbra) under the light,
+/// with the scene scaled by `s`: a tilted square between a square light
+/// and the floor.
+fn class_shares(s: f64) -> [f64; 3] {
+    let text = format!(
+        "[[object]]\nname = \"floor\"\npolygons = [[[-1, 0, -1], [-1, 0, 1], [1, 0, 1], [1, 0, -1]]]\n\
+         scale = {s:e}\n\n[[object]]\nname = \"square\"\n\
+         polygons = [[[-0.3, 1, -0.3], [-0.3, 1, 0.3], [0.3, 1, 0.3], [0.3, 1, -0.3]]]\n\
+         scale = {s:e}\nrotate_deg = [10, 20, 30]\n\n[[light]]\ntype = \"area\"\n\
+         vertices = [[{a:e}, {h:e}, {a:e}], [{b:e}, {h:e}, {a:e}], [{b:e}, {h:e}, {b:e}], [{a:e}, {h:e}, {b:e}]]\n",
+        a = -0.2 * s,
+        b = 0.2 * s,
+        h = 3.0 * s,
+    );
+    let scene = umbra::Scene::from_toml_str(&text, "scaled.toml").unwrap();
+    let mesh = umbra::shadow_scene(&scene).unwrap().mesh;
+    let mut shares = [0.0; 3];
+    for face in mesh.faces.iter().filter(|f| f.source == 0) {
+        // Areas in units of the scale: no square overflows.
+        let v: Vec<[f64; 3]> = face
+            .vertices
+            .iter()
+            .map(|&k| mesh.vertices[k as usize].0.map(|x| x / s))
+            .collect();
+        let class = if face.lit_mask & 1 != 0 {
+            0
+        } else if face.umbra_mask & 1 != 0 {
+            2
+        } else {
+            1
+        };
+        shares[class] += polygon_area(&v) / 4.0;
+    }
+    shares
+}
+
+#[test]
+fn scenes_1e300_or_a_1e300th_across_shade_as_at_unit_size() {
+    // At 1e300 a light's size squared overflows an f64: its checks work
+    // relative to its own size.
+    let unit = class_shares(1.0);
+    assert!(unit[1] > 0.01 && unit[2] > 0.01, "{unit:?}");
+    for s in [1e-300, 1e-30, 1e30, 1e300] {
+        let scaled = class_shares(s);
+        for c in 0..3 {
+            assert!(
+                (scaled[c] - unit[c]).abs() <= 1e-6,
+                "scale {s:e}: {scaled:?} vs {unit:?}"
+            );
+        }
+    }
+}
