@@ -19,7 +19,7 @@ use crate::dark::{Occluders, proven_dark_past};
 use crate::decompose::{Pieces, SnappedLight};
 use crate::dm_lights::{LightMap, cut_by_other_lights};
 use crate::error::{Error, Result};
-use crate::mesh::{OutputFace, OutputMesh};
+use crate::mesh::{OutputFace, OutputMesh, irradiance_f32};
 use crate::scene::Scene;
 use crate::stats::{LightStats, Seconds, Stats};
 
@@ -438,7 +438,7 @@ impl DmRun {
                             self.dm.vertex_irradiance(piece, v).unwrap_or(0.0)
                         };
                         let p = self.pieces.grid.grid_to_world(p.unwrap_or([0.0; 3]));
-                        mesh.vertices.push((p, e as f32));
+                        mesh.vertices.push((p, irradiance_f32(e)));
                         index.insert(v, slot);
                         slot
                     }

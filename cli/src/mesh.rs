@@ -24,6 +24,12 @@ pub struct OutputFace {
     pub umbra_mask: u32,
 }
 
+/// An irradiance as the output's 32-bit float: past its range (a point
+/// light a 1e-20th of a unit away) the largest float, not infinity.
+pub(crate) fn irradiance_f32(e: f64) -> f32 {
+    (e as f32).min(f32::MAX)
+}
+
 impl OutputMesh {
     /// Checks that every face has 3 to 255 vertices, all of which exist (the
     /// writers rely on it).

@@ -17,7 +17,7 @@ use crate::dark::Occluders;
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
 use crate::illuminate::{IllumLight, Illuminated, Illuminator, illuminate};
-use crate::mesh::{OutputFace, OutputMesh};
+use crate::mesh::{OutputFace, OutputMesh, irradiance_f32};
 use crate::scene::{LightKind, Scene};
 use crate::stats::{LightStats, Seconds, Stats};
 
@@ -225,7 +225,7 @@ pub(crate) fn illuminated_mesh(
     for (v, p) in lit.coords.iter().enumerate() {
         let e: f64 = lit.per_light[v * lights..(v + 1) * lights].iter().sum();
         mesh.vertices
-            .push((pieces.grid.grid_to_world(*p), e as f32));
+            .push((pieces.grid.grid_to_world(*p), irradiance_f32(e)));
     }
     for (fragment, face) in fragments.iter().zip(std::mem::take(&mut lit.faces)) {
         mesh.faces.push(OutputFace {

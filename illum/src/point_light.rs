@@ -150,17 +150,23 @@ impl PointLight {
     #[inline]
     pub fn irradiance(&self, p: Vec3, n: Vec3, sidedness: Sidedness) -> f64 {
         let d = sub(self.position, p);
-        let r2 = dot(d, d);
-        if r2 == 0.0 {
+        // In units of the largest component, so that the square of a
+        // distance of 1e-200 does not underflow to 0 (nor one of 1e200
+        // overflow): the value itself then over- or underflows only when
+        // it is out of range.
+        let m = d.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+        if m == 0.0 {
             return 0.0;
         }
-        let r = r2.sqrt();
+        let unit = d.map(|c| c / m);
+        let scaled = dot(unit, unit).sqrt();
+        let r = m * scaled;
         let f = self.falloff.map_or(1.0, |f| f.factor(r));
         if f == 0.0 {
             return 0.0;
         }
-        let cos = sidedness.cosine(dot(n, d) / r);
-        self.intensity * cos / r2 * f
+        let cos = sidedness.cosine(dot(n, unit) / scaled);
+        self.intensity * cos * f / (scaled * scaled) / m / m
     }
 }
 
@@ -227,6 +233,25 @@ mod tests {
         assert!(Falloff::new(0.0, 0.0, 1.0).is_err());
         assert!(Falloff::new(0.0, 4.0, 0.0).is_err());
         assert!(Falloff::new(0.0, f64::NAN, 1.0).is_err());
+    }
+
+    #[test]
+    fn inverse_square_holds_where_the_squared_distance_leaves_the_float_range() {
+        // At a unit's scale: 3 / 5^2 * cos, with cos = 3 / 5.
+        let unit = PointLight::new([4.0, 3.0, 0.0], 3.0).unwrap();
+        let e = unit.irradiance([0.0; 3], [0.0, 1.0, 0.0], Sidedness::OneSided);
+        assert!((e - 0.072).abs() < 1e-15);
+        // Scaled by s, with the intensity times k: k / s^2 times that,
+        // though the distance squared under- (1e-340) or overflows (1e340).
+        for (s, k) in [(1e-170, 1e-300), (1e170, 1e300)] {
+            let light = PointLight::new([4.0 * s, 3.0 * s, 0.0], 3.0 * k).unwrap();
+            let e = light.irradiance([0.0; 3], [0.0, 1.0, 0.0], Sidedness::OneSided);
+            let want = 0.072 * (k / s) / s;
+            assert!(
+                (e - want).abs() < 1e-14 * want,
+                "scale {s:e}: {e} for {want}"
+            );
+        }
     }
 
     #[test]

@@ -417,3 +417,22 @@ fn scenes_1e300_or_a_1e300th_across_shade_as_at_unit_size() {
         }
     }
 }
+
+#[test]
+fn irradiance_past_the_float_range_is_written_as_the_largest_float() {
+    // A unit point light 3e-20 above a floor: 1e38 and more, past f32.
+    let text = "[[object]]\nname = \"floor\"\n\
+                polygons = [[[-1e-20, 0, -1e-20], [-1e-20, 0, 1e-20], [1e-20, 0, 1e-20], [1e-20, 0, -1e-20]]]\n\n\
+                [[light]]\ntype = \"point\"\nposition = [1e-21, 3e-20, 2e-21]\n";
+    let scene = umbra::Scene::from_toml_str(text, "tiny.toml").unwrap();
+    for mesh in [
+        umbra::shadow_scene(&scene).unwrap().mesh,
+        umbra::dm_scene(&scene).unwrap().mesh().unwrap(),
+    ] {
+        assert!(
+            mesh.vertices.iter().all(|(_, e)| *e == f32::MAX),
+            "{:?}",
+            mesh.vertices
+        );
+    }
+}
