@@ -6,6 +6,7 @@
 
 use crate::area::floor_classes;
 use crate::joints::boxes_under_a_side_light;
+use crate::vectors::{newell, norm};
 use crate::{folder, umbra};
 use umbra::{OutputMesh, load_ply};
 
@@ -70,22 +71,6 @@ fn input_polygons() -> Vec<Vec<[f64; 3]>> {
         }
     }
     out
-}
-
-/// Newell normal (twice the vector area) of a planar polygon.
-fn newell(points: &[[f64; 3]]) -> [f64; 3] {
-    let mut n = [0.0; 3];
-    for (i, a) in points.iter().enumerate() {
-        let b = points[(i + 1) % points.len()];
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    n
-}
-
-fn norm(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //! input plane and have their corners where the input has them, in
 //! `shadow`, `dm` and after `update` moves one.
 
+use crate::vectors::{newell, norm};
 use proptest::prelude::*;
 use umbra::{OutputMesh, Scene, dm_scene, shadow_scene};
 
@@ -88,21 +89,6 @@ const POINT: &str = "[[light]]\ntype = \"point\"\nposition = [0.4, 3.2, -0.2]\n"
 const AREA: &str = "[[light]]\ntype = \"area\"\n\
                     vertices = [[1.15, 3.1, -0.15], [0.97, 3.17, 0.24], [0.66, 3.26, -0.1]]\n";
 
-fn newell(points: &[[f64; 3]]) -> [f64; 3] {
-    let mut n = [0.0; 3];
-    for (i, a) in points.iter().enumerate() {
-        let b = points[(i + 1) % points.len()];
-        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
-        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
-        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
-    }
-    n
-}
-
-fn length(v: [f64; 3]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
 /// Checks every input polygon of `scene` against its fragments in `mesh`:
 /// areas add up to its area (relative 1e-9), corners lie in its plane
 /// (1e-12 of its size), and each of its corners is an output vertex.
@@ -110,10 +96,10 @@ fn assert_on_input(scene: &Scene, mesh: &OutputMesh, what: &str) {
     for (source, (_, polygon)) in scene.input_polygons().enumerate() {
         let input = &polygon.vertices;
         let normal = newell(input);
-        let area = length(normal) / 2.0;
+        let area = norm(normal) / 2.0;
         let unit = normal.map(|x| x / (2.0 * area));
         let size = (0..input.len())
-            .map(|i| length([0, 1, 2].map(|a| input[i][a] - input[(i + 1) % input.len()][a])))
+            .map(|i| norm([0, 1, 2].map(|a| input[i][a] - input[(i + 1) % input.len()][a])))
             .fold(0.0, f64::max);
         let offset: f64 = (0..3).map(|a| unit[a] * input[0][a]).sum();
         let faces: Vec<Vec<[f64; 3]>> = mesh
@@ -127,7 +113,7 @@ fn assert_on_input(scene: &Scene, mesh: &OutputMesh, what: &str) {
                     .collect()
             })
             .collect();
-        let sum: f64 = faces.iter().map(|f| length(newell(f)) / 2.0).sum();
+        let sum: f64 = faces.iter().map(|f| norm(newell(f)) / 2.0).sum();
         assert!(
             (sum - area).abs() <= 1e-9 * area,
             "{what}: polygon {source}: fragments add up to {sum:e}, the polygon is {area:e}"
@@ -205,7 +191,7 @@ proptest! {
 /// (1/2) sum of each edge's angle times the cosine between its plane
 /// through `p` and the receiver's.
 fn polygon_light(vertices: &[[f64; 3]], radiance: f64, p: [f64; 3], n: [f64; 3]) -> f64 {
-    let unit = |v: [f64; 3]| v.map(|x| x / length(v));
+    let unit = |v: [f64; 3]| v.map(|x| x / norm(v));
     let rel: Vec<[f64; 3]> = vertices
         .iter()
         .map(|v| unit([0, 1, 2].map(|a| v[a] - p[a])))
@@ -264,7 +250,7 @@ fn a_needle_is_lit_along_its_input_normal() {
     let point = Scene::from_toml_str(&point, "point.toml").unwrap();
     let area = Scene::from_toml_str(&area, "area.toml").unwrap();
     let input = &point.objects[1].polygons[0].vertices;
-    let normal = newell(input).map(|x| x / length(newell(input)));
+    let normal = newell(input).map(|x| x / norm(newell(input)));
     let dot = |a: [f64; 3], b: [f64; 3]| (0..3).map(|k| a[k] * b[k]).sum::<f64>();
     let check = |mesh: &OutputMesh, expected: &dyn Fn([f64; 3]) -> f64, what: &str| {
         let mut seen = 0;
@@ -283,7 +269,7 @@ fn a_needle_is_lit_along_its_input_normal() {
     };
     let at_point = |p: [f64; 3]| {
         let d = [0.4 - p[0], 3.2 - p[1], -0.2 - p[2]];
-        2.0 * dot(d, normal).abs() / length(d).powi(3)
+        2.0 * dot(d, normal).abs() / norm(d).powi(3)
     };
     check(
         &shadow_scene(&point).unwrap().mesh,

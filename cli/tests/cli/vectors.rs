@@ -17,6 +17,22 @@ pub fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
+pub fn norm(v: [f64; 3]) -> f64 {
+    dot(v, v).sqrt()
+}
+
+/// Newell's normal of a polygon: twice its vector area.
+pub fn newell(points: &[[f64; 3]]) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    for (i, a) in points.iter().enumerate() {
+        let b = points[(i + 1) % points.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    n
+}
+
 /// Points inside a convex polygon: its centre, and halfway from it to
 /// each corner.
 pub fn inner_points(corners: &[[f64; 3]]) -> Vec<[f64; 3]> {
