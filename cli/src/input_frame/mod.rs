@@ -7,24 +7,23 @@
 //! miss its area by a visible fraction (a needle 150 grid steps wide, by
 //! 6e-4).
 //!
-//! Triangles and planar quadrilaterals are mapped back exactly: each
-//! point of the snapped copy goes where a map taking every snapped corner
-//! to its input corner, and every snapped side onto the input side, takes
-//! it. A triangle's map is affine; a convex quad's bilinear (each point
-//! moves by an average of its corners' moves, however thin the quad: the
-//! projective map through the same corners, which would keep lines
-//! straight, moves the middle of a needle by hundreds of grid steps); a
-//! concave quad's projective, where it moves no point much farther than
-//! the corners. The fragments' outlines list every vertex on their sides
-//! (the meshes are conforming), so with each vertex placed on the input
-//! polygon they still share their sides, and tile the input polygon
-//! exactly, up to the rounding of their coordinates; a fragment corner at
-//! a polygon corner is written as the input has it. The map works in the
-//! coordinate plane that the input polygon's plane projects onto best, so
-//! a snapped quad bent into two triangles maps onto the input plane as
-//! well. A polygon whose map would turn a face over (a sliver thinner than
-//! its corners' moves), and other polygons (five corners or more, or not
-//! planar) are written as snapped.
+//! Planar polygons are mapped back exactly: each point of the snapped copy
+//! goes where a map taking every snapped corner to its input corner, and
+//! every snapped side onto the input side, takes it: bilinear for a convex
+//! quad, affine on each triangle of a triangulation for any other polygon
+//! (of up to 64 corners). Either moves each point by an average of its
+//! corners' moves, however thin the polygon (the projective map through a
+//! quad's corners, which would keep every line straight, moves the middle
+//! of a needle by hundreds of grid steps). The fragments' outlines list
+//! every vertex on their sides (the meshes are conforming), so with each
+//! vertex placed on the input polygon they still share their sides, and
+//! tile the input polygon exactly, up to the rounding of their
+//! coordinates; a fragment corner at a polygon corner is written as the
+//! input has it. The map works in the coordinate plane that the input
+//! polygon's plane projects onto best, so a snapped polygon bent into
+//! triangles maps onto the input plane as well. A polygon whose map would
+//! turn a face over (a sliver thinner than its corners' moves), and a
+//! polygon that is not planar, are written as snapped.
 //!
 //! Nothing decided in the exact kernel changes: the map only moves where
 //! the output coordinates are written, by at most about a grid step.
@@ -59,6 +58,8 @@ struct Frame {
     /// `None` where no point moves: every snapped corner is its input
     /// corner (a scene on the grid), or the polygon is not mapped.
     map: Option<PlaneMap>,
+    /// The input polygon's longest side.
+    size: f64,
 }
 
 /// A corner of an input polygon.
@@ -184,26 +185,25 @@ impl InputFrames {
 }
 
 impl Frame {
-    /// Whether placing the face of `corners` (world units) would reverse
-    /// its turning sense in the coordinate plane of the map.
+    /// Whether placing the face of `corners` (world units) would turn it
+    /// over in the coordinate plane of the map: its doubled area changes
+    /// sign by more than 1e-12 of the polygon's size squared. (A sliver
+    /// the snapping made of a line of the input, three corners in line,
+    /// comes out flat: that is right; and one far below a grid step may
+    /// turn by a rounding.)
     fn turns_over(&self, grid: &Grid, corners: impl Iterator<Item = [f64; 3]>) -> bool {
         let Some(map) = &self.map else {
             return false;
         };
-        let (mut before, mut after) = (0.0, 0.0);
         let corners: SmallVec<[[f64; 3]; 8]> = corners.collect();
-        let origin = corners.first().copied().unwrap_or_default();
-        let placed_origin = self.place(grid, origin);
-        for (i, &p) in corners.iter().enumerate() {
-            let q = corners[(i + 1) % corners.len()];
-            let (a, b) = (map.flat(p), map.flat(q));
-            let o = map.flat(origin);
-            before += (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-            let (a, b) = (map.flat(self.place(grid, p)), map.flat(self.place(grid, q)));
-            let o = map.flat(placed_origin);
-            after += (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-        }
-        before != 0.0 && (after == 0.0 || (after > 0.0) != (before > 0.0))
+        let flat: SmallVec<[[f64; 2]; 8]> = corners.iter().map(|&p| map.flat(p)).collect();
+        let placed: SmallVec<[[f64; 2]; 8]> = corners
+            .iter()
+            .map(|&p| map.flat(self.place(grid, p)))
+            .collect();
+        let before = doubled_area(&flat);
+        let after = doubled_area(&placed);
+        after * before.signum() < -1e-12 * self.size * self.size
     }
 
     /// `None` for a polygon with no corners to keep.
@@ -229,7 +229,7 @@ impl Frame {
         if corners.len() > 1 && corners.first().map(|c| c.grid) == corners.last().map(|c| c.grid) {
             return None;
         }
-        if !(3..=4).contains(&corners.len()) {
+        if corners.len() < 3 {
             return None;
         }
         let from: SmallVec<[[f64; 3]; 4]> = corners.iter().map(|c| grid.to_world(c.grid)).collect();
@@ -240,7 +240,11 @@ impl Frame {
         } else {
             PlaneMap::new(&from, &to)
         };
-        Some(Self { corners, map })
+        let n = to.len();
+        let size = (0..n)
+            .map(|i| norm(sub(to[i], to[(i + 1) % n])))
+            .fold(0.0, f64::max);
+        Some(Self { corners, map, size })
     }
 
     /// Where the point `p` (world units) of the snapped polygon's pieces
@@ -262,6 +266,19 @@ impl Frame {
             None => map.apply(p),
         }
     }
+}
+
+/// The doubled signed area of a polygon.
+fn doubled_area(corners: &[[f64; 2]]) -> f64 {
+    let Some(&o) = corners.first() else {
+        return 0.0;
+    };
+    let mut area = 0.0;
+    for (i, a) in corners.iter().enumerate() {
+        let b = corners[(i + 1) % corners.len()];
+        area += (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+    }
+    area
 }
 
 /// The unit normal of a planar polygon (counter-clockwise seen from its

@@ -1,143 +1,98 @@
-//! The maps from a snapped polygon onto its input polygon: affine,
-//! bilinear and projective, in a coordinate plane.
+//! The maps from a snapped polygon onto its input polygon, in a
+//! coordinate plane: bilinear for a convex quad, affine on the triangles of
+//! an ear-clipped triangulation for any other polygon (one triangle for a
+//! triangle). Either moves each point by an average of the corners' moves.
 
 use smallvec::SmallVec;
 
-use super::{centroid, planar_normal};
-use crate::vec3::{dot, norm, sub};
+use super::planar_normal;
+use crate::vec3::sub;
 
 /// A map between two nearly equal planar polygons, worked in the
 /// coordinate plane of axes `u`, `v` (the input plane's normal is largest
-/// along the third axis `k`).
+/// along the third axis).
 #[derive(Debug, Clone)]
 pub(super) struct PlaneMap {
     u: usize,
     v: usize,
-    k: usize,
     /// Snapped corner 0 in the coordinate plane: points are mapped relative
-    /// to it, so that the map's entries stay well scaled.
+    /// to it, so that differences stay exact.
     from_origin: [f64; 2],
     /// Input corner 0.
     to_origin: [f64; 3],
-    /// The input plane `normal . x = offset` (unit normal).
-    normal: [f64; 3],
-    offset: f64,
+    /// The snapped corners in the coordinate plane, relative to
+    /// `from_origin`.
+    from: SmallVec<[[f64; 2]; 4]>,
+    /// The input corners, relative to `to_origin`.
+    to: SmallVec<[[f64; 3]; 4]>,
     kind: MapKind,
 }
 
 #[derive(Debug, Clone)]
 enum MapKind {
-    /// A projective map (affine for a triangle): homogeneous 3 x 3 matrix
-    /// from coordinates relative to `from_origin` to coordinates (`u`,
-    /// `v`) relative to `to_origin`.
-    Projective([[f64; 3]; 3]),
-    /// Bilinear interpolation of the input corners (relative to
-    /// `to_origin`) at the snapped quad's bilinear coordinates of a point:
-    /// each point moves by an average of the corners' moves, however thin
-    /// the quad (a projective map can move a thin quad's middle by many
-    /// grid steps).
-    Bilinear {
-        from: [[f64; 2]; 4],
-        to: [[f64; 3]; 4],
-    },
+    /// Bilinear interpolation of the input corners at the snapped quad's
+    /// bilinear coordinates of a point: smooth across the quad, sides
+    /// onto sides. (The projective map through the same corners, which
+    /// would keep every line straight, moves the middle of a thin quad by
+    /// hundreds of grid steps.)
+    Bilinear,
+    /// Affine on each triangle (corner indices), which the snapped and the
+    /// input polygon both turn the same way.
+    Triangles(SmallVec<[[u16; 3]; 2]>),
 }
+
+/// The most corners a mapped polygon has (its triangulation takes time
+/// cubic in them, locating a point linear).
+const MOST_CORNERS: usize = 64;
 
 impl PlaneMap {
     /// The map taking the corners `from` (a snapped polygon, possibly bent
-    /// along a diagonal) to `to` (a planar polygon), 3 or 4 of each in the
-    /// same order: affine for a triangle, bilinear for a convex quad,
-    /// projective for a concave one. `None` when `to` is not planar, either
-    /// is degenerate, the two turn differently at some corner, or the map
-    /// would move some point much farther than the corners moved.
+    /// along a diagonal) to `to` (a planar polygon), in the same order.
+    /// `None` when `to` is not planar, either is degenerate, or the two
+    /// turn differently at some corner.
     pub(super) fn new(from: &[[f64; 3]], to: &[[f64; 3]]) -> Option<Self> {
         let n = to.len();
+        if !(3..=MOST_CORNERS).contains(&n) || from.len() != n {
+            return None;
+        }
         let normal = planar_normal(to)?;
-        let size = (0..n)
-            .map(|i| norm(sub(to[i], to[(i + 1) % n])))
-            .fold(0.0, f64::max);
         let k = (0..3).max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()))?;
         let (u, v) = ((k + 1) % 3, (k + 2) % 3);
         let from_origin = [from[0][u], from[0][v]];
-        let flat = |p: &[f64; 3], o: [f64; 2]| [p[u] - o[0], p[v] - o[1]];
-        let a: SmallVec<[[f64; 2]; 4]> = from.iter().map(|p| flat(p, from_origin)).collect();
-        let b: SmallVec<[[f64; 2]; 4]> = to.iter().map(|p| flat(p, [to[0][u], to[0][v]])).collect();
-        // Same non-zero turn at every corner: the same shape, so the map
-        // keeps the side each fragment faces.
-        let turn = |q: &[[f64; 2]], i: usize| {
-            let (p0, p1, p2) = (q[i], q[(i + 1) % n], q[(i + 2) % n]);
-            (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p1[1] - p0[1]) * (p2[0] - p0[0])
-        };
-        let turns: SmallVec<[f64; 4]> = (0..n).map(|i| turn(&b, i)).collect();
+        let a: SmallVec<[[f64; 2]; 4]> = from
+            .iter()
+            .map(|p| [p[u] - from_origin[0], p[v] - from_origin[1]])
+            .collect();
+        let b: SmallVec<[[f64; 2]; 4]> = to
+            .iter()
+            .map(|p| [p[u] - to[0][u], p[v] - to[0][v]])
+            .collect();
+        // Same non-zero turn at every corner: the same shape.
+        let turns: SmallVec<[f64; 4]> = (0..n)
+            .map(|i| orient(b[i], b[(i + 1) % n], b[(i + 2) % n]))
+            .collect();
         if (0..n).any(|i| {
-            let (s, t) = (turn(&a, i), turns[i]);
+            let (s, t) = (orient(a[i], a[(i + 1) % n], a[(i + 2) % n]), turns[i]);
             s == 0.0 || t == 0.0 || (s > 0.0) != (t > 0.0)
         }) {
             return None;
         }
         let convex = turns.iter().all(|&t| (t > 0.0) == (turns[0] > 0.0));
-        let kind = if n == 3 {
-            MapKind::Projective(mul(
-                &affine_from_triangle(&b)?,
-                &inverse(&affine_from_triangle(&a)?)?,
-            ))
-        } else if convex {
-            let relative = |p: &[f64; 3]| sub(*p, to[0]);
-            MapKind::Bilinear {
-                from: [a[0], a[1], a[2], a[3]],
-                to: [
-                    relative(&to[0]),
-                    relative(&to[1]),
-                    relative(&to[2]),
-                    relative(&to[3]),
-                ],
-            }
+        let kind = if n == 4 && convex {
+            MapKind::Bilinear
         } else {
-            MapKind::Projective(mul(
-                &from_unit_square(&b)?,
-                &inverse(&from_unit_square(&a)?)?,
-            ))
+            let triangles = ear_clip(&a, &b)?;
+            MapKind::Triangles(triangles)
         };
-        let map = Self {
+        Some(Self {
             u,
             v,
-            k,
             from_origin,
             to_origin: to[0],
-            normal,
-            offset: dot(normal, centroid(to)),
+            from: a,
+            to: to.iter().map(|p| sub(*p, to[0])).collect(),
             kind,
-        };
-        // The corners land where they belong (a projective map keeps them
-        // on its side of the line at infinity: then all of the polygon,
-        // their convex hull, stays there), and the middle of the polygon
-        // and of its sides move about as far as the corners did.
-        let moved = from
-            .iter()
-            .zip(to)
-            .map(|(p, q)| norm(sub(*p, *q)))
-            .fold(0.0, f64::max);
-        let sign = map.weight(from[0]).signum();
-        let lands = from.iter().zip(to).all(|(p, q)| {
-            map.weight(*p) * sign > 0.0 && norm(sub(map.apply(*p), *q)) <= 1e-6 * size
-        });
-        let middles = (0..n)
-            .map(|i| mid(from[i], from[(i + 1) % n]))
-            .chain([centroid(from)]);
-        let tame = middles
-            .into_iter()
-            .all(|p| norm(sub(map.apply(p), p)) <= 4.0 * moved + 1e-9 * size);
-        (lands && tame).then_some(map)
-    }
-
-    /// The homogeneous weight of the point `p` (1 for a bilinear map).
-    fn weight(&self, p: [f64; 3]) -> f64 {
-        match &self.kind {
-            MapKind::Projective(h) => {
-                let x = self.flat(p);
-                h[2][0] * x[0] + h[2][1] * x[1] + h[2][2]
-            }
-            MapKind::Bilinear { .. } => 1.0,
-        }
+        })
     }
 
     /// `p` in the coordinate plane, relative to `from_origin`.
@@ -148,38 +103,105 @@ impl PlaneMap {
         ]
     }
 
-    /// The image of `p` on the input plane.
+    /// The image of `p` on the input polygon.
     pub(super) fn apply(&self, p: [f64; 3]) -> [f64; 3] {
         let x = self.flat(p);
-        match &self.kind {
-            MapKind::Projective(h) => {
-                let y = [0, 1, 2].map(|r| h[r][0] * x[0] + h[r][1] * x[1] + h[r][2]);
-                let a = self.to_origin[self.u] + y[0] / y[2];
-                let b = self.to_origin[self.v] + y[1] / y[2];
-                let mut q = [0.0; 3];
-                q[self.u] = a;
-                q[self.v] = b;
-                q[self.k] = (self.offset - self.normal[self.u] * a - self.normal[self.v] * b)
-                    / self.normal[self.k];
-                q
-            }
-            MapKind::Bilinear { from, to } => {
-                let [s, t] = bilinear_coordinates(from, x);
-                let q = [0, 1, 2].map(|c| {
+        let (q, to) = (&self.from, &self.to);
+        let relative = match &self.kind {
+            MapKind::Bilinear => {
+                let [s, t] = bilinear_coordinates([q[0], q[1], q[2], q[3]], x);
+                [0, 1, 2].map(|c| {
                     let (q0, q1, q2, q3) = (to[0][c], to[1][c], to[2][c], to[3][c]);
                     q0 + s * (q1 - q0) + t * (q3 - q0) + s * t * (q0 - q1 + q2 - q3)
-                });
-                [0, 1, 2].map(|c| self.to_origin[c] + q[c])
+                })
             }
-        }
+            MapKind::Triangles(triangles) => {
+                // The triangle the point is deepest inside (near a shared
+                // side either gives all but the same place).
+                let (weights, corners) = triangles
+                    .iter()
+                    .map(|t| {
+                        let [i, j, l] = t.map(usize::from);
+                        (barycentric([q[i], q[j], q[l]], x), [i, j, l])
+                    })
+                    .max_by(|(w, _), (z, _)| {
+                        let least = |w: &[f64; 3]| w.iter().fold(f64::INFINITY, |m, &c| m.min(c));
+                        least(w).total_cmp(&least(z))
+                    })
+                    .unwrap_or(([1.0, 0.0, 0.0], [0, 0, 0]));
+                [0, 1, 2].map(|c| (0..3).map(|m| weights[m] * to[corners[m]][c]).sum())
+            }
+        };
+        [0, 1, 2].map(|c| self.to_origin[c] + relative[c])
     }
+}
+
+/// Twice the signed area of the triangle `a`, `b`, `c`.
+fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+/// The barycentric coordinates of `x` in the triangle `t`.
+fn barycentric(t: [[f64; 2]; 3], x: [f64; 2]) -> [f64; 3] {
+    let area = orient(t[0], t[1], t[2]);
+    let w1 = orient(t[0], x, t[2]) / area;
+    let w2 = orient(t[0], t[1], x) / area;
+    [1.0 - w1 - w2, w1, w2]
+}
+
+/// Triangles (corner indices) that cut both the polygon `a` and the
+/// polygon `b` (the same corners moved a little), by ear clipping: at each
+/// step the ear, of both, whose worse shape (its area over its sides'
+/// squares) is best, so that no triangle is all but flat in either. `None`
+/// when no corner is an ear of both.
+fn ear_clip(a: &[[f64; 2]], b: &[[f64; 2]]) -> Option<SmallVec<[[u16; 3]; 2]>> {
+    let n = a.len();
+    let sense = |q: &[[f64; 2]]| {
+        (0..n)
+            .map(|i| orient([0.0; 2], q[i], q[(i + 1) % n]))
+            .sum::<f64>()
+            .signum()
+    };
+    let (sa, sb) = (sense(a), sense(b));
+    // The shape of the ear `i`, `j`, `l` of `q`: positive for an ear.
+    let shape = |q: &[[f64; 2]], s: f64, ring: &[usize], [i, j, l]: [usize; 3]| {
+        let area = s * orient(q[i], q[j], q[l]);
+        let inside = |r: usize| {
+            s * orient(q[i], q[j], q[r]) >= 0.0
+                && s * orient(q[j], q[l], q[r]) >= 0.0
+                && s * orient(q[l], q[i], q[r]) >= 0.0
+        };
+        if area <= 0.0 || ring.iter().any(|&r| ![i, j, l].contains(&r) && inside(r)) {
+            return 0.0;
+        }
+        let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
+        area / (d(q[i], q[j]) + d(q[j], q[l]) + d(q[l], q[i]))
+    };
+    let mut ring: Vec<usize> = (0..n).collect();
+    let mut out = SmallVec::new();
+    while ring.len() >= 3 {
+        let m = ring.len();
+        let corners = |e: usize| [ring[(e + m - 1) % m], ring[e], ring[(e + 1) % m]];
+        let (best, quality) = (0..m)
+            .map(|e| {
+                let t = corners(e);
+                (e, shape(a, sa, &ring, t).min(shape(b, sb, &ring, t)))
+            })
+            .max_by(|x, y| x.1.total_cmp(&y.1))?;
+        if quality <= 0.0 {
+            return None;
+        }
+        out.push(corners(best).map(|c| c as u16));
+        ring.remove(best);
+    }
+    Some(out)
 }
 
 /// The coordinates `(s, t)` of `x` in the bilinear patch of the convex
 /// quad `q` (corner 0 at `(0, 0)`, 1 at `(1, 0)`, 2 at `(1, 1)`, 3 at
 /// `(0, 1)`): Newton's method from the parallelogram of corners 0, 1, 3,
 /// which a nearly parallelogram quad (a snapped one) all but is.
-fn bilinear_coordinates(q: &[[f64; 2]; 4], x: [f64; 2]) -> [f64; 2] {
+fn bilinear_coordinates(q: [[f64; 2]; 4], x: [f64; 2]) -> [f64; 2] {
     let e = [q[1][0] - q[0][0], q[1][1] - q[0][1]];
     let f = [q[3][0] - q[0][0], q[3][1] - q[0][1]];
     let g = [
@@ -214,73 +236,10 @@ fn bilinear_coordinates(q: &[[f64; 2]; 4], x: [f64; 2]) -> [f64; 2] {
     st
 }
 
-fn mid(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [0, 1, 2].map(|c| 0.5 * (a[c] + b[c]))
-}
-
-type Matrix = [[f64; 3]; 3];
-
-/// The affine map taking (0, 0), (1, 0), (0, 1) to the corners `t`.
-fn affine_from_triangle(t: &[[f64; 2]]) -> Option<Matrix> {
-    let [p0, p1, p2] = [t[0], t[1], t[2]];
-    Some([
-        [p1[0] - p0[0], p2[0] - p0[0], p0[0]],
-        [p1[1] - p0[1], p2[1] - p0[1], p0[1]],
-        [0.0, 0.0, 1.0],
-    ])
-}
-
-/// The projective map taking the unit square's corners (0, 0), (1, 0),
-/// (1, 1), (0, 1) to the corners `q` (Heckbert's closed form).
-fn from_unit_square(q: &[[f64; 2]]) -> Option<Matrix> {
-    let [p0, p1, p2, p3] = [q[0], q[1], q[2], q[3]];
-    let sx = p0[0] - p1[0] + p2[0] - p3[0];
-    let sy = p0[1] - p1[1] + p2[1] - p3[1];
-    let (dx1, dx2) = (p1[0] - p2[0], p3[0] - p2[0]);
-    let (dy1, dy2) = (p1[1] - p2[1], p3[1] - p2[1]);
-    let den = dx1 * dy2 - dx2 * dy1;
-    if den == 0.0 || !den.is_finite() {
-        return None;
-    }
-    let g = (sx * dy2 - dx2 * sy) / den;
-    let h = (dx1 * sy - sx * dy1) / den;
-    Some([
-        [p1[0] - p0[0] + g * p1[0], p3[0] - p0[0] + h * p3[0], p0[0]],
-        [p1[1] - p0[1] + g * p1[1], p3[1] - p0[1] + h * p3[1], p0[1]],
-        [g, h, 1.0],
-    ])
-}
-
-fn mul(a: &Matrix, b: &Matrix) -> Matrix {
-    let mut m = [[0.0; 3]; 3];
-    for (r, row) in m.iter_mut().enumerate() {
-        for (c, x) in row.iter_mut().enumerate() {
-            *x = (0..3).map(|i| a[r][i] * b[i][c]).sum();
-        }
-    }
-    m
-}
-
-/// The inverse matrix.
-fn inverse(m: &Matrix) -> Option<Matrix> {
-    let c =
-        |r0: usize, r1: usize, c0: usize, c1: usize| m[r0][c0] * m[r1][c1] - m[r0][c1] * m[r1][c0];
-    let adj = [
-        [c(1, 2, 1, 2), -c(0, 2, 1, 2), c(0, 1, 1, 2)],
-        [-c(1, 2, 0, 2), c(0, 2, 0, 2), -c(0, 1, 0, 2)],
-        [c(1, 2, 0, 1), -c(0, 2, 0, 1), c(0, 1, 0, 1)],
-    ];
-    let det = m[0][0] * adj[0][0] + m[0][1] * adj[1][0] + m[0][2] * adj[2][0];
-    if det == 0.0 || !det.is_finite() {
-        return None;
-    }
-    Some(adj.map(|row| row.map(|x| x / det)))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::vec3::cross;
+    use crate::vec3::{cross, dot, norm};
 
     /// A convex quad in a tilted plane, and the same with each corner
     /// moved by up to `jiggle` (as snapping would).
@@ -313,32 +272,11 @@ mod tests {
     }
 
     #[test]
-    fn a_convex_quad_maps_corner_to_corner_side_to_side_moving_no_point_farther() {
+    fn a_convex_quad_maps_bilinearly() {
         let (input, snapped) = quads(1e-3);
         let map = PlaneMap::new(&snapped, &input).expect("a mappable quad");
-        assert!(matches!(map.kind, MapKind::Bilinear { .. }));
-        for (s, p) in snapped.iter().zip(&input) {
-            assert!(norm(sub(map.apply(*s), *p)) < 1e-14, "{s:?}");
-        }
-        let normal = newell(&input);
-        let moved = farthest(&snapped, &input);
-        for i in 0..4 {
-            let (s0, s1) = (snapped[i], snapped[(i + 1) % 4]);
-            let (p0, p1) = (input[i], input[(i + 1) % 4]);
-            for t in [0.1, 0.37, 0.5, 0.93] {
-                // Along a side: onto the input side, at the same fraction.
-                let q = map.apply(between(s0, s1, t));
-                assert!(
-                    norm(sub(q, between(p0, p1, t))) < 1e-14,
-                    "side {i}, t = {t}"
-                );
-                // Inside: in the input plane, moved no farther than a corner.
-                let inner = between(between(s0, s1, t), snapped[(i + 2) % 4], 0.6);
-                let q = map.apply(inner);
-                assert!(dot(sub(q, input[0]), normal).abs() < 1e-14);
-                assert!(norm(sub(q, inner)) <= moved * (1.0 + 1e-9));
-            }
-        }
+        assert!(matches!(map.kind, MapKind::Bilinear));
+        check_polygon(&map, &snapped, &input);
     }
 
     #[test]
@@ -374,52 +312,74 @@ mod tests {
                 "t = {t}"
             );
         }
-        // The projective map through the same corners moves the middle by
-        // hundreds of times as far.
-        let flat = |q: &[[f64; 3]]| -> Vec<[f64; 2]> { q.iter().map(|p| [p[0], p[1]]).collect() };
-        let h = mul(
-            &from_unit_square(&flat(&input)).unwrap(),
-            &inverse(&from_unit_square(&flat(&snapped)).unwrap()).unwrap(),
-        );
-        let p = between(
-            between(snapped[0], snapped[1], 0.5),
-            between(snapped[3], snapped[2], 0.5),
-            0.5,
-        );
-        let y = [0, 1, 2].map(|r| h[r][0] * p[0] + h[r][1] * p[1] + h[r][2]);
-        let q = [y[0] / y[2], y[1] / y[2], 0.0];
-        assert!(norm(sub(q, p)) > 100.0 * moved, "{q:?}");
     }
 
-    #[test]
-    fn a_concave_quad_maps_projectively_lines_staying_lines() {
-        // A dart: corner 2 turns the other way.
-        let at = |x: f64, z: f64| [x, 0.3 * x - 0.2 * z + 1.0, z];
-        let input = [at(0.0, 0.0), at(2.0, -1.0), at(0.8, 0.0), at(2.0, 1.0)];
+    /// Checks that `map` takes each corner of `snapped` to its input
+    /// corner, each side onto its input side at the same fraction, and
+    /// points inside into the input plane, moved no farther than a corner.
+    fn check_polygon(map: &PlaneMap, snapped: &[[f64; 3]], input: &[[f64; 3]]) {
+        let n = input.len();
+        for (s, p) in snapped.iter().zip(input) {
+            assert!(norm(sub(map.apply(*s), *p)) < 1e-14, "{s:?}");
+        }
+        let normal = newell(input);
+        let moved = farthest(snapped, input);
+        for i in 0..n {
+            for t in [0.1, 0.37, 0.5, 0.93] {
+                let side = between(snapped[i], snapped[(i + 1) % n], t);
+                let q = map.apply(side);
+                let want = between(input[i], input[(i + 1) % n], t);
+                assert!(norm(sub(q, want)) < 1e-14, "side {i}, t = {t}");
+            }
+        }
+        // Inside: points of the triangles (of a convex quad, towards the
+        // corner two on).
+        let triangles: Vec<[usize; 3]> = match &map.kind {
+            MapKind::Triangles(ts) => ts.iter().map(|t| t.map(usize::from)).collect(),
+            MapKind::Bilinear => vec![[0, 1, 2], [0, 2, 3], [1, 2, 3], [0, 1, 3]],
+        };
+        for [i, j, l] in triangles {
+            for (s, t) in [(0.2, 0.3), (0.5, 0.5), (0.7, 0.1), (0.05, 0.9)] {
+                let inner = between(between(snapped[i], snapped[j], s), snapped[l], t);
+                let q = map.apply(inner);
+                assert!(dot(sub(q, input[0]), normal).abs() < 1e-14);
+                assert!(norm(sub(q, inner)) <= moved * (1.0 + 1e-9));
+            }
+        }
+    }
+
+    fn jiggled(input: &[[f64; 3]], jiggle: f64) -> Vec<[f64; 3]> {
         let moves = [
             [1.0, -0.5, 0.3],
             [-0.7, 0.2, 1.0],
             [0.4, 0.9, -1.0],
             [-1.0, -1.0, 0.6],
         ];
-        let snapped: Vec<[f64; 3]> = input
+        input
             .iter()
-            .zip(moves)
-            .map(|(p, m)| [0, 1, 2].map(|c| p[c] + 1e-3 * m[c]))
-            .collect();
-        let map = PlaneMap::new(&snapped, &input).expect("a mappable dart");
-        assert!(matches!(map.kind, MapKind::Projective(_)));
-        for (s, p) in snapped.iter().zip(&input) {
-            assert!(norm(sub(map.apply(*s), *p)) < 1e-14, "{s:?}");
-        }
-        // Points along the snapped line from corner 0 to corner 2 land on
-        // the input line, in the input plane.
-        let normal = newell(&input);
-        for t in [0.1, 0.37, 0.5, 0.93] {
-            let q = map.apply(between(snapped[0], snapped[2], t));
-            let off = cross(sub(q, input[0]), sub(input[2], input[0]));
-            assert!(norm(off) < 1e-14, "t = {t}: {off:?}");
-            assert!(dot(sub(q, input[0]), normal).abs() < 1e-14);
+            .enumerate()
+            .map(|(i, p)| [0, 1, 2].map(|c| p[c] + jiggle * moves[i % 4][c]))
+            .collect()
+    }
+
+    #[test]
+    fn a_concave_quad_and_an_l_shape_map_on_their_triangles() {
+        let at = |x: f64, z: f64| [x, 0.3 * x - 0.2 * z + 1.0, z];
+        // A dart (corner 2 turns the other way), and an L.
+        let dart = [at(0.0, 0.0), at(2.0, -1.0), at(0.8, 0.0), at(2.0, 1.0)];
+        let l = [
+            at(0.0, 0.0),
+            at(0.0, 2.0),
+            at(1.0, 2.0),
+            at(1.0, 1.0),
+            at(2.0, 1.0),
+            at(2.0, 0.0),
+        ];
+        for input in [&dart[..], &l[..]] {
+            let snapped = jiggled(input, 1e-3);
+            let map = PlaneMap::new(&snapped, input).expect("a mappable polygon");
+            assert!(matches!(map.kind, MapKind::Triangles(_)));
+            check_polygon(&map, &snapped, input);
         }
     }
 
