@@ -126,13 +126,13 @@ impl Pieces {
             for polygon in &o.polygons {
                 let (points, moved) = grid.snap_all(&polygon.vertices).map_err(grid_error)?;
                 out.max_snap_distance = out.max_snap_distance.max(moved);
-                out.frames.push(&polygon.vertices, &points);
                 snapped.push(points);
             }
             let input: Vec<&[[f64; 3]]> =
                 o.polygons.iter().map(|p| p.vertices.as_slice()).collect();
             let welds = weld_t_junctions(&input, &snapped, ON_EDGE * grid.cell_size());
             for ((points, inserted), polygon) in snapped.iter().zip(&welds).zip(&o.polygons) {
+                out.frames.push(&polygon.vertices, points, inserted);
                 let pieces = welded_pieces(points, inserted);
                 let normal = planar_normal(&polygon.vertices);
                 if pieces.is_empty() {

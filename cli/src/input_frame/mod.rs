@@ -81,10 +81,33 @@ impl InputFrames {
     }
 
     /// Adds the next input polygon: its corners as input (world units) and
-    /// snapped, in the same order.
-    pub fn push(&mut self, input: &[[f64; 3]], snapped: &[GridPoint]) {
+    /// snapped, in the same order, and the other faces' corners welded into
+    /// each of its sides (`inserted[i]` into the side from corner `i`, in
+    /// order along it; see `weld`). A welded corner's input place is on
+    /// the input side, as far along as it is along the snapped side.
+    pub fn push(&mut self, input: &[[f64; 3]], snapped: &[GridPoint], inserted: &[Vec<GridPoint>]) {
+        let n = input.len();
+        let mut ring = Vec::with_capacity(n + inserted.iter().map(Vec::len).sum::<usize>());
+        for (i, (&p, &g)) in input.iter().zip(snapped).enumerate() {
+            ring.push((g, p));
+            let Some(welded) = inserted.get(i) else {
+                continue;
+            };
+            let (q, h) = (input[(i + 1) % n], snapped[(i + 1) % n]);
+            let (from, to) = (self.grid.to_world(g), self.grid.to_world(h));
+            let side = sub(to, from);
+            for &w in welded {
+                let t = dot(sub(self.grid.to_world(w), from), side) / dot(side, side);
+                let t = if t.is_finite() {
+                    t.clamp(0.0, 1.0)
+                } else {
+                    0.5
+                };
+                ring.push((w, [0, 1, 2].map(|c| p[c] + t * (q[c] - p[c]))));
+            }
+        }
         self.frames
-            .push(Frame::new(&self.grid, input, snapped).map(Box::new));
+            .push(Frame::new(&self.grid, &ring).map(Box::new));
     }
 
     /// Input polygon `source` moved: its snapped copy by `units` grid
@@ -93,18 +116,16 @@ impl InputFrames {
         let Some(Some(frame)) = self.frames.get_mut(source as usize) else {
             return;
         };
-        let mut input = Vec::with_capacity(frame.corners.len());
-        let mut snapped = Vec::with_capacity(frame.corners.len());
+        let mut ring = Vec::with_capacity(frame.corners.len());
         for corner in &frame.corners {
             let (g, p) = (corner.grid.to_i64(), corner.input);
             let Ok(g) = GridPoint::new(g[0] + units[0], g[1] + units[1], g[2] + units[2]) else {
                 // Off the grid: the pieces could not move there either.
                 return;
             };
-            snapped.push(g);
-            input.push([p[0] + by[0], p[1] + by[1], p[2] + by[2]]);
+            ring.push((g, [p[0] + by[0], p[1] + by[1], p[2] + by[2]]));
         }
-        self.frames[source as usize] = Frame::new(&self.grid, &input, &snapped).map(Box::new);
+        self.frames[source as usize] = Frame::new(&self.grid, &ring).map(Box::new);
     }
 
     /// `mesh` with every face's corners moved onto its input polygon, and,
@@ -207,12 +228,11 @@ impl Frame {
     }
 
     /// `None` for a polygon with no corners to keep.
-    fn new(grid: &Grid, input: &[[f64; 3]], snapped: &[GridPoint]) -> Option<Self> {
-        if input.len() != snapped.len() {
-            return None;
-        }
+    /// The frame of the polygon of `ring` corners (each snapped, and as
+    /// input), in order.
+    fn new(grid: &Grid, ring: &[(GridPoint, [f64; 3])]) -> Option<Self> {
         let mut corners: SmallVec<[Corner; 4]> = SmallVec::new();
-        for (&grid, &input) in snapped.iter().zip(input) {
+        for &(grid, input) in ring {
             match corners.last() {
                 // A repeated input corner (it snaps to the same point).
                 Some(c) if c.input == input => continue,
@@ -286,9 +306,12 @@ fn doubled_area(corners: &[[f64; 2]]) -> f64 {
 /// mean plane by more than [`PLANARITY`] of its size.
 pub(crate) fn planar_normal(corners: &[[f64; 3]]) -> Option<[f64; 3]> {
     let n = corners.len();
+    // Relative to corner 0: far from the origin the products of absolute
+    // coordinates would cancel to noise.
+    let o = corners[0];
     let mut normal = [0.0; 3];
     for i in 0..n {
-        let c = cross(corners[i], corners[(i + 1) % n]);
+        let c = cross(sub(corners[i], o), sub(corners[(i + 1) % n], o));
         normal = [normal[0] + c[0], normal[1] + c[1], normal[2] + c[2]];
     }
     let length = norm(normal);

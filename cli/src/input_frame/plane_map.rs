@@ -67,17 +67,22 @@ impl PlaneMap {
             .iter()
             .map(|p| [p[u] - to[0][u], p[v] - to[0][v]])
             .collect();
-        // Same non-zero turn at every corner: the same shape.
-        let turns: SmallVec<[f64; 4]> = (0..n)
-            .map(|i| orient(b[i], b[(i + 1) % n], b[(i + 2) % n]))
-            .collect();
-        if (0..n).any(|i| {
-            let (s, t) = (orient(a[i], a[(i + 1) % n], a[(i + 2) % n]), turns[i]);
-            s == 0.0 || t == 0.0 || (s > 0.0) != (t > 0.0)
-        }) {
+        // The same turn at every corner, or none in one of them (a corner
+        // welded onto an input side lies on it; its snapped copy, half a
+        // step off): the same shape.
+        let turn = |q: &[[f64; 2]], i: usize| {
+            let (p0, p1, p2) = (q[i], q[(i + 1) % n], q[(i + 2) % n]);
+            let t = orient(p0, p1, p2);
+            let scale = norm2(sub2(p1, p0)).sqrt() * norm2(sub2(p2, p1)).sqrt();
+            if t.abs() <= 1e-12 * scale { 0.0 } else { t }
+        };
+        let turns: SmallVec<[f64; 4]> = (0..n).map(|i| turn(&b, i)).collect();
+        if (0..n).any(|i| turn(&a, i) * turns[i] < 0.0) {
             return None;
         }
-        let convex = turns.iter().all(|&t| (t > 0.0) == (turns[0] > 0.0));
+        let convex = turns
+            .iter()
+            .all(|&t| t != 0.0 && (t > 0.0) == (turns[0] > 0.0));
         let kind = if n == 4 && convex {
             MapKind::Bilinear
         } else {
@@ -149,11 +154,13 @@ fn barycentric(t: [[f64; 2]; 3], x: [f64; 2]) -> [f64; 3] {
     [1.0 - w1 - w2, w1, w2]
 }
 
-/// Triangles (corner indices) that cut both the polygon `a` and the
-/// polygon `b` (the same corners moved a little), by ear clipping: at each
-/// step the ear, of both, whose worse shape (its area over its sides'
-/// squares) is best, so that no triangle is all but flat in either. `None`
-/// when no corner is an ear of both.
+/// Triangles (corner indices) that cut the polygon `a` into ears and take
+/// the polygon `b` (the same corners moved a little) into triangles that
+/// turn the same way or are flat (corners on one side of `b`): at each
+/// step the ear whose worse shape in the two (area over the sides'
+/// squares) is best, so that no triangle is all but flat in `a`, nor in
+/// `b` where another will do (an L's reflex corner lies on a diagonal).
+/// `None` when no corner is such an ear.
 fn ear_clip(a: &[[f64; 2]], b: &[[f64; 2]]) -> Option<SmallVec<[[u16; 3]; 2]>> {
     let n = a.len();
     let sense = |q: &[[f64; 2]]| {
@@ -163,19 +170,19 @@ fn ear_clip(a: &[[f64; 2]], b: &[[f64; 2]]) -> Option<SmallVec<[[u16; 3]; 2]>> {
             .signum()
     };
     let (sa, sb) = (sense(a), sense(b));
-    // The shape of the ear `i`, `j`, `l` of `q`: positive for an ear.
-    let shape = |q: &[[f64; 2]], s: f64, ring: &[usize], [i, j, l]: [usize; 3]| {
-        let area = s * orient(q[i], q[j], q[l]);
-        let inside = |r: usize| {
-            s * orient(q[i], q[j], q[r]) >= 0.0
-                && s * orient(q[j], q[l], q[r]) >= 0.0
-                && s * orient(q[l], q[i], q[r]) >= 0.0
+    let shape = |q: &[[f64; 2]], s: f64, [i, j, l]: [usize; 3]| {
+        let sides = norm2(sub2(q[i], q[j])) + norm2(sub2(q[j], q[l])) + norm2(sub2(q[l], q[i]));
+        s * orient(q[i], q[j], q[l]) / sides
+    };
+    // An ear of `a`: turning its way, no other corner in it or on it.
+    let ear = |ring: &[usize], [i, j, l]: [usize; 3]| {
+        let on_or_in = |r: usize| {
+            sa * orient(a[i], a[j], a[r]) >= 0.0
+                && sa * orient(a[j], a[l], a[r]) >= 0.0
+                && sa * orient(a[l], a[i], a[r]) >= 0.0
         };
-        if area <= 0.0 || ring.iter().any(|&r| ![i, j, l].contains(&r) && inside(r)) {
-            return 0.0;
-        }
-        let d = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2);
-        area / (d(q[i], q[j]) + d(q[j], q[l]) + d(q[l], q[i]))
+        shape(a, sa, [i, j, l]) > 0.0
+            && ring.iter().all(|&r| [i, j, l].contains(&r) || !on_or_in(r))
     };
     let mut ring: Vec<usize> = (0..n).collect();
     let mut out = SmallVec::new();
@@ -183,18 +190,29 @@ fn ear_clip(a: &[[f64; 2]], b: &[[f64; 2]]) -> Option<SmallVec<[[u16; 3]; 2]>> {
         let m = ring.len();
         let corners = |e: usize| [ring[(e + m - 1) % m], ring[e], ring[(e + 1) % m]];
         let (best, quality) = (0..m)
+            .filter(|&e| ear(&ring, corners(e)))
             .map(|e| {
                 let t = corners(e);
-                (e, shape(a, sa, &ring, t).min(shape(b, sb, &ring, t)))
+                (e, shape(a, sa, t).min(shape(b, sb, t)))
             })
             .max_by(|x, y| x.1.total_cmp(&y.1))?;
-        if quality <= 0.0 {
+        // Flat in `b` is right for corners on one of its sides; turned
+        // over is not.
+        if quality < -1e-12 {
             return None;
         }
         out.push(corners(best).map(|c| c as u16));
         ring.remove(best);
     }
     Some(out)
+}
+
+fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
+    [a[0] - b[0], a[1] - b[1]]
+}
+
+fn norm2(a: [f64; 2]) -> f64 {
+    a[0] * a[0] + a[1] * a[1]
 }
 
 /// The coordinates `(s, t)` of `x` in the bilinear patch of the convex

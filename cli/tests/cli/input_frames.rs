@@ -6,7 +6,7 @@
 
 use crate::vectors::{newell, norm};
 use proptest::prelude::*;
-use umbra::{OutputMesh, Scene, dm_scene, shadow_scene};
+use umbra::{LightKind, OutputMesh, Scene, dm_scene, shadow_scene};
 
 /// An object's polygons, turned by `turn` degrees about x, y and z and
 /// moved to `at`, as scene-file text.
@@ -108,10 +108,11 @@ const AREA: &str = "[[light]]\ntype = \"area\"\n\
                     vertices = [[1.15, 3.1, -0.15], [0.97, 3.17, 0.24], [0.66, 3.26, -0.1]]\n";
 
 /// Checks every input polygon of `scene` against its fragments in `mesh`:
-/// areas add up to its area (relative 1e-9), corners lie in its plane
+/// areas add up to its area (relative 1e-9, and the rounding of its
+/// outline's coordinates), corners lie in its plane
 /// (as far as its own corners, and 1e-12 of its size), and each of its
 /// corners is an output vertex.
-fn assert_on_input(scene: &Scene, mesh: &OutputMesh, what: &str) {
+pub(crate) fn assert_on_input(scene: &Scene, mesh: &OutputMesh, what: &str) {
     for (source, (_, polygon)) in scene.input_polygons().enumerate() {
         let input = &polygon.vertices;
         let normal = newell(input);
@@ -133,8 +134,15 @@ fn assert_on_input(scene: &Scene, mesh: &OutputMesh, what: &str) {
             })
             .collect();
         let sum: f64 = faces.iter().map(|f| norm(newell(f)) / 2.0).sum();
+        // Each written coordinate is rounded to f64: far from the origin
+        // the outline moves by that much along the polygon's perimeter.
+        let far = input.iter().flatten().fold(0.0_f64, |m, c| m.max(c.abs()));
+        let perimeter: f64 = (0..input.len())
+            .map(|i| norm([0, 1, 2].map(|a| input[i][a] - input[(i + 1) % input.len()][a])))
+            .sum();
+        let rounding = 4.0 * f64::EPSILON * far * perimeter;
         assert!(
-            (sum - area).abs() <= 1e-9 * area,
+            (sum - area).abs() <= 1e-9 * area + rounding,
             "{what}: polygon {source}: fragments add up to {sum:e}, the polygon is {area:e}"
         );
         // No farther off than its own corners are, as rounded (a needle
@@ -167,6 +175,43 @@ fn thin_and_small_polygons_keep_their_area() {
     let scene = scene(1.78e-5, 1.02e-4, 0.0, AREA);
     let dm = dm_scene(&scene).unwrap();
     assert_on_input(&scene, &dm.mesh().unwrap(), "dm");
+}
+
+/// `scene` with everything moved by `by`.
+fn shifted(mut scene: Scene, by: [f64; 3]) -> Scene {
+    let shift = |p: &mut [f64; 3]| *p = [0, 1, 2].map(|c| p[c] + by[c]);
+    for object in &mut scene.objects {
+        object
+            .polygons
+            .iter_mut()
+            .flat_map(|p| &mut p.vertices)
+            .for_each(shift);
+    }
+    for light in &mut scene.lights {
+        match &mut light.kind {
+            LightKind::Point { position } => shift(position),
+            LightKind::Area { vertices } => vertices.iter_mut().for_each(shift),
+            LightKind::Directional { .. } => {}
+        }
+    }
+    scene
+}
+
+#[test]
+fn polygons_far_from_the_origin_keep_their_area() {
+    // Four thousand times their size away: the planarity of an input
+    // polygon is judged relative to its corner, not to the origin.
+    let far = [-7944.52, -1601.51, -1501.46];
+    for light in [POINT, AREA] {
+        let scene = shifted(scene(1.78e-5, 1.02e-4, 0.0, light), far);
+        assert_on_input(&scene, &shadow_scene(&scene).unwrap().mesh, "shadow, far");
+    }
+    let scene = shifted(scene(1.78e-5, 1.02e-4, 0.0, AREA), far);
+    assert_on_input(
+        &scene,
+        &dm_scene(&scene).unwrap().mesh().unwrap(),
+        "dm, far",
+    );
 }
 
 #[test]

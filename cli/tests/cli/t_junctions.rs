@@ -6,6 +6,7 @@
 //! made the big quad's too), the shadow is whole.
 
 use crate::area::floor_classes;
+use crate::input_frames::assert_on_input;
 use crate::{folder, umbra};
 use umbra::load_ply;
 
@@ -89,6 +90,10 @@ fn a_t_junction_casts_a_whole_shadow() {
         let run = umbra(dir.path(), &["shadow", "scene.toml", "-o", "out.ply"]);
         assert_eq!(run.code, 0, "{}", run.stderr);
         let mesh = load_ply(&dir.path().join("out.ply")).unwrap();
+        // The welded big quad, cut at the corner on its side, still tiles
+        // its input quad.
+        let input = umbra::Scene::from_toml_str(&scene(turn), "scene.toml").unwrap();
+        assert_on_input(&input, &mesh, &format!("turn {turn}"));
         // The plate's shadow: the cast outline (the plate is a rectangle,
         // planar, so its shadow is the quadrilateral of its cast corners).
         let [big, low, high] = plate(turn);

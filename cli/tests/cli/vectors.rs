@@ -21,11 +21,13 @@ pub fn norm(v: [f64; 3]) -> f64 {
     dot(v, v).sqrt()
 }
 
-/// Newell's normal of a polygon: twice its vector area.
+/// Newell's normal of a polygon: twice its vector area (taken relative to
+/// its first corner, so that it keeps its digits far from the origin).
 pub fn newell(points: &[[f64; 3]]) -> [f64; 3] {
     let mut n = [0.0; 3];
+    let o = points.first().copied().unwrap_or_default();
     for (i, a) in points.iter().enumerate() {
-        let b = points[(i + 1) % points.len()];
+        let (a, b) = (sub(*a, o), sub(points[(i + 1) % points.len()], o));
         n[0] += (a[1] - b[1]) * (a[2] + b[2]);
         n[1] += (a[2] - b[2]) * (a[0] + b[0]);
         n[2] += (a[0] - b[0]) * (a[1] + b[1]);
