@@ -6,6 +6,9 @@
 //! - [`Pieces`] snaps every input polygon to one [`bsp_core::Grid`] and cuts
 //!   it into convex planar [`bsp_core::ConvexPolygon`]s, each remembering its
 //!   input polygon (the `source` of the output);
+//! - [`InputFrames`] puts the output's points back onto the input polygons
+//!   they lie on (the kernel's are on the snapped copies), so that each
+//!   polygon's fragments tile it, not its copy;
 //! - [`OutputMesh`] is what the writers take: [`save_ply`] (FORMATS.md §2,
 //!   binary or ASCII; [`load_ply`] reads it back), [`save_obj`], and
 //!   [`Stats`] (FORMATS.md §3); every file is written with [`write_atomic`],
