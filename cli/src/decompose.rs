@@ -132,8 +132,9 @@ impl Pieces {
                 o.polygons.iter().map(|p| p.vertices.as_slice()).collect();
             let welds = weld_t_junctions(&input, &snapped, ON_EDGE * grid.cell_size());
             for ((points, inserted), polygon) in snapped.iter().zip(&welds).zip(&o.polygons) {
-                out.frames.push(&polygon.vertices, points, inserted);
                 let pieces = welded_pieces(points, inserted);
+                out.frames
+                    .push(&polygon.vertices, points, inserted, &pieces);
                 let normal = planar_normal(&polygon.vertices);
                 if pieces.is_empty() {
                     out.dropped.push(index);

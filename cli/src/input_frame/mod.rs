@@ -8,29 +8,32 @@
 //! 6e-4).
 //!
 //! Planar polygons are mapped back exactly: each point of the snapped copy
-//! goes where a map taking every snapped corner to its input corner, and
-//! every snapped side onto the input side, takes it: bilinear for a convex
-//! quad, affine on each triangle of a triangulation for any other polygon
-//! (of up to 64 corners). Either moves each point by an average of its
-//! corners' moves, however thin the polygon (the projective map through a
-//! quad's corners, which would keep every line straight, moves the middle
-//! of a needle by hundreds of grid steps). The fragments' outlines list
-//! every vertex on their sides (the meshes are conforming), so with each
-//! vertex placed on the input polygon they still share their sides, and
-//! tile the input polygon exactly, up to the rounding of their
-//! coordinates; a fragment corner at a polygon corner is written as the
-//! input has it. The map works in the coordinate plane that the input
-//! polygon's plane projects onto best, so a snapped polygon bent into
-//! triangles maps onto the input plane as well. A polygon whose map would
-//! turn a face over (a sliver thinner than its corners' moves), and a
-//! polygon that is not planar, are written as snapped.
+//! goes where a map taking every snapped corner (and corner welded into a
+//! side) to its input place, and every snapped side onto the input side,
+//! takes it: bilinear for a convex quad in one piece, otherwise affine on
+//! each triangle fanned from the polygon's convex pieces (of up to 64
+//! corners in all). Either moves each point by an average of its corners'
+//! moves, however thin the polygon (the projective map through a quad's
+//! corners, which would keep every line straight, moves the middle of a
+//! needle by hundreds of grid steps). Within a piece the outlines are
+//! conforming (each lists every vertex on its sides), and across pieces
+//! the map is affine, so lines stay straight where one piece's vertex lies
+//! inside another's side: with each vertex placed on the input polygon the
+//! fragments still share their sides, and tile the input polygon exactly,
+//! up to the rounding of their coordinates; a fragment corner at a polygon
+//! corner is written as the input has it. The map works in the coordinate
+//! plane that the input polygon's plane projects onto best, so a snapped
+//! polygon bent into triangles maps onto the input plane as well. A
+//! polygon whose map would turn a face over (a sliver thinner than its
+//! corners' moves), and a polygon that is not planar, are written as
+//! snapped.
 //!
 //! Nothing decided in the exact kernel changes: the map only moves where
 //! the output coordinates are written, by at most about a grid step.
 
 use std::collections::{HashMap, HashSet};
 
-use bsp_core::{Grid, GridPoint, VertexPosition};
+use bsp_core::{ConvexPolygon, Grid, GridPoint, VertexPosition};
 use smallvec::SmallVec;
 
 use crate::mesh::OutputMesh;
@@ -55,6 +58,9 @@ pub struct InputFrames {
 #[derive(Debug, Clone)]
 struct Frame {
     corners: SmallVec<[Corner; 4]>,
+    /// The convex pieces the polygon was cut into, as indices of their
+    /// corners in `corners`.
+    pieces: Vec<SmallVec<[u16; 4]>>,
     /// `None` where no point moves: every snapped corner is its input
     /// corner (a scene on the grid), or the polygon is not mapped.
     map: Option<PlaneMap>,
@@ -85,7 +91,17 @@ impl InputFrames {
     /// each of its sides (`inserted[i]` into the side from corner `i`, in
     /// order along it; see `weld`). A welded corner's input place is on
     /// the input side, as far along as it is along the snapped side.
-    pub fn push(&mut self, input: &[[f64; 3]], snapped: &[GridPoint], inserted: &[Vec<GridPoint>]) {
+    /// `pieces` are the convex pieces the polygon was cut into: the map is
+    /// affine on each (or bilinear on a lone quad), so that it keeps lines
+    /// straight across the pieces' common sides, where one piece's vertex
+    /// may lie inside the other's side.
+    pub fn push(
+        &mut self,
+        input: &[[f64; 3]],
+        snapped: &[GridPoint],
+        inserted: &[Vec<GridPoint>],
+        pieces: &[ConvexPolygon],
+    ) {
         let n = input.len();
         let mut ring = Vec::with_capacity(n + inserted.iter().map(Vec::len).sum::<usize>());
         for (i, (&p, &g)) in input.iter().zip(snapped).enumerate() {
@@ -106,8 +122,16 @@ impl InputFrames {
                 ring.push((w, [0, 1, 2].map(|c| p[c] + t * (q[c] - p[c]))));
             }
         }
+        let pieces: Vec<Vec<GridPoint>> = pieces
+            .iter()
+            .map(|p| {
+                (0..p.len())
+                    .filter_map(|k| p.vertex_grid_point(k))
+                    .collect()
+            })
+            .collect();
         self.frames
-            .push(Frame::new(&self.grid, &ring).map(Box::new));
+            .push(Frame::new(&self.grid, &ring, &pieces).map(Box::new));
     }
 
     /// Input polygon `source` moved: its snapped copy by `units` grid
@@ -116,16 +140,32 @@ impl InputFrames {
         let Some(Some(frame)) = self.frames.get_mut(source as usize) else {
             return;
         };
+        let moved = |g: GridPoint| {
+            let g = g.to_i64();
+            GridPoint::new(g[0] + units[0], g[1] + units[1], g[2] + units[2]).ok()
+        };
         let mut ring = Vec::with_capacity(frame.corners.len());
         for corner in &frame.corners {
-            let (g, p) = (corner.grid.to_i64(), corner.input);
-            let Ok(g) = GridPoint::new(g[0] + units[0], g[1] + units[1], g[2] + units[2]) else {
-                // Off the grid: the pieces could not move there either.
+            let p = corner.input;
+            // Off the grid: the pieces could not move there either.
+            let Some(g) = moved(corner.grid) else {
                 return;
             };
             ring.push((g, [p[0] + by[0], p[1] + by[1], p[2] + by[2]]));
         }
-        self.frames[source as usize] = Frame::new(&self.grid, &ring).map(Box::new);
+        let pieces: Option<Vec<Vec<GridPoint>>> = frame
+            .pieces
+            .iter()
+            .map(|p| {
+                p.iter()
+                    .map(|&i| moved(frame.corners[i as usize].grid))
+                    .collect()
+            })
+            .collect();
+        let Some(pieces) = pieces else {
+            return;
+        };
+        self.frames[source as usize] = Frame::new(&self.grid, &ring, &pieces).map(Box::new);
     }
 
     /// `mesh` with every face's corners moved onto its input polygon, and,
@@ -229,8 +269,8 @@ impl Frame {
 
     /// `None` for a polygon with no corners to keep.
     /// The frame of the polygon of `ring` corners (each snapped, and as
-    /// input), in order.
-    fn new(grid: &Grid, ring: &[(GridPoint, [f64; 3])]) -> Option<Self> {
+    /// input), in order, cut into `pieces` (their corners, ring points).
+    fn new(grid: &Grid, ring: &[(GridPoint, [f64; 3])], pieces: &[Vec<GridPoint>]) -> Option<Self> {
         let mut corners: SmallVec<[Corner; 4]> = SmallVec::new();
         for &(grid, input) in ring {
             match corners.last() {
@@ -254,17 +294,32 @@ impl Frame {
         }
         let from: SmallVec<[[f64; 3]; 4]> = corners.iter().map(|c| grid.to_world(c.grid)).collect();
         let to: SmallVec<[[f64; 3]; 4]> = corners.iter().map(|c| c.input).collect();
+        // Each piece's corners as ring indices.
+        let pieces: Option<Vec<SmallVec<[u16; 4]>>> = pieces
+            .iter()
+            .map(|p| {
+                p.iter()
+                    .map(|g| corners.iter().position(|c| c.grid == *g).map(|i| i as u16))
+                    .collect()
+            })
+            .collect();
+        let pieces = pieces?;
         let exact = from == to;
         let map = if exact {
             None
         } else {
-            PlaneMap::new(&from, &to)
+            PlaneMap::new(&from, &to, &pieces)
         };
         let n = to.len();
         let size = (0..n)
             .map(|i| norm(sub(to[i], to[(i + 1) % n])))
             .fold(0.0, f64::max);
-        Some(Self { corners, map, size })
+        Some(Self {
+            corners,
+            pieces,
+            map,
+            size,
+        })
     }
 
     /// Where the point `p` (world units) of the snapped polygon's pieces

@@ -1,7 +1,7 @@
 //! The maps from a snapped polygon onto its input polygon, in a
-//! coordinate plane: bilinear for a convex quad, affine on the triangles of
-//! an ear-clipped triangulation for any other polygon (one triangle for a
-//! triangle). Either moves each point by an average of the corners' moves.
+//! coordinate plane: bilinear for a convex quad in one piece, affine on
+//! each triangle of the polygon's convex pieces (fanned) otherwise. Either
+//! moves each point by an average of the corners' moves.
 
 use smallvec::SmallVec;
 
@@ -50,7 +50,11 @@ impl PlaneMap {
     /// along a diagonal) to `to` (a planar polygon), in the same order.
     /// `None` when `to` is not planar, either is degenerate, or the two
     /// turn differently at some corner.
-    pub(super) fn new(from: &[[f64; 3]], to: &[[f64; 3]]) -> Option<Self> {
+    pub(super) fn new(
+        from: &[[f64; 3]],
+        to: &[[f64; 3]],
+        pieces: &[SmallVec<[u16; 4]>],
+    ) -> Option<Self> {
         let n = to.len();
         if !(3..=MOST_CORNERS).contains(&n) || from.len() != n {
             return None;
@@ -83,11 +87,10 @@ impl PlaneMap {
         let convex = turns
             .iter()
             .all(|&t| t != 0.0 && (t > 0.0) == (turns[0] > 0.0));
-        let kind = if n == 4 && convex {
+        let kind = if n == 4 && convex && pieces.len() == 1 && pieces[0].len() == 4 {
             MapKind::Bilinear
         } else {
-            let triangles = ear_clip(&a, &b)?;
-            MapKind::Triangles(triangles)
+            MapKind::Triangles(fans(pieces, &a, &b)?)
         };
         Some(Self {
             u,
@@ -154,18 +157,18 @@ fn barycentric(t: [[f64; 2]; 3], x: [f64; 2]) -> [f64; 3] {
     [1.0 - w1 - w2, w1, w2]
 }
 
-/// Triangles (corner indices) that cut the polygon `a` into ears and take
-/// the polygon `b` (the same corners moved a little) into triangles that
-/// turn the same way or are flat (corners on one side of `b`): at each
-/// step the ear whose worse shape in the two (area over the sides'
-/// squares) is best, so that no triangle is all but flat in `a`, nor in
-/// `b` where another will do (an L's reflex corner lies on a diagonal).
-/// `None` when no corner is such an ear.
-fn ear_clip(a: &[[f64; 2]], b: &[[f64; 2]]) -> Option<SmallVec<[[u16; 3]; 2]>> {
-    let n = a.len();
+/// The pieces (corner indices) cut into triangles fanned from their first
+/// corners: each turning the way the polygon `a` does, and in `b` (the
+/// same corners moved a little) the same way or not at all (corners on one
+/// side of `b`). `None` for no pieces, or a triangle that `b` turns over.
+fn fans(
+    pieces: &[SmallVec<[u16; 4]>],
+    a: &[[f64; 2]],
+    b: &[[f64; 2]],
+) -> Option<SmallVec<[[u16; 3]; 2]>> {
     let sense = |q: &[[f64; 2]]| {
-        (0..n)
-            .map(|i| orient([0.0; 2], q[i], q[(i + 1) % n]))
+        (0..q.len())
+            .map(|i| orient([0.0; 2], q[i], q[(i + 1) % q.len()]))
             .sum::<f64>()
             .signum()
     };
@@ -174,37 +177,21 @@ fn ear_clip(a: &[[f64; 2]], b: &[[f64; 2]]) -> Option<SmallVec<[[u16; 3]; 2]>> {
         let sides = norm2(sub2(q[i], q[j])) + norm2(sub2(q[j], q[l])) + norm2(sub2(q[l], q[i]));
         s * orient(q[i], q[j], q[l]) / sides
     };
-    // An ear of `a`: turning its way, no other corner in it or on it.
-    let ear = |ring: &[usize], [i, j, l]: [usize; 3]| {
-        let on_or_in = |r: usize| {
-            sa * orient(a[i], a[j], a[r]) >= 0.0
-                && sa * orient(a[j], a[l], a[r]) >= 0.0
-                && sa * orient(a[l], a[i], a[r]) >= 0.0
-        };
-        shape(a, sa, [i, j, l]) > 0.0
-            && ring.iter().all(|&r| [i, j, l].contains(&r) || !on_or_in(r))
-    };
-    let mut ring: Vec<usize> = (0..n).collect();
     let mut out = SmallVec::new();
-    while ring.len() >= 3 {
-        let m = ring.len();
-        let corners = |e: usize| [ring[(e + m - 1) % m], ring[e], ring[(e + 1) % m]];
-        let (best, quality) = (0..m)
-            .filter(|&e| ear(&ring, corners(e)))
-            .map(|e| {
-                let t = corners(e);
-                (e, shape(a, sa, t).min(shape(b, sb, t)))
-            })
-            .max_by(|x, y| x.1.total_cmp(&y.1))?;
-        // Flat in `b` is right for corners on one of its sides; turned
-        // over is not.
-        if quality < -1e-12 {
-            return None;
+    for piece in pieces {
+        for k in 1..piece.len().saturating_sub(1) {
+            let t = [piece[0], piece[k], piece[k + 1]];
+            let corners = t.map(usize::from);
+            if corners.iter().any(|&c| c >= a.len()) {
+                return None;
+            }
+            if !(shape(a, sa, corners) > 0.0 && shape(b, sb, corners) >= -1e-12) {
+                return None;
+            }
+            out.push(t);
         }
-        out.push(corners(best).map(|c| c as u16));
-        ring.remove(best);
     }
-    Some(out)
+    (!out.is_empty()).then_some(out)
 }
 
 fn sub2(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
@@ -259,6 +246,11 @@ mod tests {
     use super::*;
     use crate::vec3::{cross, dot, norm};
 
+    /// One piece of `n` corners.
+    fn whole(n: u16) -> [SmallVec<[u16; 4]>; 1] {
+        [(0..n).collect()]
+    }
+
     /// A convex quad in a tilted plane, and the same with each corner
     /// moved by up to `jiggle` (as snapping would).
     fn quads(jiggle: f64) -> ([[f64; 3]; 4], [[f64; 3]; 4]) {
@@ -292,7 +284,7 @@ mod tests {
     #[test]
     fn a_convex_quad_maps_bilinearly() {
         let (input, snapped) = quads(1e-3);
-        let map = PlaneMap::new(&snapped, &input).expect("a mappable quad");
+        let map = PlaneMap::new(&snapped, &input, &whole(4)).expect("a mappable quad");
         assert!(matches!(map.kind, MapKind::Bilinear));
         check_polygon(&map, &snapped, &input);
     }
@@ -317,7 +309,7 @@ mod tests {
             .zip(moves)
             .map(|(p, m)| [0, 1, 2].map(|c| p[c] + m[c]))
             .collect();
-        let map = PlaneMap::new(&snapped, &input).expect("a mappable needle");
+        let map = PlaneMap::new(&snapped, &input, &whole(4)).expect("a mappable needle");
         let moved = farthest(&snapped, &input);
         for t in [0.25, 0.5, 0.75] {
             let p = between(
@@ -381,7 +373,7 @@ mod tests {
     }
 
     #[test]
-    fn a_concave_quad_and_an_l_shape_map_on_their_triangles() {
+    fn a_concave_quad_and_an_l_shape_map_on_their_pieces() {
         let at = |x: f64, z: f64| [x, 0.3 * x - 0.2 * z + 1.0, z];
         // A dart (corner 2 turns the other way), and an L.
         let dart = [at(0.0, 0.0), at(2.0, -1.0), at(0.8, 0.0), at(2.0, 1.0)];
@@ -393,9 +385,18 @@ mod tests {
             at(2.0, 1.0),
             at(2.0, 0.0),
         ];
-        for input in [&dart[..], &l[..]] {
+        // Their convex pieces.
+        let dart_pieces = [
+            SmallVec::from_slice(&[0, 1, 2]),
+            SmallVec::from_slice(&[0, 2, 3]),
+        ];
+        let l_pieces = [
+            SmallVec::from_slice(&[0, 1, 2, 3]),
+            SmallVec::from_slice(&[0, 3, 4, 5]),
+        ];
+        for (input, pieces) in [(&dart[..], &dart_pieces), (&l[..], &l_pieces)] {
             let snapped = jiggled(input, 1e-3);
-            let map = PlaneMap::new(&snapped, input).expect("a mappable polygon");
+            let map = PlaneMap::new(&snapped, input, pieces).expect("a mappable polygon");
             assert!(matches!(map.kind, MapKind::Triangles(_)));
             check_polygon(&map, &snapped, input);
         }
@@ -409,11 +410,11 @@ mod tests {
         let mut snapped = input;
         snapped[3] = between(input[0], input[2], 0.5);
         snapped[3] = [0, 1, 2].map(|k| snapped[3][k] + 0.01 * (snapped[3][k] - input[3][k]));
-        assert!(PlaneMap::new(&snapped, &input).is_none());
+        assert!(PlaneMap::new(&snapped, &input, &whole(4)).is_none());
         // A non-planar input is not mapped either.
         let mut bent = input;
         bent[2][1] += 1e-3;
-        assert!(PlaneMap::new(&input, &bent).is_none());
+        assert!(PlaneMap::new(&input, &bent, &whole(4)).is_none());
     }
 
     fn newell(points: &[[f64; 3]]) -> [f64; 3] {
