@@ -11,7 +11,7 @@
 //! goes where a map taking every snapped corner (and corner welded into a
 //! side) to its input place, and every snapped side onto the input side,
 //! takes it: bilinear for a convex quad in one piece, otherwise affine on
-//! each triangle fanned from the polygon's convex pieces (of up to 64
+//! each triangle fanned from the polygon's convex pieces (of up to 1024
 //! corners in all). Either moves each point by an average of its corners'
 //! moves, however thin the polygon (the projective map through a quad's
 //! corners, which would keep every line straight, moves the middle of a

@@ -41,9 +41,9 @@ enum MapKind {
     Triangles(SmallVec<[[u16; 3]; 2]>),
 }
 
-/// The most corners a mapped polygon has (its triangulation takes time
-/// cubic in them, locating a point linear).
-const MOST_CORNERS: usize = 64;
+/// The most corners a mapped polygon has (locating a point takes time
+/// linear in them).
+const MOST_CORNERS: usize = 1024;
 
 impl PlaneMap {
     /// The map taking the corners `from` (a snapped polygon, possibly bent
