@@ -466,3 +466,30 @@ fn a_bent_needle_keeps_its_area_when_a_box_moves_over_it() {
     }
     assert_on_input(&moved, &mesh, "update");
 }
+
+#[test]
+fn a_turned_400_gon_keeps_its_area() {
+    let disc = vec![
+        (0..400)
+            .map(|i| {
+                let a = f64::from(i) * std::f64::consts::TAU / 400.0;
+                [2.0 * a.cos(), 0.0, -2.0 * a.sin()]
+            })
+            .collect(),
+    ];
+    let square = vec![vec![
+        [-0.3, 0.0, -0.3],
+        [-0.3, 0.0, 0.3],
+        [0.3, 0.0, 0.3],
+        [0.3, 0.0, -0.3],
+    ]];
+    let text = [
+        object("disc", &disc, [13.0, 27.0, 41.0], [0.0; 3]),
+        object("square", &square, [13.0, 27.0, 41.0], [0.1, 1.0, 0.2]),
+        POINT.to_string(),
+    ]
+    .concat();
+    let scene = Scene::from_toml_str(&text, "disc.toml").unwrap();
+    assert_on_input(&scene, &shadow_scene(&scene).unwrap().mesh, "shadow");
+    assert_on_input(&scene, &dm_scene(&scene).unwrap().mesh().unwrap(), "dm");
+}
