@@ -14,7 +14,9 @@
 //!
 //! [`DmScene::illuminate`] gives the irradiance at every cell vertex by the
 //! paper's three cases, asking [`illum`] for the visible part of a light only
-//! past the occluders every cell around the vertex lists. Objects can be
+//! past the occluders every cell around the vertex lists (along the
+//! receiver's normal, or one set with [`DmScene::set_receiver_normal`]: the
+//! input polygon's, of which the receiver is a snapped copy). Objects can be
 //! added, removed and moved ([`DmScene::add_object`],
 //! [`DmScene::remove_object`], [`DmScene::move_object`]). A removal drops
 //! the occluder from the lists of the cells it covered and deletes its
