@@ -66,6 +66,8 @@ struct Frame {
     map: Option<PlaneMap>,
     /// The input polygon's longest side.
     size: f64,
+    /// The farthest any corner moved, snapped to input (world units).
+    moved: f64,
 }
 
 /// A corner of an input polygon.
@@ -258,16 +260,27 @@ impl Frame {
         };
         let corners: SmallVec<[[f64; 3]; 8]> = corners.collect();
         let flat: SmallVec<[[f64; 2]; 8]> = corners.iter().map(|&p| map.flat(p)).collect();
+        let before = doubled_area(&flat);
+        // No point moves farther than a corner did, so the doubled area
+        // changes by at most twice that times the perimeter: a face wider
+        // than that cannot turn over, and is not placed twice.
+        let perimeter: f64 = (0..flat.len())
+            .map(|i| {
+                let (a, b) = (flat[i], flat[(i + 1) % flat.len()]);
+                ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
+            })
+            .sum();
+        if before.abs() > 2.0 * self.moved * perimeter * (1.0 + 1e-6) {
+            return false;
+        }
         let placed: SmallVec<[[f64; 2]; 8]> = corners
             .iter()
             .map(|&p| map.flat(self.place(grid, p)))
             .collect();
-        let before = doubled_area(&flat);
         let after = doubled_area(&placed);
         after * before.signum() < -1e-12 * self.size * self.size
     }
 
-    /// `None` for a polygon with no corners to keep.
     /// The frame of the polygon of `ring` corners (each snapped, and as
     /// input), in order, cut into `pieces` (their corners, ring points).
     fn new(grid: &Grid, ring: &[(GridPoint, [f64; 3])], pieces: &[Vec<GridPoint>]) -> Option<Self> {
@@ -314,11 +327,17 @@ impl Frame {
         let size = (0..n)
             .map(|i| norm(sub(to[i], to[(i + 1) % n])))
             .fold(0.0, f64::max);
+        let moved = from
+            .iter()
+            .zip(&to)
+            .map(|(p, q)| norm(sub(*p, *q)))
+            .fold(0.0, f64::max);
         Some(Self {
             corners,
             pieces,
             map,
             size,
+            moved,
         })
     }
 
