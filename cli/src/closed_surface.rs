@@ -24,7 +24,6 @@ use svbsp::PieceFlags;
 
 use crate::decompose::{Pieces, SnappedLight};
 use crate::scene::Scene;
-use crate::shadow::piece_objects;
 use area_shadow::AreaSource;
 
 /// What each piece's object is as a surface.
@@ -42,9 +41,9 @@ pub(crate) struct Surfaces {
     pub facing_inside: Vec<bool>,
 }
 
-/// The pieces' objects as surfaces (see [`Surfaces`]).
-pub(crate) fn surfaces(scene: &Scene, pieces: &Pieces) -> Surfaces {
-    let objects = piece_objects(scene, pieces);
+/// The pieces' objects as surfaces (see [`Surfaces`]); `objects[k]` is
+/// piece `k`'s object ([`piece_objects`](crate::shadow::piece_objects)).
+pub(crate) fn surfaces(scene: &Scene, pieces: &Pieces, objects: &[u32]) -> Surfaces {
     let object_of = |k: usize| objects[k] as usize;
     // Objects that are no closed surface, or that some light shines into.
     let mut open = vec![false; scene.objects.len()];

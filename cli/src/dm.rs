@@ -21,6 +21,7 @@ use crate::dm_lights::{LightMap, cut_by_other_lights};
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh, irradiance_f32};
 use crate::scene::Scene;
+use crate::shadow::piece_objects;
 use crate::stats::{LightStats, Seconds, Stats};
 
 /// Figures of the DM-trees (beside FORMATS.md §3's fields).
@@ -182,9 +183,9 @@ fn area_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<DmLight>> {
     Ok(out)
 }
 
-/// The pieces of each scene object, with the object's flags.
-fn grouped(scene: &Scene, pieces: &Pieces, flags: &[PieceFlags]) -> Vec<(Vec<usize>, PieceFlags)> {
-    let object_of: Vec<usize> = scene.input_polygons().map(|(o, _)| o).collect();
+/// The pieces of each scene object (piece `k` of object `objects[k]`),
+/// with the object's flags.
+fn grouped(scene: &Scene, objects: &[u32], flags: &[PieceFlags]) -> Vec<(Vec<usize>, PieceFlags)> {
     let mut out: Vec<(Vec<usize>, PieceFlags)> = scene
         .objects
         .iter()
@@ -197,8 +198,8 @@ fn grouped(scene: &Scene, pieces: &Pieces, flags: &[PieceFlags]) -> Vec<(Vec<usi
             (Vec::new(), f)
         })
         .collect();
-    for k in 0..pieces.polygons.len() {
-        let o = object_of[pieces.input_of[k] as usize];
+    for (k, &o) in objects.iter().enumerate() {
+        let o = o as usize;
         out[o].0.push(k);
         out[o].1 = flags[k];
     }
@@ -223,11 +224,12 @@ pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Re
     let pieces = Pieces::from_scene_moving(scene, lengths)?;
     let lights = area_lights(scene, &pieces)?;
     let light_map = LightMap::of(scene, &pieces)?;
+    let objects = piece_objects(scene, &pieces);
     let Surfaces {
         flags,
         facing_inside,
-    } = surfaces(scene, &pieces);
-    let groups = grouped(scene, &pieces, &flags);
+    } = surfaces(scene, &pieces, &objects);
+    let groups = grouped(scene, &objects, &flags);
     let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = groups
         .iter()
         .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
@@ -639,11 +641,11 @@ impl DmRun {
             states.push(moved);
         }
         // The input polygons went `steps * by`, their pieces as rounded.
-        let offset = by.map(|x| grid.length_to_units(x * f64::from(steps)).round() as i64);
+        let way = by.map(|x| x * f64::from(steps));
+        let offset = way.map(|x| grid.length_to_units(x).round() as i64);
         let mut sources: Vec<u32> = ks.iter().map(|&k| self.pieces.input_of[k]).collect();
         sources.dedup();
         for source in sources {
-            let way = by.map(|x| x * f64::from(steps));
             self.pieces.frames.translate(source, offset, way);
         }
         for (s, moved) in (1..=steps).zip(states) {

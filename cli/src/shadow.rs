@@ -79,11 +79,11 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     let started = Instant::now();
     let pieces = Pieces::from_scene(scene)?;
     let lights = scene_lights(scene, &pieces)?;
+    let objects = piece_objects(scene, &pieces);
     let Surfaces {
         flags,
         facing_inside,
-    } = surfaces(scene, &pieces);
-    let objects = piece_objects(scene, &pieces);
+    } = surfaces(scene, &pieces, &objects);
     let groups = ShadowGroups::of_objects(&pieces.polygons, &flags, &objects);
     let out = area_shadow::compute_shadows_with_groups(
         &pieces.polygons,

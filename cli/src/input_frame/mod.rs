@@ -382,7 +382,7 @@ pub(crate) fn planar_normal(corners: &[[f64; 3]]) -> Option<[f64; 3]> {
     let n = corners.len();
     // Relative to corner 0: far from the origin the products of absolute
     // coordinates would cancel to noise.
-    let o = corners[0];
+    let &o = corners.first()?;
     let mut normal = [0.0; 3];
     for i in 0..n {
         let c = cross(sub(corners[i], o), sub(corners[(i + 1) % n], o));
