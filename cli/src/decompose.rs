@@ -131,10 +131,13 @@ impl Pieces {
             let input: Vec<&[[f64; 3]]> =
                 o.polygons.iter().map(|p| p.vertices.as_slice()).collect();
             let welds = weld_t_junctions(&input, &snapped, ON_EDGE * grid.cell_size());
-            for ((points, inserted), polygon) in snapped.iter().zip(&welds).zip(&o.polygons) {
-                let pieces = welded_pieces(points, inserted);
-                out.frames
-                    .push(&polygon.vertices, points, inserted, &pieces);
+            for ((points, welded), polygon) in snapped.iter().zip(&welds).zip(&o.polygons) {
+                let inserted: Vec<Vec<GridPoint>> = welded
+                    .iter()
+                    .map(|edge| edge.iter().map(|w| w.point).collect())
+                    .collect();
+                let pieces = welded_pieces(points, &inserted);
+                out.frames.push(&polygon.vertices, points, welded, &pieces);
                 let normal = planar_normal(&polygon.vertices);
                 if pieces.is_empty() {
                     out.dropped.push(index);

@@ -38,6 +38,7 @@ use smallvec::SmallVec;
 
 use crate::mesh::OutputMesh;
 use crate::vec3::{cross, dot, norm, sub};
+use crate::weld::Weld;
 
 mod plane_map;
 
@@ -92,7 +93,8 @@ impl InputFrames {
     /// snapped, in the same order, and the other faces' corners welded into
     /// each of its sides (`inserted[i]` into the side from corner `i`, in
     /// order along it; see `weld`). A welded corner's input place is on
-    /// the input side, as far along as it is along the snapped side.
+    /// the input side, where the weld found its input corner along it: the
+    /// neighbour's corner, up to the weld's tolerance.
     /// `pieces` are the convex pieces the polygon was cut into: the map is
     /// affine on each (or bilinear on a lone quad), so that it keeps lines
     /// straight across the pieces' common sides, where one piece's vertex
@@ -101,7 +103,7 @@ impl InputFrames {
         &mut self,
         input: &[[f64; 3]],
         snapped: &[GridPoint],
-        inserted: &[Vec<GridPoint>],
+        inserted: &[Vec<Weld>],
         pieces: &[ConvexPolygon],
     ) {
         let n = input.len();
@@ -111,17 +113,10 @@ impl InputFrames {
             let Some(welded) = inserted.get(i) else {
                 continue;
             };
-            let (q, h) = (input[(i + 1) % n], snapped[(i + 1) % n]);
-            let (from, to) = (self.grid.to_world(g), self.grid.to_world(h));
-            let side = sub(to, from);
-            for &w in welded {
-                let t = dot(sub(self.grid.to_world(w), from), side) / dot(side, side);
-                let t = if t.is_finite() {
-                    t.clamp(0.0, 1.0)
-                } else {
-                    0.5
-                };
-                ring.push((w, [0, 1, 2].map(|c| p[c] + t * (q[c] - p[c]))));
+            let q = input[(i + 1) % n];
+            for w in welded {
+                let t = w.along;
+                ring.push((w.point, [0, 1, 2].map(|c| p[c] + t * (q[c] - p[c]))));
             }
         }
         let pieces: Vec<Vec<GridPoint>> = pieces

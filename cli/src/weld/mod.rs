@@ -21,6 +21,16 @@ use crate::vec3::{dot, sub};
 mod cut;
 pub use cut::welded_pieces;
 
+/// A corner welded into an edge of another face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Weld {
+    /// The corner, snapped.
+    pub point: GridPoint,
+    /// Where its input corner lies along the input edge, as a fraction from
+    /// the edge's start.
+    pub along: f64,
+}
+
 /// How near an edge a corner counts as on it, in grid steps: far below a
 /// step (so no gap the grid can hold is closed), far above the rounding of
 /// world coordinates.
@@ -30,12 +40,12 @@ pub const ON_EDGE: f64 = 1e-3;
 /// units), the other faces' corners to weld into each of its edges: those
 /// that lie on the edge from its corner `j` to corner `j + 1` strictly
 /// between its ends, within `tolerance` (world units), in order along the
-/// edge, at `[i][j]` ([`welded_pieces`] cuts the face with them).
+/// edge, at `[i][j]` ([`welded_pieces`] cuts the face with their points).
 pub fn weld_t_junctions(
     input: &[&[[f64; 3]]],
     snapped: &[Vec<GridPoint>],
     tolerance: f64,
-) -> Vec<Vec<Vec<GridPoint>>> {
+) -> Vec<Vec<Vec<Weld>>> {
     let corners = Corners::new(input, snapped);
     input
         .iter()
@@ -59,7 +69,9 @@ pub fn weld_t_junctions(
                         .collect();
                     on.sort_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)));
                     on.dedup_by_key(|x| x.1);
-                    on.into_iter().map(|(_, g)| g).collect()
+                    on.into_iter()
+                        .map(|(along, point)| Weld { point, along })
+                        .collect()
                 })
                 .collect()
         })
@@ -263,8 +275,13 @@ mod tests {
         let snapped: Vec<Vec<GridPoint>> = input.iter().map(|p| snap(p)).collect();
         let welds = weld_t_junctions(&input, &snapped, 1e-3 * 0.25);
         // Into the big square's edge from (0, 0, 8) to (0, 0, 0) (its
-        // fourth), the strips' corner; nothing else anywhere.
-        assert_eq!(welds[0], [vec![], vec![], vec![], vec![gp(0, 0, 4)]]);
+        // fourth), the strips' corner, halfway; nothing else anywhere.
+        let points: Vec<Vec<GridPoint>> = welds[0]
+            .iter()
+            .map(|edge| edge.iter().map(|w| w.point).collect())
+            .collect();
+        assert_eq!(points, [vec![], vec![], vec![], vec![gp(0, 0, 4)]]);
+        assert!((welds[0][3][0].along - 0.5).abs() < 1e-12);
         assert!(welds[1..].iter().flatten().all(Vec::is_empty));
     }
 

@@ -94,9 +94,28 @@ fn a_t_junction_casts_a_whole_shadow() {
         // its input quad.
         let input = umbra::Scene::from_toml_str(&scene(turn), "scene.toml").unwrap();
         assert_on_input(&input, &mesh, &format!("turn {turn}"));
+        // The big quad's welded corner is written where the strips' corner
+        // is: no crack between them in the output either.
+        let [big, low, high] = plate(turn);
+        let joint = low[2];
+        let nearest = mesh
+            .faces
+            .iter()
+            .filter(|f| f.source == 1)
+            .flat_map(|f| f.vertices.iter().map(|&v| mesh.vertices[v as usize].0))
+            .map(|p| {
+                (0..3)
+                    .map(|a| (p[a] - joint[a]).powi(2))
+                    .sum::<f64>()
+                    .sqrt()
+            })
+            .fold(f64::INFINITY, f64::min);
+        assert!(
+            nearest <= 1e-12,
+            "turn {turn}: the welded corner is {nearest:e} off"
+        );
         // The plate's shadow: the cast outline (the plate is a rectangle,
         // planar, so its shadow is the quadrilateral of its cast corners).
-        let [big, low, high] = plate(turn);
         let outline: Vec<[f64; 2]> = [low[0], high[1], big[2], big[3]]
             .iter()
             .map(|&p| cast(p))
