@@ -81,6 +81,7 @@ use smallvec::SmallVec;
 
 mod body;
 mod frontier;
+mod hinge;
 mod leak;
 mod shaft;
 mod sheet;
@@ -137,6 +138,7 @@ pub fn sees_none(
         .map(|b| b.clearance(region, &light_corners, light.support()))
         .collect();
     let prover = Prover {
+        hinges: hinge::hinges(&occluders),
         occluders,
         bodies,
         clearances,
@@ -204,6 +206,18 @@ impl Occluder {
     /// the polygon's plane, which corner pairs cross it (as
     /// [`Self::pair_crossings`]); `None` otherwise.
     fn candidate_pairs(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Option<Pairs> {
+        self.candidate_pairs_past(region, light, None)
+    }
+
+    /// [`Self::candidate_pairs`], for the polygon with the edge `open`
+    /// (from corner `open` to the next) taken away: its plane's region
+    /// inside the other edges.
+    fn candidate_pairs_past(
+        &self,
+        region: &ConvexPolygon,
+        light: &[GridPoint],
+        open: Option<usize>,
+    ) -> Option<Pairs> {
         let &first = light.first()?;
         let light_side = side_of_point(&self.support, first);
         if light_side == Side::On
@@ -219,7 +233,7 @@ impl Occluder {
         Some(
             light
                 .iter()
-                .flat_map(|&l| self.crossings(region, l, &all))
+                .flat_map(|&l| self.crossings_past(region, l, &all, open))
                 .collect(),
         )
     }
@@ -262,6 +276,17 @@ impl Occluder {
         l: GridPoint,
         test: &[bool],
     ) -> SmallVec<[bool; 8]> {
+        self.crossings_past(region, l, test, None)
+    }
+
+    /// [`Self::crossings`] with the edge `open` taken away.
+    fn crossings_past(
+        &self,
+        region: &ConvexPolygon,
+        l: GridPoint,
+        test: &[bool],
+        open: Option<usize>,
+    ) -> SmallVec<[bool; 8]> {
         // The segment k-l crosses the plane at x. For an edge a-b, the plane
         // H through a, b, l meets the support in the edge's line, and x lies
         // between k and l with l on H: x is on the polygon's side of the
@@ -280,6 +305,9 @@ impl Occluder {
         for e in 0..m {
             if !inside.contains(&true) {
                 break;
+            }
+            if open == Some(e) {
+                continue;
             }
             let (a, b) = (self.corners[e], self.corners[(e + 1) % m]);
             let Some(h) = Plane::through_unreduced(a, b, l) else {
@@ -313,10 +341,14 @@ struct LightPiece {
 enum BlockerRef {
     Occluder(u32),
     Body(u32),
+    /// Two occluders that share an edge, as one ([`hinge`]).
+    Hinge(u32),
 }
 
 struct Prover<'a> {
     occluders: Vec<Occluder>,
+    /// The pairs of occluders that share an edge.
+    hinges: Vec<hinge::Hinge>,
     bodies: &'a [&'a Body],
     /// Per body: whether it is clear of the receiver's and the light's
     /// planes ([`Body::clearance`]).
@@ -401,7 +433,13 @@ impl Prover<'_> {
         // with the corner pairs it crosses: one that crosses them all hides
         // it all, and the others guide the halving.
         let mut candidates: Vec<(BlockerRef, Pairs)> = Vec::new();
-        for blocker in near.blockers() {
+        let hinges = self.hinges.iter().enumerate().filter(|(_, h)| {
+            h.occluders
+                .iter()
+                .all(|(k, _)| near.occluders.binary_search(k).is_ok())
+        });
+        let hinges = hinges.map(|(k, _)| BlockerRef::Hinge(k as u32));
+        for blocker in near.blockers().chain(hinges) {
             let Some(pairs) = self.candidate_pairs(blocker, region, &light.corners) else {
                 continue;
             };
@@ -473,6 +511,9 @@ impl Prover<'_> {
     ) -> Option<Pairs> {
         match blocker {
             BlockerRef::Occluder(k) => self.occluders[k as usize].candidate_pairs(region, light),
+            BlockerRef::Hinge(k) => {
+                self.hinges[k as usize].candidate_pairs(&self.occluders, region, light)
+            }
             BlockerRef::Body(k) => {
                 self.bodies[k as usize].candidate_pairs(region, light, self.clearances[k as usize])
             }
@@ -531,6 +572,9 @@ impl Prover<'_> {
                     &crossed,
                     self.clearances[k as usize],
                 ),
+                // (A segment a hinge blocks crosses one of its occluders,
+                // asked on their own.)
+                BlockerRef::Hinge(_) => crossed,
             };
         }
         self.pair_sees_past_all(region.len(), light, &crossed)

@@ -122,7 +122,8 @@ fn a_closed_body_blocks_what_its_faces_do() {
 /// triangle or the other, changing over along the diagonal's shadow, so no
 /// triangle alone hides a part of the light from a part of the floor
 /// around it. As one body (closed by its other two triangles, which face
-/// away from the floor) it does.
+/// away from the floor) it does, and so do the triangles as a hinge along
+/// the diagonal (the light seen along it within the valley's angle).
 #[test]
 fn a_bent_quad_hides_light_as_one_body() {
     let source = light(-200, 200, 10_000);
@@ -146,8 +147,12 @@ fn a_bent_quad_hides_light_as_one_body() {
     assert!(!body.is_closed());
     let region = floor(0, 0, 20);
     let faces: Vec<&ConvexPolygon> = triangles.iter().collect();
-    assert!(!sees_none(&region, false, &source, &faces, &[]));
+    assert!(sees_none(&region, false, &source, &faces, &[]));
     assert!(sees_none(&region, false, &source, &[], &[&body]));
+    // Each triangle alone hides only part of it.
+    for face in &faces {
+        assert!(!sees_none(&region, false, &source, &[*face], &[]));
+    }
 }
 
 /// A wall in `x = 0` facing `+x` under a light across its plane: a
@@ -432,8 +437,9 @@ fn boxes_running_into_each_other_hide_the_light_from_their_notch() {
 /// hides a light from the floor under the seam between two of them: each
 /// triangle hides part of the light, the parts joining along the seam's
 /// image with no overlap, so no proof taking them one by one gets across;
-/// as a sheet (the hull of the three, its base and back open) it does.
-/// Sampled segments agree.
+/// as a sheet (the hull of the three, its base and back open) it does, and
+/// so do the triangles as hinges along their seams. Sampled segments
+/// agree.
 #[test]
 fn a_tent_of_triangles_hides_the_light_as_one_sheet() {
     let apex = g(0, 1400, 0);
@@ -484,7 +490,10 @@ fn a_tent_of_triangles_hides_the_light_as_one_sheet() {
     let region = floor(276, -247, 20);
     let triangles: Vec<&ConvexPolygon> = tent.iter().collect();
     assert!(sees_none(&region, false, &source, &[], &[sheet]));
-    assert!(!sees_none(&region, false, &source, &triangles, &[]));
+    assert!(sees_none(&region, false, &source, &triangles, &[]));
+    for triangle in &triangles {
+        assert!(!sees_none(&region, false, &source, &[*triangle], &[]));
+    }
 
     let mut rng = Pcg64::seed_from_u64(5);
     let light = ([-100.0, 100.0], [-500.0, -300.0], y as f64);
@@ -644,6 +653,7 @@ fn proven_dark_regions_under_random_sheets_see_no_light() {
     );
 }
 
+mod hinge;
 mod shell;
 
 /// A box whose bottom is cut in two strips: their corners fall mid-edge
@@ -652,7 +662,8 @@ mod shell;
 /// of their hull: one closed body. From the floor under the box, each
 /// ray to a light wider than the box crosses one strip or the other,
 /// changing over along the seam's shadow, which no proof taking the
-/// pieces one by one gets across; as a body they hide all of it.
+/// pieces one by one gets across; as a body they hide all of it, and so
+/// do the pieces with the strips as a (flat) hinge along their seam.
 #[test]
 fn a_box_with_a_face_cut_in_strips_blocks_as_one_body() {
     let mut faces = cuboid([-1000, 4000, -1000], [1000, 6000, 1000]);
@@ -682,7 +693,7 @@ fn a_box_with_a_face_cut_in_strips_blocks_as_one_body() {
     let pieces: Vec<&ConvexPolygon> = faces.iter().collect();
     let under = floor(0, 0, 100);
     assert!(sees_none(&under, false, &source, &[], &[body]));
-    assert!(!sees_none(&under, false, &source, &pieces, &[]));
+    assert!(sees_none(&under, false, &source, &pieces, &[]));
     // Beyond the umbra (|x| <= 333 under the bottom), the light's far
     // side passes the box.
     assert!(!sees_none(

@@ -124,7 +124,12 @@ fn panels_side_by_side_shade_the_floor_as_one_panel() {
 /// surfaces instead. The floor's umbra is the whole box's (before: 1.42
 /// of its 3.93), to the few grid cells by which each nearly convex body
 /// is moved in (cells of 1e-6 along an umbra boundary about 8 long: far
-/// below 1e-4; measured 4.5e-6), and the two commands agree.
+/// below 1e-4; measured 4.5e-6), never above it, and the two commands
+/// agree to a grid cell along that boundary. (Not to the last digit: the
+/// joint umbra along the seam is proven dark face by face, and the
+/// commands cut the floor there differently; they proved the same area to
+/// 1e-12 until hinges proved slivers of a few 1e-8 beside the seam, each
+/// in its own faces.)
 #[test]
 fn turned_touching_boxes_shade_the_floor_as_the_box_they_make() {
     let turned = |boxes: &[([f64; 3], [f64; 3])]| {
@@ -155,7 +160,8 @@ fn turned_touching_boxes_shade_the_floor_as_the_box_they_make() {
                 "{command}: whole {one:?}, halves {two:?}"
             );
         }
+        assert!(two[2] <= one[2], "{command}: whole {one:?}, halves {two:?}");
         umbrae.push(two[2]);
     }
-    assert!((umbrae[0] - umbrae[1]).abs() < 1e-9, "{umbrae:?}");
+    assert!((umbrae[0] - umbrae[1]).abs() < 1e-6, "{umbrae:?}");
 }
