@@ -18,14 +18,15 @@
 //! `A` or `B`: `k` is on one side of `Π_l`, or on it, and then the segment
 //! lies in `Π_l` and meets `A'` on `e` itself.
 //!
-//! When that holds for every light corner, it holds for the whole light
-//! piece: the light is on one side of each occluder's plane, and in one
-//! of the two angles (its corners cannot be split between them without
-//! the piece meeting `e`'s line, which lies on neither side). And a
-//! segment set crosses `A'` (convex, in a plane) as soon as the corner
-//! pairs do (the module's docs). So when every corner pair crosses both
-//! `A'` and `B'`, every segment from the region to the light piece is
-//! blocked.
+//! That condition on `l` says that `l` lies within one of the two angles
+//! (wedges of space about `e`'s line, each bounded by half of each
+//! occluder's plane). When it holds for every light corner, it holds for
+//! the whole light piece: the light lies on one side of each occluder's
+//! plane (else no pair crosses), so its corners all lie in the same angle,
+//! which is convex. And a segment set crosses `A'` (convex, in a plane) as
+//! soon as the corner pairs do (the module's docs). So when every corner
+//! pair crosses both `A'` and `B'`, every segment from the region to the
+//! light piece is blocked.
 
 use super::{Occluder, Pairs};
 use bsp_core::predicates::{Side, side_of_point};
