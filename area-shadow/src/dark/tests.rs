@@ -199,6 +199,24 @@ fn crosses(
     }
 }
 
+/// Whether `occluders` are proven to hide all of `source` from `region`
+/// (one-sided, facing up), and if so, whether no one of them alone is (a
+/// joint umbra).
+fn proven_dark(
+    region: &ConvexPolygon,
+    source: &AreaSource,
+    occluders: &[&ConvexPolygon],
+) -> Option<bool> {
+    if !sees_none(region, false, source, occluders, &[]) {
+        return None;
+    }
+    Some(
+        occluders
+            .iter()
+            .all(|o| !sees_none(region, false, source, &[*o], &[])),
+    )
+}
+
 /// Random panels over random floor squares (seeded), under a level light
 /// and a tilted one: whatever is proven dark is dark, every sampled
 /// segment from the region to the light crossing a panel (or passing too
@@ -240,16 +258,11 @@ fn proven_dark_regions_see_no_light_under(rise: i64) {
             rng.random_range(5..100),
         );
         let region = floor(cx, cz, r);
-        if !sees_none(&region, false, &source, &refs, &[]) {
+        let Some(jointly) = proven_dark(&region, &source, &refs) else {
             continue;
-        }
+        };
         proven += 1;
-        if refs
-            .iter()
-            .all(|p| !sees_none(&region, false, &source, &[*p], &[]))
-        {
-            joint += 1;
-        }
+        joint += usize::from(jointly);
         let rects: Vec<([f64; 2], f64, [f64; 2])> = panels
             .iter()
             .map(|&(x, y, z)| (x.map(|v| v as f64), y as f64, z.map(|v| v as f64)))
