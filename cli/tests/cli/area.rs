@@ -543,8 +543,8 @@ fn a_concave_occluder_hides_the_light_where_its_pieces_do_together() {
 /// Gridded, the floor's cells there are proven dark across the seams
 /// (hinges): umbra 0.48 of the flat L's 1.0 (0.0098 before; the rest of
 /// the joint umbra lies in cells its curved edge or a corner of three
-/// pieces crosses, left penumbra), and never more than the flat L's,
-/// with every umbra corner dark.
+/// pieces crosses, left penumbra), and not above the flat L's by more
+/// than the turn could add (2 %), with every umbra corner dark.
 #[test]
 fn a_bent_concave_occluder_casts_its_joint_umbra_on_gridded_cells() {
     let scene = CONCAVE_OCCLUDER.replace(
