@@ -433,13 +433,7 @@ impl Prover<'_> {
         // with the corner pairs it crosses: one that crosses them all hides
         // it all, and the others guide the halving.
         let mut candidates: Vec<(BlockerRef, Pairs)> = Vec::new();
-        let hinges = self.hinges.iter().enumerate().filter(|(_, h)| {
-            h.occluders
-                .iter()
-                .all(|(k, _)| near.occluders.binary_search(k).is_ok())
-        });
-        let hinges = hinges.map(|(k, _)| BlockerRef::Hinge(k as u32));
-        for blocker in near.blockers().chain(hinges) {
+        for blocker in near.blockers() {
             let Some(pairs) = self.candidate_pairs(blocker, region, &light.corners) else {
                 continue;
             };
@@ -447,6 +441,34 @@ impl Prover<'_> {
                 return true;
             }
             candidates.push((blocker, pairs));
+        }
+        // Hinges of two occluders between the region and the light that
+        // each cross some corner pair. (One that crosses none adds no
+        // proof: where a hinge crosses every pair and one of its occluders
+        // none, every pair passes the seam on the other's side, and so
+        // does every segment, the side being bilinear: the other crosses
+        // them all alone.)
+        let crossing: SmallVec<[u32; 16]> = candidates
+            .iter()
+            .filter_map(|(blocker, pairs)| match blocker {
+                BlockerRef::Occluder(k) if pairs.contains(&true) => Some(*k),
+                _ => None,
+            })
+            .collect();
+        if crossing.len() >= 2 {
+            for (k, hinge) in self.hinges.iter().enumerate() {
+                if !hinge.occluders.iter().all(|(o, _)| crossing.contains(o)) {
+                    continue;
+                }
+                let blocker = BlockerRef::Hinge(k as u32);
+                let Some(pairs) = self.candidate_pairs(blocker, region, &light.corners) else {
+                    continue;
+                };
+                if !pairs.contains(&false) {
+                    return true;
+                }
+                candidates.push((blocker, pairs));
+            }
         }
         // No one blocker hides it all: before halving, once, look for what
         // dooms the proof (a sampled segment that clearly passes every
