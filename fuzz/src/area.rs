@@ -301,6 +301,48 @@ mod tests {
 
     /// Writes the seed corpus (run by hand when the decoder changes).
     #[test]
+    fn a_bent_quads_halves_hide_the_light_together() {
+        // Two triangles sharing the diagonal of a quad bent along it: from
+        // the floor under the diagonal each hides part of the light, the
+        // parts meeting along the diagonal's image. Proven dark as a hinge
+        // (area_shadow::dark), and every fragment so proven sees none of
+        // the light's sample points past the triangles (exact segments).
+        let case = AreaCase {
+            triangles: vec![
+                [[-4, 6, -4], [4, 7, -4], [4, 6, 4]],
+                [[-4, 6, -4], [4, 6, 4], [-4, 7, 4]],
+            ],
+            light: ([-1, 12, -1], [2, 2], 0),
+        };
+        check_area(&case).unwrap();
+        let pieces = floor_and(&case.triangles);
+        let light = AreaSource::new(
+            ConvexPolygon::from_grid_points(
+                &[
+                    gp([-1, 12, -1]),
+                    gp([1, 12, -1]),
+                    gp([1, 12, 1]),
+                    gp([-1, 12, 1]),
+                ],
+                0,
+            )
+            .unwrap(),
+        )
+        .unwrap();
+        assert!(light.support().normal()[1] < 0);
+        let under = ConvexPolygon::from_grid_points(
+            &[gp([0, 0, 0]), gp([0, 0, 1]), gp([1, 0, 1]), gp([1, 0, 0])],
+            0,
+        )
+        .unwrap();
+        let occluders: Vec<&ConvexPolygon> = pieces.iter().skip(1).collect();
+        assert!(sees_none(&under, false, &light, &occluders, &[]));
+        for one in &occluders {
+            assert!(!sees_none(&under, false, &light, &[*one], &[]));
+        }
+    }
+
+    #[test]
     #[ignore = "rewrites corpus/area; run by hand"]
     fn regenerate_seed_corpus() {
         let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("corpus/area");
