@@ -35,6 +35,17 @@ fn object(name: &str, polygons: &[Vec<[f64; 3]>], turn: [f64; 3], at: [f64; 3]) 
     )
 }
 
+/// A regular polygon of `n` corners and radius `r` about the origin in
+/// the plane y = 0, facing up.
+fn regular_polygon(n: u32, r: f64) -> Vec<[f64; 3]> {
+    (0..n)
+        .map(|i| {
+            let a = f64::from(i) * std::f64::consts::TAU / f64::from(n);
+            [r * a.cos(), 0.0, -r * a.sin()]
+        })
+        .collect()
+}
+
 /// A floor, a needle of width `width`, a speck of size `speck`, a turned
 /// plate, dart (a concave quad), L and 24-gon over it; `light` is the
 /// light's table.
@@ -72,14 +83,7 @@ fn scene(width: f64, speck: f64, turn: f64, light: &str) -> Scene {
         [0.4, 0.0, 0.2],
         [0.4, 0.0, 0.0],
     ]];
-    let disc = vec![
-        (0..24)
-            .map(|i| {
-                let a = f64::from(i) * std::f64::consts::TAU / 24.0;
-                [0.1 * a.cos(), 0.0, -0.1 * a.sin()]
-            })
-            .collect(),
-    ];
+    let disc = vec![regular_polygon(24, 0.1)];
     let text = [
         object("floor", &floor, [0.0; 3], [0.0; 3]),
         object(
@@ -469,14 +473,7 @@ fn a_bent_needle_keeps_its_area_when_a_box_moves_over_it() {
 
 #[test]
 fn a_turned_400_gon_keeps_its_area() {
-    let disc = vec![
-        (0..400)
-            .map(|i| {
-                let a = f64::from(i) * std::f64::consts::TAU / 400.0;
-                [2.0 * a.cos(), 0.0, -2.0 * a.sin()]
-            })
-            .collect(),
-    ];
+    let disc = vec![regular_polygon(400, 2.0)];
     let square = vec![vec![
         [-0.3, 0.0, -0.3],
         [-0.3, 0.0, 0.3],
