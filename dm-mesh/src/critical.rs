@@ -28,6 +28,7 @@
 //! the vertex and bounds the wedge in place of the plane through the
 //! edge's end.
 
+use crate::cell::Sides;
 use crate::surface::Surroundings;
 use area_shadow::{AreaSource, VolumePlanes};
 use bsp_core::predicates::{self, Pencil, Side};
@@ -42,6 +43,10 @@ pub(crate) struct UnitPlanes {
     pub(crate) volumes: VolumePlanes,
     /// Internal EV / VE planes with their wedges.
     pub(crate) internal: Vec<Critical>,
+    /// The receiver's sides from which the umbra hides the light (`BOTH`
+    /// but where a two-sided receiver lies against a body:
+    /// [`crate::scene`]'s contact planes).
+    pub(crate) umbra_sides: Sides,
     /// The normal of every plane above, internal, penumbra and umbra in
     /// that order, converted to `f64` (exactly: components below 2^51),
     /// side by side: [`Self::has_plane_on`] scans them all where a node
@@ -62,7 +67,14 @@ impl UnitPlanes {
             volumes,
             internal,
             normals,
+            umbra_sides: Sides::BOTH,
         }
+    }
+
+    /// These planes with their umbra hiding the light from `sides` only.
+    pub(crate) fn hiding_from(mut self, sides: Sides) -> Self {
+        self.umbra_sides = sides;
+        self
     }
 
     /// Whether one of the unit's discontinuity planes is `line` (either

@@ -28,7 +28,7 @@
 //! call keeps its value: after a move only new vertices and those whose
 //! covering set changed are evaluated again.
 
-use crate::cell::Cell;
+use crate::cell::{Cell, Sides};
 use crate::error::Error;
 use crate::hash::KeySet;
 use crate::scene::{DmLight, DmScene, Piece, PieceId};
@@ -139,7 +139,9 @@ fn cover(cells: &[&Cell], light: usize) -> Cover {
 /// lies on it, the vertex lies where they touch or pierce the receiver,
 /// the irradiance jumps there, and the vertex sees past them what the
 /// cells on their other side see, unless one is a convex solid that hides
-/// all of the light from its own boundary there.
+/// all of the light from its own boundary there. An umbra hiding the light
+/// from one side of a two-sided receiver leaves that side dark: the
+/// vertex is when both are.
 fn dark_by_umbra(
     cells: &[&Cell],
     light: usize,
@@ -150,22 +152,36 @@ fn dark_by_umbra(
     if cells.iter().any(|c| c.unreached(light)) {
         return true;
     }
-    let mut umbrae: SmallVec<[u32; 4]> = cells
+    let mut umbrae: SmallVec<[(u32, Sides); 4]> = cells
         .iter()
         .flat_map(|c| c.entries())
-        .filter(|e| e.umbra && usize::from(e.light) == light)
-        .map(|e| e.unit)
+        .filter(|e| !e.umbra.is_none() && usize::from(e.light) == light)
+        .map(|e| (e.unit, e.umbra))
         .collect();
-    umbrae.sort_unstable();
+    umbrae.sort_unstable_by_key(|&(u, _)| u);
     umbrae.dedup();
     let within = dm.polygon().support();
     let at = position.to_f64();
-    umbrae.iter().filter_map(|&u| dm.unit(u)).any(|(o, _)| {
+    let mut dark = Sides::NONE;
+    for &(u, sides) in &umbrae {
+        if dark.contains(sides) {
+            continue;
+        }
+        let Some((o, _)) = dm.unit(u) else {
+            continue;
+        };
         let occluder = &pieces[o];
-        occluder
+        let hides = occluder
             .holding(position, at, within)
-            .is_none_or(|held| occluder.hides_all_past(&held, light))
-    })
+            .is_none_or(|held| occluder.hides_all_past(&held, light));
+        if hides {
+            dark |= sides;
+            if dark.is_both() {
+                return true;
+            }
+        }
+    }
+    false
 }
 
 /// The units of `light` that every one of `cells` lists or culled: every

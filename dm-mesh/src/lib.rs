@@ -125,7 +125,7 @@ mod tree;
 
 pub use area_shadow;
 pub use bsp_core;
-pub use cell::{Cell, CellClass, Entry};
+pub use cell::{Cell, CellClass, Entry, Sides};
 pub use error::Error;
 pub use illuminate::IllumStats;
 pub use overlap::{OverlapFigures, OverlapKind};

@@ -467,13 +467,9 @@ mod tests {
     /// inside the big one's), the light straddling that plane. The small
     /// box's face there sees none of the light (what lies at `x > -4` is
     /// behind it through its own box, the rest through the other), and
-    /// area-shadow finds it umbra; dm-mesh lists both boxes as penumbra
-    /// occluders of it and calls it penumbra, and its corners, on the
-    /// boxes' edges, see light past the faces that hold them (0.007 to
-    /// 0.09 of a full light). Not fixed yet: a cell whose light is hidden
-    /// on each side of it by another body is umbra by no one unit.
+    /// area-shadow finds it umbra; dm-mesh must too, though no one box
+    /// hides all of the light from it: each hides the part on its side.
     #[test]
-    #[ignore = "known: a two-sided face between two touching bodies is penumbra in dm-mesh, umbra in area-shadow"]
     fn a_two_sided_face_between_touching_boxes() {
         let case = DmCase {
             objects: vec![

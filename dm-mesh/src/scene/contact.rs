@@ -8,16 +8,19 @@
 //! and facing it, the body covers it; facing away, the body hides nothing
 //! from it. area-shadow's body tree decides the same way
 //! (`VolumeTree::partition_facing`). A two-sided receiver that the light
-//! reaches on both sides has no one such side: lying in a plane of the
-//! volume, it is outside (area-shadow: inside only in the interior of the
-//! union, which differs only where two bodies' volumes meet in that plane
-//! from either side).
+//! reaches on both sides receives each part of the light on its side: the
+//! body hides, from the side it lies on, the part of the light there, and
+//! nothing from the other; its umbra there is marked as hiding that side
+//! only ([`Sides`]), and a cell is umbra where the bodies on either side
+//! hide both (two boxes standing face to face, the receiver between them:
+//! area-shadow finds it in the interior of the union of their volumes).
 //!
 //! So per receiver a body unit's planes are adapted before any tree code
 //! sees them: a plane of the receiver's own, facing it, is dropped (the
 //! receiver is behind it); one facing away empties the volume there.
 
 use super::{Piece, PieceId, PieceKind};
+use crate::cell::Sides;
 use crate::critical::UnitPlanes;
 use crate::hash::KeyMap;
 use area_shadow::{AreaSource, SourceSide, VolumePlanes};
@@ -96,20 +99,54 @@ fn seen_from(receiver: &Piece, light: &AreaSource, planes: &UnitPlanes) -> Optio
     if !all.into_iter().any(|p| p.is_coincident(support)) {
         return None;
     }
-    // The side the receiver receives on (none: both).
-    let facing = match light.side_of(support) {
-        SourceSide::Back => Some(support.flipped()),
-        SourceSide::Both if receiver.flags.two_sided => None,
-        _ => Some(*support),
-    };
-    // A plane holds its volume behind it: the receiver is inside when it
-    // faces the plane's back.
+    match light.side_of(support) {
+        SourceSide::Back => Some(adapted(planes, support, &support.flipped())),
+        SourceSide::Both if receiver.flags.two_sided => Some(from_one_side(planes, support)),
+        _ => Some(adapted(planes, support, support)),
+    }
+    .map(|(volumes, sides)| UnitPlanes::new(volumes, planes.internal.clone()).hiding_from(sides))
+}
+
+/// The planes of a body unit as a two-sided receiver in `support` sees
+/// them with the light on both sides of it: from the side of the body
+/// whose surface it lies in, if one has the unit's planes in `support`
+/// all facing it, the receiver inside the volume there (its umbra hides
+/// the part of the light on that side only); else no volume.
+fn from_one_side(planes: &UnitPlanes, support: &Plane) -> (VolumePlanes, Sides) {
+    let sides = [(*support, Sides::FRONT), (support.flipped(), Sides::BACK)];
+    let seen = sides.map(|(facing, side)| {
+        let (volumes, hidden) = adapted(planes, support, &facing);
+        let sides = if hidden.is_both() { side } else { Sides::NONE };
+        (volumes, sides)
+    });
+    let [front, back] = seen;
+    match (front.0.penumbra.is_empty(), back.0.penumbra.is_empty()) {
+        (true, true) => (VolumePlanes::default(), Sides::NONE),
+        (false, true) => front,
+        (true, false) => back,
+        // The penumbra is the same from either side (none of its planes
+        // lies in `support`); the umbra is that of the side that keeps it.
+        (false, false) => match (&front.0.umbra, &back.0.umbra) {
+            (Some(_), None) => front,
+            (None, Some(_)) => back,
+            _ => front,
+        },
+    }
+}
+
+/// A body unit's planes seen from the side that `facing` faces (the
+/// receiver in `support`), and the sides its umbra hides (`BOTH`, or
+/// `NONE` where that side has no umbra). A plane holds its volume behind
+/// it: a plane in `support` facing the other way is dropped (the receiver,
+/// facing its back, is inside), one facing the same way empties the volume
+/// there (the receiver looks away from it).
+fn adapted(planes: &UnitPlanes, support: &Plane, facing: &Plane) -> (VolumePlanes, Sides) {
     let adapt = |list: &[Plane]| -> Option<Vec<Plane>> {
         let mut out = Vec::with_capacity(list.len());
         for p in list {
             if !p.is_coincident(support) {
                 out.push(*p);
-            } else if facing.is_none_or(|f| f == *p) {
+            } else if p == facing {
                 return None;
             }
         }
@@ -117,11 +154,13 @@ fn seen_from(receiver: &Piece, light: &AreaSource, planes: &UnitPlanes) -> Optio
     };
     let Some(penumbra) = planes.volumes.penumbra.iter().map(|l| adapt(l)).collect() else {
         // No region here: no volume (an empty unit merges nothing).
-        return Some(UnitPlanes::default());
+        return (VolumePlanes::default(), Sides::NONE);
     };
-    let volumes = VolumePlanes {
-        penumbra,
-        umbra: planes.volumes.umbra.as_deref().and_then(adapt),
+    let umbra = planes.volumes.umbra.as_deref().and_then(adapt);
+    let sides = if umbra.is_some() {
+        Sides::BOTH
+    } else {
+        Sides::NONE
     };
-    Some(UnitPlanes::new(volumes, planes.internal.clone()))
+    (VolumePlanes { penumbra, umbra }, sides)
 }

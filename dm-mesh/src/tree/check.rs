@@ -138,13 +138,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     return Err(format!("a cell lists unit {u} outside its penumbra"));
                 }
                 let umbra = p.volumes.umbra.as_deref();
-                match (entry.umbra, umbra) {
-                    (true, Some(umbra)) if inside(umbra) => {}
-                    (true, _) => return Err(format!("a cell in unit {u}'s umbra is not")),
-                    (false, Some(umbra)) if clip(&polygon, umbra).is_some() => {
+                match (entry.umbra.is_none(), umbra) {
+                    (false, Some(umbra)) if inside(umbra) && entry.umbra == p.umbra_sides => {}
+                    (false, _) => return Err(format!("a cell in unit {u}'s umbra is not")),
+                    (true, Some(umbra)) if clip(&polygon, umbra).is_some() => {
                         return Err(format!("a cell straddles unit {u}'s umbra"));
                     }
-                    (false, _) => {
+                    (true, _) => {
                         for c in &p.internal {
                             let crossed = polygon.classify(&c.plane) == PolygonSide::Both
                                 && clip(&polygon, &c.wedge).is_some_and(|part| {

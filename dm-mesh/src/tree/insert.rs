@@ -1,7 +1,7 @@
 //! Merging one unit's single tree into a receiver's DM-tree.
 
 use super::{Reach, ReceiverDm, clip};
-use crate::cell::Entry;
+use crate::cell::{Entry, Sides};
 use crate::critical::{Critical, UnitPlanes};
 use bsp_core::{ConvexPolygon, FaceKey, Plane, Side, Split};
 use smallvec::SmallVec;
@@ -106,7 +106,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             (share(back), share(front))
         });
         for (leaf, piece, range) in leaves {
-            let grown = self.grow_leaf(leaf, &piece, exact, part, umbra.as_deref(), unit, light);
+            let umbra = umbra.as_deref().map(|u| (u, planes.umbra_sides));
+            let grown = self.grow_leaf(leaf, &piece, exact, part, umbra, unit, light);
             if planes.internal.is_empty() {
                 continue;
             }
@@ -144,7 +145,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         piece: &ConvexPolygon,
         exact: bool,
         penumbra: &[Plane],
-        umbra: Option<&[Plane]>,
+        umbra: Option<(&[Plane], Sides)>,
         unit: u32,
         light: u8,
     ) -> Option<Grown> {
@@ -175,7 +176,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         self.cell_mut(inner).add(Entry {
             unit,
             light,
-            umbra: false,
+            umbra: Sides::NONE,
         });
         self.seeds[unit as usize] = self.face_of(inner);
         // The inner cell is `piece` when it is exact, until the umbra cuts it.
@@ -184,7 +185,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         } else {
             Grown::Parts
         };
-        let Some(umbra) = umbra else {
+        let Some((umbra, sides)) = umbra else {
             return Some(whole);
         };
         let core = if exact {
@@ -209,7 +210,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             self.cell_mut(core).add(Entry {
                 unit,
                 light,
-                umbra: true,
+                umbra: sides,
             });
         }
         Some(Grown::Parts)
@@ -226,7 +227,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 self.cell(n)
                     .entries
                     .iter()
-                    .any(|e| e.unit == unit && !e.umbra)
+                    .any(|e| e.unit == unit && e.umbra.is_none())
             })
             .filter_map(|n| {
                 let polygon = self.mesh.face_polygon(self.face_of(n), 0).ok()?;

@@ -2,7 +2,7 @@
 //! occluders between them, trees built from them, and a comparison of two
 //! trees' regions.
 
-use crate::cell::CellClass;
+use crate::cell::{CellClass, Sides};
 use crate::critical::{UnitPlanes, internal_planes};
 use crate::surface::Surroundings;
 use crate::tree::ReceiverDm;
@@ -120,7 +120,7 @@ pub(crate) fn fresh_tiled(units: &[(u32, &UnitPlanes)], tiles: u32) -> ReceiverD
 }
 
 /// A cell: its polygon, class and occluder keys (umbra marked).
-type CellView = (ConvexPolygon, CellClass, Vec<(u32, bool)>);
+type CellView = (ConvexPolygon, CellClass, Vec<(u32, Sides)>);
 
 /// Checks that every pair of overlapping cells of `a` and `b` has the
 /// same class (and, outside umbra, the same occluders), and that the class
@@ -129,7 +129,7 @@ pub(crate) fn same_regions(a: &ReceiverDm<u32>, b: &ReceiverDm<u32>) {
     let cells = |dm: &ReceiverDm<u32>| -> Vec<CellView> {
         dm.cells()
             .map(|(f, c)| {
-                let mut keys: Vec<(u32, bool)> = c
+                let mut keys: Vec<(u32, Sides)> = c
                     .entries()
                     .iter()
                     .map(|e| (dm.unit(e.unit).unwrap().0, e.umbra))

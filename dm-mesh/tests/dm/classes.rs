@@ -2,7 +2,9 @@
 //! and area-shadow's independent classification (penumbra and umbra trees
 //! of the whole scene) area for area.
 
-use crate::common::{TestScene, class_areas, floor, scene, scene_with, triangulated_cuboid};
+use crate::common::{
+    TestScene, class_areas, cuboid, facing_boxes, floor, scene, scene_with, triangulated_cuboid,
+};
 use crate::oracle::{hidden, interior_samples};
 use area_shadow::{Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
 use bsp_core::BuildOptions;
@@ -256,6 +258,60 @@ proptest! {
         let options = DmOptions { overlap: OverlapKind::Cube, ..DmOptions::default() };
         check_against_area_shadow_with(&t, options)?;
     }
+
+    /// Faces in contact between two boxes under a light across their
+    /// plane: two-sided, each side's part of the light is hidden by the
+    /// box on that side.
+    #[test]
+    fn boxes_face_to_face_agree_with_area_shadow_and_the_oracle(t in facing_boxes()) {
+        for overlap in [OverlapKind::Grid, OverlapKind::Cube] {
+            check_against_area_shadow_with(&t, DmOptions { overlap, ..DmOptions::default() })?;
+        }
+        check_against_oracle(&t, false)?;
+    }
+}
+
+/// Two two-sided boxes of two objects face to face in `x = 30` (the first
+/// one's face inside the second's), the light across that plane: the
+/// faces in contact see the part of the light at `x < 30` only through
+/// the first box and the rest only through the second, so they are umbra
+/// though neither box hides all of the light from them; with the second
+/// box gone the first one's face is penumbra.
+#[test]
+fn two_sided_boxes_face_to_face_hide_the_light_together() {
+    let two_sided = PieceFlags {
+        two_sided: true,
+        ..PieceFlags::default()
+    };
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(500)], PieceFlags::default()),
+            (cuboid([0, 40, 0], [30, 70, 20]), two_sided),
+            (cuboid([30, 40, -10], [60, 80, 30]), two_sided),
+        ],
+        light: crate::common::light(10, -10, 40, 40, 200, 0),
+    };
+    for overlap in [OverlapKind::Grid, OverlapKind::Cube] {
+        let options = DmOptions {
+            overlap,
+            ..DmOptions::default()
+        };
+        let (mut scene, ids) = t.build_with(options);
+        scene.check_invariants().unwrap();
+        // Faces 3 and 2 of the boxes: `x = 30` (30 x 20, and 40 x 40).
+        let first = scene.object_pieces(ids[1]).unwrap()[3];
+        let second = scene.object_pieces(ids[2]).unwrap()[2];
+        assert_eq!(class_areas(&scene, first), [0.0, 0.0, 600.0], "{overlap:?}");
+        let [lit, penumbra, umbra] = class_areas(&scene, second);
+        assert_eq!(lit, 0.0);
+        assert!((umbra - 600.0).abs() < 1e-9, "{overlap:?}: umbra {umbra}");
+        assert!((penumbra - 1000.0).abs() < 1e-9, "{overlap:?}: {penumbra}");
+        check_against_area_shadow_with(&t, options).unwrap();
+        scene.remove_object(ids[2]).unwrap();
+        scene.check_invariants().unwrap();
+        assert_eq!(class_areas(&scene, first), [0.0, 600.0, 0.0], "{overlap:?}");
+    }
+    check_against_oracle(&t, false).unwrap();
 }
 
 /// Two boxes side by side, touching over a 1 x 1 square, under a light
@@ -264,7 +320,6 @@ proptest! {
 /// the light, in both pipelines.
 #[test]
 fn a_face_against_a_box_is_in_its_umbra() {
-    use crate::common::cuboid;
     let closed = PieceFlags {
         closed_surface: true,
         ..PieceFlags::default()
@@ -308,7 +363,7 @@ fn a_face_against_a_box_is_in_its_umbra() {
 /// inside the box it sees none of the light, in both pipelines.
 #[test]
 fn a_two_sided_triangle_through_a_box_is_dark_inside_it() {
-    use crate::common::{cuboid, gp};
+    use crate::common::gp;
     let triangle = bsp_core::ConvexPolygon::from_grid_points(
         &[gp(-44, 48, 118), gp(-55, 106, 54), gp(-13, 94, 90)],
         0,

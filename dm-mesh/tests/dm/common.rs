@@ -255,3 +255,76 @@ pub fn light_class_areas(scene: &DmScene, piece: PieceId, light: usize) -> [f64;
     }
     out
 }
+
+/// Two boxes of two objects standing face to face (the second's face
+/// against the first's in a plane `x = c` or `z = c`, overlapping it with
+/// area), each one- or two-sided and its faces cut at random, under a
+/// light whose plane crosses the contact plane (or, with its edge in it,
+/// touches it): each box hides from the faces in contact the part of the
+/// light on its own side.
+pub fn facing_boxes() -> impl Strategy<Value = TestScene> {
+    (
+        (
+            prop::array::uniform3(-80_i64..80),
+            prop::array::uniform3(10_i64..60),
+            any::<bool>(),
+        ),
+        (
+            prop::array::uniform3(0_i64..1000),
+            prop::array::uniform3(0_i64..30),
+            prop::array::uniform3(1_i64..40),
+        ),
+        (any::<[bool; 2]>(), any::<[u32; 2]>()),
+        (0_i64..60, 1_i64..60, -60_i64..60, 20_i64..100),
+        (180_i64..260, -40_i64..40),
+    )
+        .prop_map(
+            |((a, size, along_x), (at, below, above), (two_sided, cuts), light_span, (h, tilt))| {
+                let axis = if along_x { 0 } else { 2 };
+                let lo_a = [a[0], 40 + a[1].rem_euclid(50), a[2]];
+                let hi_a: [i64; 3] = std::array::from_fn(|k| lo_a[k] + size[k]);
+                // The second box: past the first along `axis`, and over a
+                // stretch `[o, o + above)` of each other axis that starts
+                // inside the first's.
+                let mut lo_b = [0; 3];
+                let mut hi_b = [0; 3];
+                for k in 0..3 {
+                    if k == axis {
+                        lo_b[k] = hi_a[k];
+                        hi_b[k] = hi_a[k] + 10 + at[k] % 40;
+                    } else {
+                        let o = lo_a[k] + at[k] % size[k];
+                        lo_b[k] = o - below[k];
+                        hi_b[k] = o + above[k];
+                    }
+                }
+                let flags = |two_sided: bool| PieceFlags {
+                    two_sided,
+                    closed_surface: !two_sided,
+                    ..PieceFlags::default()
+                };
+                let objects = vec![
+                    (vec![floor(500)], PieceFlags::default()),
+                    (
+                        triangulated_cuboid(lo_a, hi_a, cuts[0]),
+                        flags(two_sided[0]),
+                    ),
+                    (
+                        triangulated_cuboid(lo_b, hi_b, cuts[1]),
+                        flags(two_sided[1]),
+                    ),
+                ];
+                // The light across the contact plane `c`: `before` of it
+                // on the first box's side, `after` on the second's.
+                let (before, after, across, depth) = light_span;
+                let c = hi_a[axis];
+                let other = lo_a[2 - axis] + across;
+                let light = if axis == 0 {
+                    light(c - before, other, before + after, depth, h, tilt)
+                } else {
+                    light(other, c - before, depth, before + after, h, tilt)
+                };
+                TestScene { objects, light }
+            },
+        )
+}

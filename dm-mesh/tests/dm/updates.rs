@@ -4,7 +4,7 @@
 //! points, and the same irradiance at vertices both meshes have; the trees
 //! keep their invariants after every operation.
 
-use crate::common::{Object, TestScene, class_areas, scene, scene_with, translated};
+use crate::common::{Object, TestScene, class_areas, facing_boxes, scene, scene_with, translated};
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
 use dm_mesh::{Deletion, DmLight, DmOptions, DmScene, ObjectId, OverlapKind, PieceId};
@@ -227,6 +227,24 @@ proptest! {
     fn collapsing_updates_agree_with_a_rebuild(t in scene_with(3..10), ops in ops()) {
         let options = DmOptions { deletion: Deletion::Collapse, ..DmOptions::default() };
         run_with(&t, &ops, options)?;
+    }
+
+    /// Boxes face to face, parted and put back together, removed and
+    /// added back: the umbra they make together only goes and comes back
+    /// with them, either way of deleting.
+    #[test]
+    fn boxes_face_to_face_part_and_meet_again(t in facing_boxes(), gap in 1_i64..6) {
+        let ops = [
+            Op::Move(2, [gap, 0, 0]),
+            Op::Move(2, [-gap, 0, 0]),
+            Op::Move(2, [0, 0, gap]),
+            Op::Move(2, [0, 0, -gap]),
+            Op::Remove(1),
+            Op::ReAdd(1),
+        ];
+        for deletion in [Deletion::Local, Deletion::Collapse] {
+            run_with(&t, &ops, DmOptions { deletion, ..DmOptions::default() })?;
+        }
     }
 
     /// Updates through the shadow overlap cube agree too.

@@ -62,7 +62,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             // A kept unit's internal discontinuity may lie along a line of
             // the collapsed subtree, between cells it did not cross: in the
             // merged cell it crosses, so it is grown again there.
-            for entry in kept.iter().filter(|e| !e.umbra) {
+            for entry in kept.iter().filter(|e| e.umbra.is_none()) {
                 if let Some((key, light)) = self.unit(entry.unit) {
                     let internal: SmallVec<[&Critical; 32]> =
                         planes.get(key, light).internal.iter().collect();

@@ -441,7 +441,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 // where the cells lie outside the umbra, are looked at.
                 let p = planes.get(key, light);
                 let penumbra = !on_receiver || p.volumes.penumbra.len() > 1;
-                let umbra = !on_receiver || !e.umbra;
+                let umbra = !on_receiver || e.umbra.is_none();
                 let holds = planes.has_plane_on(
                     e.unit,
                     p,
