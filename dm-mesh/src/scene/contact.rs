@@ -104,14 +104,20 @@ fn seen_from(receiver: &Piece, light: &AreaSource, planes: &UnitPlanes) -> Optio
         SourceSide::Both if receiver.flags.two_sided => Some(from_one_side(planes, support)),
         _ => Some(adapted(planes, support, support)),
     }
-    .map(|(volumes, sides)| UnitPlanes::new(volumes, planes.internal.clone()).hiding_from(sides))
+    .map(|(volumes, sides)| {
+        if volumes.penumbra.is_empty() {
+            // No region here: an empty unit merges nothing.
+            UnitPlanes::default()
+        } else {
+            UnitPlanes::new(volumes, planes.internal.clone()).hiding_from(sides)
+        }
+    })
 }
 
 /// The planes of a body unit as a two-sided receiver in `support` sees
-/// them with the light on both sides of it: from the side of the body
-/// whose surface it lies in, if one has the unit's planes in `support`
-/// all facing it, the receiver inside the volume there (its umbra hides
-/// the part of the light on that side only); else no volume.
+/// them, the light on both sides of it: as seen from the side, if any,
+/// where the receiver is inside the volume (the body's side), the umbra
+/// hiding that side's part of the light only; else no volume.
 fn from_one_side(planes: &UnitPlanes, support: &Plane) -> (VolumePlanes, Sides) {
     let sides = [(*support, Sides::FRONT), (support.flipped(), Sides::BACK)];
     let seen = sides.map(|(facing, side)| {
@@ -153,7 +159,6 @@ fn adapted(planes: &UnitPlanes, support: &Plane, facing: &Plane) -> (VolumePlane
         Some(out)
     };
     let Some(penumbra) = planes.volumes.penumbra.iter().map(|l| adapt(l)).collect() else {
-        // No region here: no volume (an empty unit merges nothing).
         return (VolumePlanes::default(), Sides::NONE);
     };
     let umbra = planes.volumes.umbra.as_deref().and_then(adapt);

@@ -139,7 +139,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 }
                 let umbra = p.volumes.umbra.as_deref();
                 match (entry.umbra.is_none(), umbra) {
-                    (false, Some(umbra)) if inside(umbra) && entry.umbra == p.umbra_sides => {}
+                    (false, Some(umbra)) if inside(umbra) => {
+                        if entry.umbra != p.umbra_sides {
+                            return Err(format!("a cell hides other sides than unit {u}'s umbra"));
+                        }
+                    }
                     (false, _) => return Err(format!("a cell in unit {u}'s umbra is not")),
                     (true, Some(umbra)) if clip(&polygon, umbra).is_some() => {
                         return Err(format!("a cell straddles unit {u}'s umbra"));
