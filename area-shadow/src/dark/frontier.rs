@@ -54,7 +54,7 @@ impl Prover<'_> {
             BlockerRef::Body(k) => {
                 Some(self.bodies[k as usize].point_test(region, self.clearances[k as usize]))
             }
-            BlockerRef::Occluder(_) | BlockerRef::Hinge(_) => None,
+            BlockerRef::Occluder(_) | BlockerRef::Hinge(_) | BlockerRef::Fan => None,
         };
         let hides = |p: GridPoint| match &body_test {
             Some(test) => test(p),

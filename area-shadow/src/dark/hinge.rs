@@ -41,7 +41,7 @@ pub(super) struct Hinge {
     /// corner to the next).
     pub(super) occluders: [OnEdge; 2],
     /// The shared edge's ends.
-    axis: [GridPoint; 2],
+    pub(super) axis: [GridPoint; 2],
     /// A corner of each occluder off the shared edge.
     off: [GridPoint; 2],
 }
@@ -83,6 +83,16 @@ pub(super) fn hinges(occluders: &[Occluder]) -> Vec<Hinge> {
     out
 }
 
+/// Per occluder (of `count`), the indices of the `hinges` it is the first
+/// occluder of, ascending.
+pub(super) fn hinges_from(hinges: &[Hinge], count: usize) -> Vec<SmallVec<[u32; 4]>> {
+    let mut from = vec![SmallVec::new(); count];
+    for (h, hinge) in hinges.iter().enumerate() {
+        from[hinge.occluders[0].0 as usize].push(h as u32);
+    }
+    from
+}
+
 impl Hinge {
     /// The hinge of two occluders (with their edges) that share the edge
     /// from `p` to `q`; `None` when one has no corner off its line.
@@ -103,6 +113,18 @@ impl Hinge {
         })
     }
 
+    /// Whether every light corner of `light` sees the two occluders
+    /// strictly on opposite sides of the plane through the shared edge and
+    /// it (the light within the hinge's angle or the one opposite).
+    pub(super) fn folds_apart(&self, light: &[GridPoint]) -> bool {
+        light.iter().all(|&l| {
+            Plane::through(self.axis[0], self.axis[1], l).is_some_and(|plane| {
+                let sides = self.off.map(|p| side_of_point(&plane, p));
+                !sides.contains(&Side::On) && sides[0] != sides[1]
+            })
+        })
+    }
+
     /// The corner pairs (as [`Occluder::candidate_pairs`]) that cross both
     /// occluders with the shared edge taken away, when every light corner
     /// sees the two on opposite sides of the plane through the shared edge
@@ -116,16 +138,12 @@ impl Hinge {
         region: &ConvexPolygon,
         light: &[GridPoint],
     ) -> Option<Pairs> {
-        for &l in light {
-            let plane = Plane::through(self.axis[0], self.axis[1], l)?;
-            let sides = self.off.map(|p| side_of_point(&plane, p));
-            if sides.contains(&Side::On) || sides[0] == sides[1] {
-                return None;
-            }
+        if !self.folds_apart(light) {
+            return None;
         }
         let crossed = self
             .occluders
-            .map(|(k, edge)| occluders[k as usize].candidate_pairs_past(region, light, Some(edge)));
+            .map(|(k, edge)| occluders[k as usize].candidate_pairs_past(region, light, &[edge]));
         let [Some(a), Some(b)] = crossed else {
             return None;
         };

@@ -38,7 +38,12 @@
 //! - Pieces of one object joined edge to edge that tile faces of their
 //!   hull (a tent of triangles) block as one [`Body`] with the other hull
 //!   faces open ([`sheet_bodies`]): where they meet, their hidden parts of
-//!   the light join with no overlap, which no cut gets across.
+//!   the light join with no overlap, which no cut gets across. Pieces
+//!   that share an edge block together across it (`hinge`), and pieces
+//!   about a corner they share about it (`fan`), whatever their object.
+//! - Where every corner of the region has a blocker that hides all of
+//!   the light piece from it, but no one serves them all, the region is
+//!   halved first.
 //! - Each step looks only at the blockers in the [`Shaft`] between its
 //!   parts of the region and of the light (a floating-point cull: a wrong
 //!   one could only fail a proof).
@@ -80,6 +85,7 @@ use bsp_core::{ConvexPolygon, GridPoint, Plane, PlaneLattice, Split};
 use smallvec::SmallVec;
 
 mod body;
+mod fan;
 mod frontier;
 mod hinge;
 mod leak;
@@ -137,8 +143,10 @@ pub fn sees_none(
         .iter()
         .map(|b| b.clearance(region, &light_corners, light.support()))
         .collect();
+    let hinges = hinge::hinges(&occluders);
     let prover = Prover {
-        hinges: hinge::hinges(&occluders),
+        hinges_from: hinge::hinges_from(&hinges, occluders.len()),
+        hinges,
         occluders,
         bodies,
         clearances,
@@ -206,17 +214,17 @@ impl Occluder {
     /// the polygon's plane, which corner pairs cross it (as
     /// [`Self::pair_crossings`]); `None` otherwise.
     fn candidate_pairs(&self, region: &ConvexPolygon, light: &[GridPoint]) -> Option<Pairs> {
-        self.candidate_pairs_past(region, light, None)
+        self.candidate_pairs_past(region, light, &[])
     }
 
-    /// [`Self::candidate_pairs`], for the polygon with the edge `open`
-    /// (from corner `open` to the next) taken away: its plane's region
+    /// [`Self::candidate_pairs`], for the polygon with the edges `open`
+    /// (each from that corner to the next) taken away: its plane's region
     /// inside the other edges.
     fn candidate_pairs_past(
         &self,
         region: &ConvexPolygon,
         light: &[GridPoint],
-        open: Option<usize>,
+        open: &[usize],
     ) -> Option<Pairs> {
         let &first = light.first()?;
         let light_side = side_of_point(&self.support, first);
@@ -276,16 +284,16 @@ impl Occluder {
         l: GridPoint,
         test: &[bool],
     ) -> SmallVec<[bool; 8]> {
-        self.crossings_past(region, l, test, None)
+        self.crossings_past(region, l, test, &[])
     }
 
-    /// [`Self::crossings`] with the edge `open` taken away.
+    /// [`Self::crossings`] with the edges `open` taken away.
     fn crossings_past(
         &self,
         region: &ConvexPolygon,
         l: GridPoint,
         test: &[bool],
-        open: Option<usize>,
+        open: &[usize],
     ) -> SmallVec<[bool; 8]> {
         // The segment k-l crosses the plane at x. For an edge a-b, the plane
         // H through a, b, l meets the support in the edge's line, and x lies
@@ -306,7 +314,7 @@ impl Occluder {
             if !inside.contains(&true) {
                 break;
             }
-            if open == Some(e) {
+            if open.contains(&e) {
                 continue;
             }
             let (a, b) = (self.corners[e], self.corners[(e + 1) % m]);
@@ -343,12 +351,17 @@ enum BlockerRef {
     Body(u32),
     /// Two occluders that share an edge, as one ([`hinge`]).
     Hinge(u32),
+    /// Occluders about a corner they share, as one ([`fan`]; made by a
+    /// step of a proof for its light piece, and not asked again).
+    Fan,
 }
 
 struct Prover<'a> {
     occluders: Vec<Occluder>,
     /// The pairs of occluders that share an edge.
     hinges: Vec<hinge::Hinge>,
+    /// Per occluder, the hinges it is the first of (ascending).
+    hinges_from: Vec<SmallVec<[u32; 4]>>,
     bodies: &'a [&'a Body],
     /// Per body: whether it is clear of the receiver's and the light's
     /// planes ([`Body::clearance`]).
@@ -455,12 +468,35 @@ impl Prover<'_> {
                 _ => None,
             })
             .collect();
+        let mut pieces: SmallVec<[u32; 16]> = candidates
+            .iter()
+            .filter_map(|(blocker, _)| match blocker {
+                BlockerRef::Occluder(k) => Some(*k),
+                _ => None,
+            })
+            .collect();
+        pieces.sort_unstable();
+        // The hinges between them, in order.
+        let among: SmallVec<[u32; 16]> = if crossing.len() >= 2 {
+            pieces
+                .iter()
+                .flat_map(|&k| &self.hinges_from[k as usize])
+                .copied()
+                .filter(|&h| {
+                    let other = self.hinges[h as usize].occluders[1].0;
+                    pieces.binary_search(&other).is_ok()
+                })
+                .collect()
+        } else {
+            SmallVec::new()
+        };
         if crossing.len() >= 2 {
-            for (k, hinge) in self.hinges.iter().enumerate() {
+            for &k in &among {
+                let hinge = &self.hinges[k as usize];
                 if !hinge.occluders.iter().all(|(o, _)| crossing.contains(o)) {
                     continue;
                 }
-                let blocker = BlockerRef::Hinge(k as u32);
+                let blocker = BlockerRef::Hinge(k);
                 let Some(pairs) = self.candidate_pairs(blocker, region, &light.corners) else {
                     continue;
                 };
@@ -468,6 +504,18 @@ impl Prover<'_> {
                     return true;
                 }
                 candidates.push((blocker, pairs));
+            }
+        }
+        // Fans of occluders about a corner they share: the pieces of a bent
+        // face or a tent, where the light's parts meet at a point.
+        if crossing.len() >= 2 {
+            let joints = among.iter().map(|&h| &self.hinges[h as usize]);
+            let fans = fan::fan_pairs(&self.occluders, joints, &crossing, region, &light.corners);
+            for pairs in fans {
+                if !pairs.contains(&false) {
+                    return true;
+                }
+                candidates.push((BlockerRef::Fan, pairs));
             }
         }
         // No one blocker hides it all: before halving, once, look for what
@@ -497,10 +545,21 @@ impl Prover<'_> {
         // another the rest, each over all of the region.
         let pairs: Vec<Pairs> = candidates.into_iter().map(|(_, pairs)| pairs).collect();
         let (light_side, region_axis, seam_axis) = self.guide(region, light, &pairs);
-        // After a run of light cuts, the region once, across the seam
-        // between two blockers' parts of the light where one moves across
-        // it: no cut of the light then suits all of the region.
-        let (light_first, region_axis) = if light_side.is_some() && light_run >= LIGHT_RUN {
+        // Where each corner of the region has a blocker that hides all of
+        // the light piece from it, but no one blocker serves all corners,
+        // the region is cut between them: each part nearer its own. After
+        // a run of light cuts, the region once, across the seam between
+        // two blockers' parts of the light where one moves across it: no
+        // cut of the light then suits all of the region.
+        let nk = region.len();
+        let each_corner_covered = (0..nk).all(|i| {
+            pairs
+                .iter()
+                .any(|m| (0..light.corners.len()).all(|j| m[j * nk + i]))
+        });
+        let (light_first, region_axis) = if region_axis.is_some() && each_corner_covered {
+            (false, region_axis)
+        } else if light_side.is_some() && light_run >= LIGHT_RUN {
             (false, region_axis.or(seam_axis))
         } else {
             (
@@ -539,6 +598,7 @@ impl Prover<'_> {
             BlockerRef::Body(k) => {
                 self.bodies[k as usize].candidate_pairs(region, light, self.clearances[k as usize])
             }
+            BlockerRef::Fan => None,
         }
     }
 
@@ -596,7 +656,7 @@ impl Prover<'_> {
                 ),
                 // (A segment a hinge blocks crosses one of its occluders,
                 // asked on their own.)
-                BlockerRef::Hinge(_) => crossed,
+                BlockerRef::Hinge(_) | BlockerRef::Fan => crossed,
             };
         }
         self.pair_sees_past_all(region.len(), light, &crossed)

@@ -666,6 +666,7 @@ fn proven_dark_regions_under_random_sheets_see_no_light() {
     );
 }
 
+mod fan;
 mod hinge;
 mod shell;
 

@@ -5,7 +5,7 @@
 use super::*;
 
 /// A random point `centre + radii * u`, `u` in the unit cube.
-fn around(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> GridPoint {
+pub(super) fn around(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> GridPoint {
     let c: [i64; 3] = std::array::from_fn(|k| {
         (centre[k] + radii[k] * rng.random_range(-1.0..1.0)).round() as i64
     });
@@ -95,7 +95,8 @@ fn proven_dark_regions_under_random_folds_see_no_light() {
 /// Random fans of triangles around a point (a star-shaped polygon, bent
 /// by random heights: the pieces of a concave face the grid left
 /// non-planar, and tents), as occluders only: whatever they are proven to
-/// hide is hidden; and the proofs find joint umbrae across the seams.
+/// hide is hidden; and the proofs find joint umbrae across the seams, by
+/// hinges and by the fan about the hub ([`super::fan`]).
 #[test]
 fn proven_dark_regions_under_random_fans_see_no_light() {
     let mut rng = Pcg64::seed_from_u64(22);
@@ -138,8 +139,9 @@ fn proven_dark_regions_under_random_fans_see_no_light() {
         proven += p;
         joint += j;
     }
+    // (Hinges alone prove 666 and 579 of these: the rest is the fans'.)
     assert!(
-        proven >= 500 && joint >= 450,
+        proven >= 780 && joint >= 700,
         "proven {proven}, joint {joint}"
     );
 }
