@@ -111,7 +111,19 @@ impl Cell {
     /// Whether the cell lies in some occluder's umbra for `light`, or in
     /// the umbrae of two from either side.
     pub fn in_umbra(&self, light: usize) -> bool {
-        self.unreached(light) || self.umbra_sides(light).is_both()
+        if self.unreached(light) {
+            return true;
+        }
+        let mut sides = Sides::NONE;
+        for e in &self.entries {
+            if usize::from(e.light) == light {
+                sides |= e.umbra;
+                if sides.is_both() {
+                    return true;
+                }
+            }
+        }
+        false
     }
 
     /// The sides from which the cell's occluders hide all of `light`.
