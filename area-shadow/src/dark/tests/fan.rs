@@ -2,7 +2,7 @@
 //! ([`super::fan`]), against segments sampled between the region and the
 //! light.
 
-use super::hinge::around;
+use super::hinge::random_fold;
 use super::*;
 
 /// A quad cut into two triangles along the diagonal from its corner
@@ -31,26 +31,9 @@ fn proven_dark_regions_under_random_cut_folds_see_no_light() {
     let light_corners: Vec<GridPoint> = source.vertices().collect();
     let (mut proven, mut beyond_pairs) = (0, 0);
     for _ in 0..300 {
-        let centre = [
-            rng.random_range(-1500.0..1500.0),
-            rng.random_range(3000.0..7000.0),
-            rng.random_range(-1500.0..1500.0),
-        ];
-        let size = rng.random_range(300.0..2000.0);
-        let a = around(&mut rng, centre, [size; 3]);
-        let b = around(&mut rng, centre, [size; 3]);
-        let side = |rng: &mut Pcg64| -> [i64; 3] {
-            std::array::from_fn(|_| (size * rng.random_range(-1.0..1.0)).round() as i64)
-        };
-        let (u, w) = (side(&mut rng), side(&mut rng));
-        let off = |p: GridPoint, d: [i64; 3]| {
-            g(
-                i64::from(p.x) + d[0],
-                i64::from(p.y) + d[1],
-                i64::from(p.z) + d[2],
-            )
-        };
-        let quads = [[a, b, off(b, u), off(a, u)], [b, a, off(a, w), off(b, w)]];
+        let ([a_quad, b_quad], _, _) = random_fold(&mut rng);
+        let quads = [a_quad, b_quad];
+        let (a, b) = (a_quad[0], a_quad[1]);
         let pieces: Vec<ConvexPolygon> = quads
             .iter()
             .flat_map(|&q| cut(q, rng.random_range(0..2)))

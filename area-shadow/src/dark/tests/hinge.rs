@@ -5,7 +5,7 @@
 use super::*;
 
 /// A random point `centre + radii * u`, `u` in the unit cube.
-pub(super) fn around(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> GridPoint {
+fn around(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> GridPoint {
     let c: [i64; 3] = std::array::from_fn(|k| {
         (centre[k] + radii[k] * rng.random_range(-1.0..1.0)).round() as i64
     });
@@ -44,6 +44,35 @@ fn check_proofs(
     (proven, joint)
 }
 
+/// A random fold: two parallelogram quads sharing the edge from the first
+/// quad's corner 0 to its corner 1 (the second's 1 to 0), at a random
+/// angle and turn, about a random centre 3000 to 7000 above the floor;
+/// with that centre and the fold's size.
+pub(super) fn random_fold(rng: &mut Pcg64) -> ([[GridPoint; 4]; 2], [f64; 3], f64) {
+    let centre = [
+        rng.random_range(-1500.0..1500.0),
+        rng.random_range(3000.0..7000.0),
+        rng.random_range(-1500.0..1500.0),
+    ];
+    let size = rng.random_range(300.0..2000.0);
+    // The shared edge, and each quad a parallelogram off it.
+    let a = around(rng, centre, [size; 3]);
+    let b = around(rng, centre, [size; 3]);
+    let mut side = || -> [i64; 3] {
+        std::array::from_fn(|_| (size * rng.random_range(-1.0..1.0)).round() as i64)
+    };
+    let (u, v) = (side(), side());
+    let off = |p: GridPoint, w: [i64; 3]| {
+        g(
+            i64::from(p.x) + w[0],
+            i64::from(p.y) + w[1],
+            i64::from(p.z) + w[2],
+        )
+    };
+    let quads = [[a, b, off(b, u), off(a, u)], [b, a, off(a, v), off(b, v)]];
+    (quads, centre, size)
+}
+
 /// Random folds (two quads sharing an edge, at a random angle, turned any
 /// way, as a ridge, a valley or on edge) over random floor squares
 /// (seeded): whatever the two are proven to hide is hidden, every sampled
@@ -54,27 +83,7 @@ fn proven_dark_regions_under_random_folds_see_no_light() {
     let mut rng = Pcg64::seed_from_u64(21);
     let (mut proven, mut joint) = (0, 0);
     for _ in 0..3000 {
-        let centre = [
-            rng.random_range(-1500.0..1500.0),
-            rng.random_range(3000.0..7000.0),
-            rng.random_range(-1500.0..1500.0),
-        ];
-        let size = rng.random_range(300.0..2000.0);
-        // The shared edge, and each quad a parallelogram off it.
-        let a = around(&mut rng, centre, [size; 3]);
-        let b = around(&mut rng, centre, [size; 3]);
-        let side = |rng: &mut Pcg64| -> [i64; 3] {
-            std::array::from_fn(|_| (size * rng.random_range(-1.0..1.0)).round() as i64)
-        };
-        let (u, v) = (side(&mut rng), side(&mut rng));
-        let off = |p: GridPoint, w: [i64; 3]| {
-            g(
-                i64::from(p.x) + w[0],
-                i64::from(p.y) + w[1],
-                i64::from(p.z) + w[2],
-            )
-        };
-        let quads = [[a, b, off(b, u), off(a, u)], [b, a, off(a, v), off(b, v)]];
+        let (quads, centre, size) = random_fold(&mut rng);
         let Ok(pieces) = quads
             .iter()
             .map(|q| ConvexPolygon::from_grid_points(q, 0))
