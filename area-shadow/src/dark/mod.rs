@@ -468,17 +468,18 @@ impl Prover<'_> {
                 _ => None,
             })
             .collect();
-        let mut pieces: SmallVec<[u32; 16]> = candidates
-            .iter()
-            .filter_map(|(blocker, _)| match blocker {
-                BlockerRef::Occluder(k) => Some(*k),
-                _ => None,
-            })
-            .collect();
-        pieces.sort_unstable();
-        // The hinges between them, in order.
-        let among: SmallVec<[u32; 16]> = if crossing.len() >= 2 {
-            pieces
+        if crossing.len() >= 2 {
+            // The occluders among the candidates, and the hinges between
+            // them in order.
+            let mut pieces: SmallVec<[u32; 16]> = candidates
+                .iter()
+                .filter_map(|(blocker, _)| match blocker {
+                    BlockerRef::Occluder(k) => Some(*k),
+                    _ => None,
+                })
+                .collect();
+            pieces.sort_unstable();
+            let among: SmallVec<[u32; 16]> = pieces
                 .iter()
                 .flat_map(|&k| &self.hinges_from[k as usize])
                 .copied()
@@ -486,11 +487,7 @@ impl Prover<'_> {
                     let other = self.hinges[h as usize].occluders[1].0;
                     pieces.binary_search(&other).is_ok()
                 })
-                .collect()
-        } else {
-            SmallVec::new()
-        };
-        if crossing.len() >= 2 {
+                .collect();
             for &k in &among {
                 let hinge = &self.hinges[k as usize];
                 if !hinge.occluders.iter().all(|(o, _)| crossing.contains(o)) {
@@ -505,10 +502,8 @@ impl Prover<'_> {
                 }
                 candidates.push((blocker, pairs));
             }
-        }
-        // Fans of occluders about a corner they share: the pieces of a bent
-        // face or a tent, where the light's parts meet at a point.
-        if crossing.len() >= 2 {
+            // Fans of occluders about a corner they share: the pieces of a
+            // bent face or a tent, where the light's parts meet at a point.
             let joints = among.iter().map(|&h| &self.hinges[h as usize]);
             let fans = fan::fan_pairs(&self.occluders, joints, &crossing, region, &light.corners);
             for pairs in fans {
