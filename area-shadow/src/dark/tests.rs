@@ -268,17 +268,7 @@ fn proven_dark_regions_see_no_light_under(rise: i64) {
             .map(|&(x, y, z)| (x.map(|v| v as f64), y as f64, z.map(|v| v as f64)))
             .collect();
         for _ in 0..256 {
-            let k = [
-                (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-                0.0,
-                (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-            ];
-            let s = rng.random::<f64>();
-            let l = [
-                -500.0 + s * 1000.0,
-                10_000.0 + s * rise as f64,
-                -500.0 + rng.random::<f64>() * 1000.0,
-            ];
+            let (k, l) = segment_to_light(&mut rng, (cx, cz, r), rise);
             assert!(
                 rects
                     .iter()
@@ -291,6 +281,28 @@ fn proven_dark_regions_see_no_light_under(rise: i64) {
         proven >= 50 && joint >= 8,
         "rise {rise}: proven {proven}, joint {joint}"
     );
+}
+
+/// A random segment from the floor square of half-width `r` around
+/// `(cx, 0, cz)` to the light `x, z` in `[-500, 500]` at height 10 000,
+/// rising by `rise` along `x`.
+fn segment_to_light(
+    rng: &mut Pcg64,
+    (cx, cz, r): (i64, i64, i64),
+    rise: i64,
+) -> ([f64; 3], [f64; 3]) {
+    let k = [
+        (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+        0.0,
+        (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
+    ];
+    let s = rng.random::<f64>();
+    let l = [
+        -500.0 + s * 1000.0,
+        10_000.0 + s * rise as f64,
+        -500.0 + rng.random::<f64>() * 1000.0,
+    ];
+    (k, l)
 }
 
 /// Two narrow panels overlapping in plan (neither has an umbra): from the

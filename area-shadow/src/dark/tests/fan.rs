@@ -18,6 +18,31 @@ fn cut(q: [GridPoint; 4], from: usize) -> Vec<ConvexPolygon> {
         .collect()
 }
 
+/// Four floor squares (centre `x`, `z` and half-width, at random) each
+/// with a corner where the light corner `l` is seen exactly past `v`, one
+/// on each side of it.
+fn cornered_past(rng: &mut Pcg64, v: GridPoint, l: GridPoint) -> [(i64, i64, i64); 4] {
+    let (lv, vv) = (l.to_f64(), v.to_f64());
+    let t = lv[1] / (lv[1] - vv[1]);
+    let k = [lv[0] + (vv[0] - lv[0]) * t, lv[2] + (vv[2] - lv[2]) * t];
+    let r = rng.random_range(5..60);
+    [(r, r), (r, -r), (-r, r), (-r, -r)]
+        .map(|(sx, sz)| (k[0].round() as i64 + sx, k[1].round() as i64 + sz, r))
+}
+
+/// Whether some two of `occluders` are proven to hide all of `source`
+/// from `region`.
+fn proven_by_two(
+    region: &ConvexPolygon,
+    source: &AreaSource,
+    occluders: &[&ConvexPolygon],
+) -> bool {
+    (0..occluders.len()).any(|i| {
+        (i + 1..occluders.len())
+            .any(|j| sees_none(region, false, source, &[occluders[i], occluders[j]], &[]))
+    })
+}
+
 /// Random folds of two quads, each cut into two triangles (the grid cuts
 /// a bent quad so), over floor squares with a corner where a light corner
 /// is seen exactly past a corner of the fold (as the corners of DM cells
@@ -48,22 +73,14 @@ fn proven_dark_regions_under_random_cut_folds_see_no_light() {
             .into_iter()
             .flat_map(|v| light_corners.iter().map(move |&l| (v, l)))
         {
-            let (lv, vv) = (l.to_f64(), v.to_f64());
-            let t = lv[1] / (lv[1] - vv[1]);
-            let k = [lv[0] + (vv[0] - lv[0]) * t, lv[2] + (vv[2] - lv[2]) * t];
-            let r = rng.random_range(5..60);
-            for (sx, sz) in [(r, r), (r, -r), (-r, r), (-r, -r)] {
-                let (cx, cz) = (k[0].round() as i64 + sx, k[1].round() as i64 + sz);
+            for (cx, cz, r) in cornered_past(&mut rng, v, l) {
                 let region = floor(cx, cz, r);
                 if !sees_none(&region, false, &source, &refs, &[]) {
                     continue;
                 }
                 proven += 1;
                 assert_segments_meet(&mut rng, (cx, cz, r), &pieces);
-                let by_two = (0..4).any(|i| {
-                    (i + 1..4).any(|j| sees_none(&region, false, &source, &[refs[i], refs[j]], &[]))
-                });
-                beyond_pairs += usize::from(!by_two);
+                beyond_pairs += usize::from(!proven_by_two(&region, &source, &refs));
             }
         }
     }
@@ -123,40 +140,21 @@ fn proven_dark_regions_under_fans_and_a_tilted_light_see_no_light() {
             .collect();
         let refs: Vec<&ConvexPolygon> = fan.iter().collect();
         for &l in &light_corners {
-            let (lv, hv) = (l.to_f64(), hub.to_f64());
-            let t = lv[1] / (lv[1] - hv[1]);
-            let k = [lv[0] + (hv[0] - lv[0]) * t, lv[2] + (hv[2] - lv[2]) * t];
-            let r = rng.random_range(5..60);
-            for (sx, sz) in [(r, r), (r, -r), (-r, r), (-r, -r)] {
-                let (cx, cz) = (k[0].round() as i64 + sx, k[1].round() as i64 + sz);
+            for (cx, cz, r) in cornered_past(&mut rng, hub, l) {
                 let region = floor(cx, cz, r);
                 if !sees_none(&region, false, &source, &refs, &[]) {
                     continue;
                 }
                 proven += 1;
                 for _ in 0..256 {
-                    let k = [
-                        (cx - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-                        0.0,
-                        (cz - r) as f64 + rng.random::<f64>() * 2.0 * r as f64,
-                    ];
-                    let s = rng.random::<f64>();
-                    let l = [
-                        -500.0 + s * 1000.0,
-                        10_000.0 + s * rise as f64,
-                        -500.0 + rng.random::<f64>() * 1000.0,
-                    ];
+                    let (k, l) = segment_to_light(&mut rng, (cx, cz, r), rise);
                     let through = fan.iter().any(|p| {
                         let c = p.vertices_f64();
                         segment_meets_triangle(k, l, [c[0], c[1], c[2]])
                     });
                     assert!(through, "segment {k:?} -> {l:?} passes the fan {fan:?}");
                 }
-                let by_two = (0..refs.len()).any(|i| {
-                    (i + 1..refs.len())
-                        .any(|j| sees_none(&region, false, &source, &[refs[i], refs[j]], &[]))
-                });
-                beyond_pairs += usize::from(!by_two);
+                beyond_pairs += usize::from(!proven_by_two(&region, &source, &refs));
             }
         }
     }
