@@ -117,6 +117,7 @@ mod critical;
 mod error;
 mod hash;
 mod illuminate;
+mod marks;
 mod order;
 mod overlap;
 mod scene;

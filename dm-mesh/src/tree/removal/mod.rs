@@ -29,8 +29,10 @@
 //! one's cells.
 
 use super::{ReceiverDm, clip};
+use crate::cell::Cell;
 use crate::critical::UnitPlanes;
 use crate::hash::KeySet;
+use crate::marks::Marks;
 use bsp_core::predicates::Pencil;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, VertexKey};
 use smallvec::SmallVec;
@@ -248,13 +250,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 None => starts.extend(self.cells_by_descent(u, planes)),
             }
         }
-        // Positions in `removed` (ascending by unit) of the units a face
+        // Positions in `removed` (ascending by unit) of the units a cell
         // holds.
-        let units_held = |f: FaceKey| -> SmallVec<[usize; 8]> {
-            let Some(face) = self.mesh.face(f) else {
-                return SmallVec::new();
-            };
-            let data = &face.data;
+        let units_held = |data: &Cell| -> SmallVec<[usize; 8]> {
             let mut out: SmallVec<[usize; 8]> = data
                 .entries
                 .iter()
@@ -266,21 +264,26 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             out.dedup();
             out
         };
-        let mut seen: KeySet<FaceKey> = KeySet::default();
+        // Cells reached, by leaf.
+        let mut seen = Marks::new(self.nodes.len());
         let mut stack: Vec<FaceKey> = Vec::new();
         let mut out: Vec<(u32, SmallVec<[usize; 8]>)> = Vec::new();
-        // (A face holding none is marked too: the cells around the flood
+        // (A cell holding none is marked too: the cells around the flood
         // are each reached from several inside it.)
         let mut visit = |f: FaceKey, stack: &mut Vec<FaceKey>| {
-            if !seen.insert(f) {
+            let Some(face) = self.mesh.face(f) else {
+                return;
+            };
+            let data = &face.data;
+            if !seen.insert(data.leaf) {
                 return;
             }
-            let units = units_held(f);
+            let units = units_held(data);
             if units.is_empty() {
                 return;
             }
             stack.push(f);
-            out.push((self.mesh.face(f).expect("face").data.leaf, units));
+            out.push((data.leaf, units));
         };
         for f in starts {
             visit(f, &mut stack);
