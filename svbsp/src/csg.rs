@@ -28,6 +28,7 @@
 use crate::SetOp;
 use bsp_core::predicates::Side;
 use bsp_core::{BspSolid, Containment, ConvexPolygon};
+use rustc_hash::FxHashMap;
 use std::collections::HashMap;
 
 /// The boundary of a set operation: exact pieces and a welded mesh.
@@ -244,7 +245,7 @@ pub fn weld(polygons: &[ConvexPolygon]) -> IndexedMesh {
     // 1. Unique vertices, through a hash of f64 cells checked in the 27
     //    cells around each vertex.
     let cell = |p: [f64; 3]| p.map(|c| (c / (4.0 * NEAR)).floor() as i64);
-    let mut buckets: HashMap<[i64; 3], Vec<u32>, FastHash> = HashMap::default();
+    let mut buckets: FxHashMap<[i64; 3], Vec<u32>> = FxHashMap::default();
     let mut representative: Vec<VertexRef> = Vec::new();
     let mut vertices: Vec<[f64; 3]> = Vec::new();
     let mut ids: Vec<Vec<u32>> = Vec::with_capacity(polygons.len());
@@ -323,40 +324,6 @@ pub fn weld(polygons: &[ConvexPolygon]) -> IndexedMesh {
         vertices,
         faces,
         face_polygon: (0..polygons.len() as u32).collect(),
-    }
-}
-
-/// A multiplicative hash for integer cell keys (deterministic; the keys are
-/// not adversarial).
-type FastHash = std::hash::BuildHasherDefault<CellHasher>;
-
-/// The hasher of [`FastHash`].
-#[derive(Default)]
-struct CellHasher(u64);
-
-impl std::hash::Hasher for CellHasher {
-    fn finish(&self) -> u64 {
-        self.0
-    }
-
-    fn write(&mut self, bytes: &[u8]) {
-        for chunk in bytes.chunks(8) {
-            let mut word = [0_u8; 8];
-            word[..chunk.len()].copy_from_slice(chunk);
-            self.write_u64(u64::from_le_bytes(word));
-        }
-    }
-
-    fn write_u64(&mut self, v: u64) {
-        self.0 = (self.0.rotate_left(5) ^ v).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-    }
-
-    fn write_i64(&mut self, v: i64) {
-        self.write_u64(v as u64);
-    }
-
-    fn write_usize(&mut self, v: usize) {
-        self.write_u64(v as u64);
     }
 }
 
