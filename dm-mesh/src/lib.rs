@@ -131,4 +131,4 @@ pub use error::Error;
 pub use illuminate::IllumStats;
 pub use overlap::{OverlapFigures, OverlapKind};
 pub use scene::{DmLight, DmOptions, DmScene, ObjectId, PieceId};
-pub use tree::{Deletion, ReceiverDm};
+pub use tree::{Deletion, ReceiverDm, Region};

@@ -42,12 +42,14 @@ use bsp_core::{ConvexPolygon, FaceKey, Plane, Split, WingedMesh};
 mod arena;
 mod check;
 mod insert;
+mod regions;
 mod removal;
 #[cfg(test)]
 mod testing;
 mod tile;
 mod tiled;
 
+pub use regions::Region;
 pub use removal::Deletion;
 
 /// The unit number of the light-plane splits and tiles made when a
