@@ -135,5 +135,6 @@ mod tests {
                 }
             }
         }
+        assert!(gathered > 0, "no region gathered several cells");
     }
 }
