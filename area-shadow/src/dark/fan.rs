@@ -252,7 +252,7 @@ fn spans_half_turn(
     light: &[GridPoint],
 ) -> bool {
     light.iter().all(|&l| {
-        Plane::through(v, kept_far, l).is_some_and(|plane| {
+        Plane::through_unreduced(v, kept_far, l).is_some_and(|plane| {
             let side = side_of_point(&plane, inside);
             side != Side::On && side_of_point(&plane, beyond) != side
         })

@@ -104,7 +104,7 @@ impl Hinge {
                 .corners
                 .iter()
                 .copied()
-                .find(|&c| Plane::through(p, q, c).is_some())
+                .find(|&c| Plane::through_unreduced(p, q, c).is_some())
         };
         Some(Self {
             occluders: ends,
@@ -118,7 +118,7 @@ impl Hinge {
     /// it (the light within the hinge's angle or the one opposite).
     pub(super) fn folds_apart(&self, light: &[GridPoint]) -> bool {
         light.iter().all(|&l| {
-            Plane::through(self.axis[0], self.axis[1], l).is_some_and(|plane| {
+            Plane::through_unreduced(self.axis[0], self.axis[1], l).is_some_and(|plane| {
                 let sides = self.off.map(|p| side_of_point(&plane, p));
                 !sides.contains(&Side::On) && sides[0] != sides[1]
             })
