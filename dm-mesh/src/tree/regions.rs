@@ -66,10 +66,16 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             else {
                 continue;
             };
-            // (A node's line cuts its cell: the other cases do not arise.)
-            if let Split::Both(b, f) = polygon.split(line) {
-                stack.push((*front, f));
-                stack.push((*back, b));
+            // (A node's line cuts its cell; were the cell on one side, it
+            // would all go there.)
+            match polygon.split(line) {
+                Split::Both(b, f) => {
+                    stack.push((*front, f));
+                    stack.push((*back, b));
+                }
+                Split::Back => stack.push((*back, polygon)),
+                Split::Front => stack.push((*front, polygon)),
+                Split::Coplanar(_) => {}
             }
         }
         out
