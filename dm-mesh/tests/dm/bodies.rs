@@ -3,7 +3,10 @@
 //! and against each polygon casting its own unit.
 
 use crate::classes::check_against_area_shadow_with;
-use crate::common::{TestScene, class_areas, floor, light_class_areas, triangulated_cuboid};
+use crate::common::{
+    TestScene, class_areas, closed_surface_flags, floor, light_class_areas, triangulated_cuboid,
+    two_sided_flags,
+};
 use crate::illumination::check_vertices;
 use dm_mesh::{DmOptions, DmScene, ObjectId, PieceId};
 use proptest::prelude::*;
@@ -103,14 +106,10 @@ fn a_two_sided_face_of_a_body_sees_nothing_through_it() {
         0,
     )
     .unwrap();
-    let two_sided = PieceFlags {
-        two_sided: true,
-        ..PieceFlags::default()
-    };
     let t = TestScene {
         objects: vec![
             (vec![floor(500)], PieceFlags::default()),
-            (cuboid([0, 40, 0], [40, 80, 40]), two_sided),
+            (cuboid([0, 40, 0], [40, 80, 40]), two_sided_flags()),
             (vec![square], PieceFlags::default()),
         ],
         light: crate::common::light(-50, -50, 100, 100, 200, 0),
@@ -159,10 +158,9 @@ proptest! {
         use dm_mesh::DmLight;
         let lo = [lo[0], 20 + lo[1].rem_euclid(40), lo[2]];
         let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
-        let closed = PieceFlags { closed_surface: true, ..PieceFlags::default() };
         let objects = vec![
             (vec![floor(500)], PieceFlags::default()),
-            (triangulated_cuboid(lo, hi, cuts), closed),
+            (triangulated_cuboid(lo, hi, cuts), closed_surface_flags()),
         ];
         let lights: Vec<DmLight> = [high, low]
             .into_iter()
@@ -233,11 +231,10 @@ proptest! {
         let light = crate::common::light(-40, -40, 80, 80, h, 0);
         // The box meets the light's rectangle.
         prop_assume!(lo[0] < 40 && hi[0] > -40 && lo[2] < 40 && hi[2] > -40);
-        let flags = PieceFlags { closed_surface: true, ..PieceFlags::default() };
         let t = TestScene {
             objects: vec![
                 (vec![floor(400)], PieceFlags::default()),
-                (triangulated_cuboid(lo, hi, cuts), flags),
+                (triangulated_cuboid(lo, hi, cuts), closed_surface_flags()),
             ],
             light,
         };

@@ -3,7 +3,8 @@
 //! of the whole scene) area for area.
 
 use crate::common::{
-    TestScene, class_areas, cuboid, facing_boxes, floor, scene, scene_with, triangulated_cuboid,
+    TestScene, class_areas, closed_surface_flags, cuboid, facing_boxes, floor, scene, scene_with,
+    triangulated_cuboid, two_sided_flags,
 };
 use crate::oracle::{hidden, interior_samples};
 use area_shadow::{Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
@@ -229,7 +230,7 @@ proptest! {
         let t = TestScene {
             objects: vec![
                 (vec![floor(500)], PieceFlags::default()),
-                (triangulated_cuboid(lo, hi, cuts), PieceFlags { closed_surface: true, ..PieceFlags::default() }),
+                (triangulated_cuboid(lo, hi, cuts), closed_surface_flags()),
             ],
             light: crate::common::light(x0, z0, w, d, h, tilt),
         };
@@ -279,15 +280,11 @@ proptest! {
 /// box gone the first one's face is penumbra.
 #[test]
 fn two_sided_boxes_face_to_face_hide_the_light_together() {
-    let two_sided = PieceFlags {
-        two_sided: true,
-        ..PieceFlags::default()
-    };
     let t = TestScene {
         objects: vec![
             (vec![floor(500)], PieceFlags::default()),
-            (cuboid([0, 40, 0], [30, 70, 20]), two_sided),
-            (cuboid([30, 40, -10], [60, 80, 30]), two_sided),
+            (cuboid([0, 40, 0], [30, 70, 20]), two_sided_flags()),
+            (cuboid([30, 40, -10], [60, 80, 30]), two_sided_flags()),
         ],
         light: crate::common::light(10, -10, 40, 40, 200, 0),
     };
@@ -320,15 +317,14 @@ fn two_sided_boxes_face_to_face_hide_the_light_together() {
 /// the light, in both pipelines.
 #[test]
 fn a_face_against_a_box_is_in_its_umbra() {
-    let closed = PieceFlags {
-        closed_surface: true,
-        ..PieceFlags::default()
-    };
     let t = TestScene {
         objects: vec![
             (vec![floor(500)], PieceFlags::default()),
-            (cuboid([-20, 30, -92], [14, 70, -82]), closed),
-            (cuboid([14, 69, -83], [24, 79, -73]), closed),
+            (
+                cuboid([-20, 30, -92], [14, 70, -82]),
+                closed_surface_flags(),
+            ),
+            (cuboid([14, 69, -83], [24, 79, -73]), closed_surface_flags()),
         ],
         light: crate::common::light(0, 0, 20, 20, 180, 0),
     };
@@ -372,20 +368,8 @@ fn a_two_sided_triangle_through_a_box_is_dark_inside_it() {
     let t = TestScene {
         objects: vec![
             (vec![floor(500)], PieceFlags::default()),
-            (
-                vec![triangle],
-                PieceFlags {
-                    two_sided: true,
-                    ..PieceFlags::default()
-                },
-            ),
-            (
-                cuboid([-40, 39, 78], [-30, 78, 91]),
-                PieceFlags {
-                    closed_surface: true,
-                    ..PieceFlags::default()
-                },
-            ),
+            (vec![triangle], two_sided_flags()),
+            (cuboid([-40, 39, 78], [-30, 78, 91]), closed_surface_flags()),
         ],
         light: crate::common::light(-41, 0, 22, 20, 180, 0),
     };

@@ -97,6 +97,22 @@ fn triangles(centre: [i64; 3], corners: &[[i64; 3]]) -> Vec<ConvexPolygon> {
         .collect()
 }
 
+/// Flags of an object whose polygons receive on both sides.
+pub fn two_sided_flags() -> PieceFlags {
+    PieceFlags {
+        two_sided: true,
+        ..PieceFlags::default()
+    }
+}
+
+/// Flags of an object whose polygons bound a closed surface.
+pub fn closed_surface_flags() -> PieceFlags {
+    PieceFlags {
+        closed_surface: true,
+        ..PieceFlags::default()
+    }
+}
+
 /// An axis-aligned box `[lo, hi]`, faces outwards.
 pub fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
     let [x0, y0, z0] = lo;
@@ -202,19 +218,11 @@ pub fn scene_with(objects: std::ops::Range<usize>) -> impl Strategy<Value = Test
                     let lo = [c[0], 30 + c[1].rem_euclid(60), c[2]];
                     let size = corners[0].map(|s| 10 + s.abs());
                     let hi = [lo[0] + size[0], lo[1] + size[1].min(60), lo[2] + size[2]];
-                    let flags = PieceFlags {
-                        closed_surface: true,
-                        ..PieceFlags::default()
-                    };
-                    out.push((triangulated_cuboid(lo, hi, cuts), flags));
+                    out.push((triangulated_cuboid(lo, hi, cuts), closed_surface_flags()));
                 } else {
                     let tris = triangles(c, &corners[..corners.len() / 3 * 3]);
                     if !tris.is_empty() {
-                        let flags = PieceFlags {
-                            two_sided: true,
-                            ..PieceFlags::default()
-                        };
-                        out.push((tris, flags));
+                        out.push((tris, two_sided_flags()));
                     }
                 }
             }
