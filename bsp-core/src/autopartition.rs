@@ -245,15 +245,15 @@ fn choose_splitter(arena: &[ConvexPolygon], list: &[u32], options: &BuildOptions
             best = (s, plane);
         }
     }
-    if try_axis {
-        if let Some(plane) = median_axis_plane(arena, list, sample) {
-            // It must separate the sample (so each side shrinks) and cut
-            // few, and beat every face on the same score.
-            if let Some((s, front, back, cut)) = score(&plane, best.0) {
-                if front > 0 && back > 0 && 2 * cut < sample as u64 {
-                    best = (s, plane);
-                }
-            }
+    if try_axis && let Some(plane) = median_axis_plane(arena, list, sample) {
+        // It must separate the sample (so each side shrinks) and cut
+        // few, and beat every face on the same score.
+        if let Some((s, front, back, cut)) = score(&plane, best.0)
+            && front > 0
+            && back > 0
+            && 2 * cut < sample as u64
+        {
+            best = (s, plane);
         }
     }
     best.1

@@ -281,16 +281,16 @@ impl ConvexPolygon {
         let n = self.len();
         let prev = (i + n - 1) % n;
         // Vertex i + 1 ends edge i: the vertex lies back along the edge.
-        if let Vertex::Grid(g) = self.corners[(i + 1) % n].vertex {
-            if side_of_point(plane, g) == Side::On {
-                return predicates::side_along_line(plane, &self.support, self.edge(i), false);
-            }
+        if let Vertex::Grid(g) = self.corners[(i + 1) % n].vertex
+            && side_of_point(plane, g) == Side::On
+        {
+            return predicates::side_along_line(plane, &self.support, self.edge(i), false);
         }
         // Vertex i - 1 starts edge i - 1: the vertex lies forward along it.
-        if let Vertex::Grid(g) = self.corners[prev].vertex {
-            if side_of_point(plane, g) == Side::On {
-                return predicates::side_along_line(plane, &self.support, self.edge(prev), true);
-            }
+        if let Vertex::Grid(g) = self.corners[prev].vertex
+            && side_of_point(plane, g) == Side::On
+        {
+            return predicates::side_along_line(plane, &self.support, self.edge(prev), true);
         }
         // The plane holds a line through the vertex: two of its planes'.
         let [s, e0, e1] = planes;

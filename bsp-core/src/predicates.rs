@@ -372,10 +372,10 @@ impl Wide {
 
     /// The sign of `self + other`, as an `i32`.
     fn cmp_sum(self, other: Wide) -> i32 {
-        if let (Wide::Small(a), Wide::Small(b)) = (self, other) {
-            if let Some(s) = a.checked_add(b) {
-                return s.signum() as i32;
-            }
+        if let (Wide::Small(a), Wide::Small(b)) = (self, other)
+            && let Some(s) = a.checked_add(b)
+        {
+            return s.signum() as i32;
         }
         (self.big() + other.big()).signum128() as i32
     }
@@ -384,10 +384,10 @@ impl Wide {
 /// `x0 y1 - x1 y0` exactly, for entries below `2^78` in magnitude.
 #[inline]
 fn minor(x0: i128, y1: i128, x1: i128, y0: i128) -> Wide {
-    if let (Some(p), Some(q)) = (x0.checked_mul(y1), x1.checked_mul(y0)) {
-        if let Some(d) = p.checked_sub(q) {
-            return Wide::Small(d);
-        }
+    if let (Some(p), Some(q)) = (x0.checked_mul(y1), x1.checked_mul(y0))
+        && let Some(d) = p.checked_sub(q)
+    {
+        return Wide::Small(d);
     }
     Wide::Big(I256::from(x0) * I256::from(y1) - I256::from(x1) * I256::from(y0))
 }

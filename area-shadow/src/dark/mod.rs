@@ -558,7 +558,7 @@ impl Prover<'_> {
             (false, region_axis.or(seam_axis))
         } else {
             (
-                light_side.is_some() || (region_axis.is_none() && depth % 2 == 0),
+                light_side.is_some() || (region_axis.is_none() && depth.is_multiple_of(2)),
                 region_axis,
             )
         };

@@ -44,7 +44,7 @@ fn plane_near(
     random: Plane,
 ) -> Plane {
     let grid = grid_vertices(polygon);
-    if pick.0 % 3 == 0 && grid.len() >= 2 {
+    if pick.0.is_multiple_of(3) && grid.len() >= 2 {
         let (a, b) = (grid[pick.1 % grid.len()], grid[pick.2 % grid.len()]);
         if let Some(p) = Plane::through(a, b, extra) {
             return p;

@@ -415,10 +415,11 @@ impl DmScene {
             let (Some(normal), Some(piece)) = (normal, self.pieces.get(p)) else {
                 continue;
             };
-            if piece.kind == PieceKind::Polygon && piece.polygon.support().normal() == plane {
-                if let Some(state) = self.illum.get_mut(p) {
-                    state.normal = Some(normal);
-                }
+            if piece.kind == PieceKind::Polygon
+                && piece.polygon.support().normal() == plane
+                && let Some(state) = self.illum.get_mut(p)
+            {
+                state.normal = Some(normal);
             }
         }
     }

@@ -100,7 +100,8 @@ mod tests {
             let mut rng = Pcg64::seed_from_u64(700 + seed);
             let planes = occluders(&mut rng, 12);
             let dm = fresh(&numbered(&planes), (seed % 3) as u32);
-            let keep = |_: bsp_core::FaceKey, cell: &crate::Cell| cell.entries().len() % 2 == 0;
+            let keep =
+                |_: bsp_core::FaceKey, cell: &crate::Cell| cell.entries().len().is_multiple_of(2);
             let wanted: Vec<bsp_core::FaceKey> = dm
                 .cells()
                 .filter(|(f, c)| keep(*f, c))

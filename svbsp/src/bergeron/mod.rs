@@ -226,11 +226,11 @@ impl BergeronVolumes {
             let Some(model_box) = bounding_box(corners.iter().flatten().flatten()) else {
                 continue;
             };
-            if let (Apex::Point(l), Some(range)) = (apex, light.range) {
-                if distance_to_box(l, model_box) >= range {
-                    out.stats.models_beyond_range += 1;
-                    continue;
-                }
+            if let (Apex::Point(l), Some(range)) = (apex, light.range)
+                && distance_to_box(l, model_box) >= range
+            {
+                out.stats.models_beyond_range += 1;
+                continue;
             }
             // Which count each piece adds to: its own for an L-twisted
             // polygon.

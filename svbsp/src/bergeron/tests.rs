@@ -156,10 +156,10 @@ fn shadow_is_occlusion() {
             let Some(hit) = oracle_occluded(&all, x, to, far) else {
                 continue;
             };
-            if let Some(range) = light.range {
-                if distance(x, to) >= range {
-                    continue;
-                }
+            if let Some(range) = light.range
+                && distance(x, to) >= range
+            {
+                continue;
             }
             let ours = is_shadowed(&v.eye_counts(x));
             assert_eq!(ours, hit, "{light:?} at {x:?}");

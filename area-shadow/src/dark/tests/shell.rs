@@ -106,7 +106,7 @@ fn square_inside(rng: &mut Pcg64, centre: [f64; 3], radii: [f64; 3]) -> ([i64; 3
 /// any.
 fn cup_of_round(rng: &mut Pcg64, round: usize) -> (CupPlace, Vec<ConvexPolygon>, Option<Body>) {
     let (centre, radii) = random_place(rng);
-    let dent = if round % 2 == 0 { 0.02 } else { 0.0 };
+    let dent = if round.is_multiple_of(2) { 0.02 } else { 0.0 };
     let cup = random_cup(rng, centre, radii, dent);
     let shell = convex_groups(&cup, &vec![Some(0); cup.len()])
         .iter()
