@@ -48,6 +48,26 @@ pub(crate) fn integrate_front_with_edges(poly: &[Vec3], edges: &[Vec3], p: Vec3,
 /// poly[i - 1]`.
 #[inline(always)]
 fn integrate_front_by(poly: &[Vec3], edge: impl Fn(usize, Vec3) -> Vec3, p: Vec3, n: Vec3) -> f64 {
+    finish(half_sum_front_by(poly, edge, p, n))
+}
+
+/// The signed integral for unit radiance of a closed polygon, not
+/// necessarily convex, as seen from `p` on a receiver of unit normal `n`,
+/// clipped by the receiver's horizon: positive for a counter-clockwise
+/// polygon, negative for a clockwise one (a hole). The outlines of a region
+/// add up to the region's irradiance.
+///
+/// Clipping a non-convex polygon by the horizon joins its parts above by
+/// segments along the horizon that run to and fro; their terms cancel, as
+/// the terms of the parts of a great-circle arc add up to the arc's.
+pub(crate) fn integrate_front_signed(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
+    half_sum_front_by(poly, |i, prev| sub(poly[i], prev), p, n)
+}
+
+/// Half the sum of the edge terms of `poly` clipped by the horizon
+/// (`edge(i, poly[i - 1])` gives `poly[i] - poly[i - 1]`), unclamped.
+#[inline(always)]
+fn half_sum_front_by(poly: &[Vec3], edge: impl Fn(usize, Vec3) -> Vec3, p: Vec3, n: Vec3) -> f64 {
     let Some(&last) = poly.last() else {
         return 0.0;
     };
@@ -69,13 +89,14 @@ fn integrate_front_by(poly: &[Vec3], edge: impl Fn(usize, Vec3) -> Vec3, p: Vec3
         return 0.0;
     }
     if !below {
-        return finish(sum);
+        return 0.5 * sum;
     }
     let clipped = clip_above(poly, p, n);
-    sum_edges(&clipped, p, n)
+    half_sum_edges(&clipped, p, n)
 }
 
-/// The part of a convex polygon with `(x - p) . n >= 0`.
+/// The part of a polygon with `(x - p) . n >= 0` (of a non-convex one, its
+/// parts above joined along the horizon: the same integral).
 pub(crate) fn clip_above(poly: &[Vec3], p: Vec3, n: Vec3) -> ClipBuf {
     let mut out = ClipBuf::new();
     let Some(&last) = poly.last() else {
@@ -99,7 +120,7 @@ pub(crate) fn clip_above(poly: &[Vec3], p: Vec3, n: Vec3) -> ClipBuf {
 
 /// `(1/2) sum angle_i (n . unit(b_i x a_i))` over the edges of `poly`.
 #[inline]
-fn sum_edges(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
+fn half_sum_edges(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
     let Some(&last) = poly.last() else {
         return 0.0;
     };
@@ -112,7 +133,7 @@ fn sum_edges(poly: &[Vec3], p: Vec3, n: Vec3) -> f64 {
         a = b;
         prev = v;
     }
-    finish(sum)
+    0.5 * sum
 }
 
 /// One edge's `angle (n . unit(b x a))`, from the edge vector `e = b - a`
@@ -128,13 +149,13 @@ fn edge_term(e: Vec3, a: Vec3, b: Vec3, n: Vec3) -> f64 {
     }
 }
 
-/// Half the sum of the edge terms.
+/// The value of a convex polygon from its half sum of edge terms.
 #[inline(always)]
-fn finish(sum: f64) -> f64 {
+fn finish(half_sum: f64) -> f64 {
     // The clipped light is above the horizon, so the true value is not
     // negative; when the edge terms (each of order one) cancel, rounding
     // can leave a few ulps below zero.
-    (0.5 * sum).max(0.0)
+    half_sum.max(0.0)
 }
 
 /// Irradiance at `p` (unit normal `n`) from a convex planar polygon of unit

@@ -5,7 +5,9 @@
 //!   receiver's horizon; [`AreaLight`] is a validated light polygon.
 //! - [`VisiblePart`]: the part of an area light visible from a point past
 //!   convex occluders, as convex pieces whose contour integrals add up to the
-//!   irradiance (plain floating-point clipping: it never decides topology).
+//!   irradiance (plain floating-point clipping: it never decides topology);
+//!   past many occluders [`visible_irradiance`] takes the outlines of that
+//!   part instead, one polygon boolean (`i_overlay`) in the light's plane.
 //! - [`PointLight`], [`DirectionalLight`]: `I cos / r^2` with Bergeron's
 //!   sphere of influence ([`Falloff`]); one- or two-sided receivers
 //!   ([`Sidedness`]).

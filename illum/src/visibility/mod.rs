@@ -21,8 +21,19 @@ use crate::area_light::AreaLight;
 use crate::contour_integral::integrate_front;
 use crate::point_light::Sidedness;
 use crate::vec3::{Vec3, area_normal, cross, dot, lerp, scale, sub};
+use outline::Outline;
 use smallvec::SmallVec;
 use std::ops::Range;
+
+mod outline;
+
+/// Occluders cutting the light from which on [`visible_irradiance`] takes
+/// the outline of the visible part instead of its convex pieces: each
+/// piece is checked against every later occluder, and the pieces multiply
+/// as small occluders (a dense mesh's triangles) slice the light along
+/// their edges' lines (a thousand-triangle blob: 140 pieces past 100
+/// triangles on average).
+const OUTLINE_FROM: usize = 12;
 
 /// Convex pieces of the visible part of an area light, reusable between
 /// queries: after the first few calls, [`VisiblePart::compute`] does not
@@ -32,14 +43,17 @@ pub struct VisiblePart {
     verts: Vec<Vec3>,
     pieces: Vec<Range<u32>>,
     scratch: Scratch,
+    outline: Outline,
 }
 
 /// Working storage of [`VisiblePart::compute`].
 #[derive(Debug, Clone, Default)]
 struct Scratch {
-    /// The half-spaces of the occluders that cut the light, in runs.
+    /// The half-spaces of the occluders that cut the light, in runs, and
+    /// the occluders' indices.
     planes: Vec<HalfSpace>,
     runs: Vec<Range<u32>>,
+    cutting: Vec<u32>,
     /// Pieces still to be checked against occluders `next..`: a stack of
     /// runs of `stack_verts` with their `next`.
     stack_verts: Vec<Vec3>,
@@ -192,14 +206,29 @@ impl VisiblePart {
     /// misses the light, is skipped); then each piece goes down the list
     /// depth first, and is split only by an occluder it straddles.
     pub fn compute<O: AsRef<[Vec3]>>(&mut self, light: &AreaLight, occluders: &[O], p: Vec3) {
+        if self.find_cutting(light, occluders, p) {
+            self.cut_pieces(light);
+        }
+    }
+
+    /// Clears the pieces and finds the occluders whose blocked regions cut
+    /// the light (their planes that do in `scratch.runs`, their indices in
+    /// `scratch.cutting`); `false` when one hides all of it.
+    fn find_cutting<O: AsRef<[Vec3]>>(
+        &mut self,
+        light: &AreaLight,
+        occluders: &[O],
+        p: Vec3,
+    ) -> bool {
         self.verts.clear();
         self.pieces.clear();
         let sc = &mut self.scratch;
         sc.planes.clear();
         sc.runs.clear();
+        sc.cutting.clear();
         let cone = light_pyramid(light, p);
         let mut planes = SmallVec::<[HalfSpace; 9]>::new();
-        for occ in occluders {
+        for (index, occ) in occluders.iter().enumerate() {
             let occ = occ.as_ref();
             // Outside the pyramid from p to the light: hides none of it.
             if cone
@@ -233,10 +262,18 @@ impl VisiblePart {
             }
             if sc.planes.len() as u32 == start {
                 // The whole light is hidden.
-                return;
+                return false;
             }
             sc.runs.push(start..sc.planes.len() as u32);
+            sc.cutting.push(index as u32);
         }
+        true
+    }
+
+    /// The light cut by the occluders [`Self::find_cutting`] found, into
+    /// the pieces none of them hides.
+    fn cut_pieces(&mut self, light: &AreaLight) {
+        let sc = &mut self.scratch;
         sc.stack_verts.clear();
         sc.stack.clear();
         sc.stack_verts.extend_from_slice(light.vertices());
@@ -374,7 +411,11 @@ fn light_pyramid(light: &AreaLight, p: Vec3) -> SmallVec<[HalfSpace; 9]> {
 /// `occluders`, using `scratch` for the pieces (no allocation once warm).
 ///
 /// Skips the visibility computation when `p` is behind the light or the
-/// light is wholly below the receiver's horizon.
+/// light is wholly below the receiver's horizon. Past many occluders that
+/// cut the light (the triangles of a dense mesh), it integrates the
+/// outlines of the visible part instead, the light minus the union of the
+/// occluders' images on its plane (module `outline`): the pieces would
+/// multiply along the occluders' edges. `scratch` then holds no pieces.
 pub fn visible_irradiance<O: AsRef<[Vec3]>>(
     light: &AreaLight,
     occluders: &[O],
@@ -391,7 +432,19 @@ pub fn visible_irradiance<O: AsRef<[Vec3]>>(
     {
         return 0.0;
     }
-    scratch.compute(light, occluders, p);
+    if !scratch.find_cutting(light, occluders, p) {
+        return 0.0;
+    }
+    if scratch.scratch.cutting.len() >= OUTLINE_FROM {
+        let cutting = &scratch.scratch.cutting;
+        let cut = cutting.iter().map(|&i| occluders[i as usize].as_ref());
+        if let Some(e) = scratch.outline.irradiance(light, cut, p, n, sidedness) {
+            scratch.verts.clear();
+            scratch.pieces.clear();
+            return e;
+        }
+    }
+    scratch.cut_pieces(light);
     scratch.irradiance(light, p, n, sidedness)
 }
 

@@ -6,6 +6,7 @@ mod cornell;
 mod errors;
 mod monte_carlo;
 mod occluder_index;
+mod outline;
 mod symmetry;
 
 use illum::{AreaLight, Vec3};
