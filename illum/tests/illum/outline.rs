@@ -70,7 +70,7 @@ fn outlines_match_convex_pieces() {
     for case in 0..60 {
         // A patch across part of the light's view, loose triangles
         // crossing it, and at times a second patch above the first.
-        let k = rng.random_range(8..16);
+        let k = rng.random_range(12..24);
         let bump = if case % 3 == 0 { 0.6 } else { 0.1 };
         let p = [
             rng.random_range(-2.0..2.0),
