@@ -1,13 +1,14 @@
 //! Throughput of direct illumination: unoccluded quad-light irradiance
 //! (Lambert's contour integral with the horizon clip), the same through the
-//! visible part past 10 occluders, and the batch on 1 and 2 threads.
+//! visible part past 10 occluders, past a dense patch of 2,048 triangles
+//! (the visible part's outlines), and the batch on 1 and 2 threads.
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use illum::{Sidedness::OneSided, VisiblePart, area_irradiance_batch, visible_irradiance};
 use std::hint::black_box;
-use umbra_benches::illum_scene::{BATCH, light, occluders, receivers};
+use umbra_benches::illum_scene::{BATCH, dense_patch, light, occluders, receivers};
 
 fn bench(c: &mut Criterion) {
     let light = light();
@@ -33,6 +34,27 @@ fn bench(c: &mut Criterion) {
                 acc += visible_irradiance(
                     &light,
                     &occ,
+                    black_box(r.position),
+                    r.normal,
+                    OneSided,
+                    &mut scratch,
+                );
+            }
+            acc
+        })
+    });
+    // A receiver under the patch sees the light past about 100 of its
+    // triangles (the light's view is about a unit wide at its height).
+    let patch = dense_patch(32, 3);
+    let few = &rs[..BATCH / 16];
+    g.throughput(Throughput::Elements(few.len() as u64));
+    g.bench_function("visible part, 2048-triangle patch", |b| {
+        b.iter(|| {
+            let mut acc = 0.0;
+            for r in few {
+                acc += visible_irradiance(
+                    &light,
+                    &patch,
                     black_box(r.position),
                     r.normal,
                     OneSided,

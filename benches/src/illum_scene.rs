@@ -1,5 +1,6 @@
 //! The illumination benchmark's scene: a 2 x 2 quad light ten units above
-//! random receivers, and ten random triangles between them. Shared by the
+//! random receivers, and ten random triangles between them (or a dense
+//! bumpy patch of triangles). Shared by the
 //! `illum` criterion bench and the `illum-count` callgrind driver, so both
 //! measure the same evaluations.
 
@@ -66,4 +67,30 @@ pub fn occluders(seed: u64) -> Vec<[Vec3; 3]> {
             })
         })
         .collect()
+}
+
+/// A bumpy patch over `[-2, 2]^2` around height 5, `k x k` cells of two
+/// triangles each, sharing their edges: what a dense mesh puts between the
+/// receivers and the light.
+pub fn dense_patch(k: usize, seed: u64) -> Vec<[Vec3; 3]> {
+    let mut rng = Pcg64::seed_from_u64(seed);
+    let step = 4.0 / k as f64;
+    let heights: Vec<Vec<f64>> = (0..=k)
+        .map(|_| (0..=k).map(|_| 5.0 + rng.random_range(-0.1..0.1)).collect())
+        .collect();
+    let at = |i: usize, j: usize| {
+        [
+            -2.0 + i as f64 * step,
+            heights[i][j],
+            -2.0 + j as f64 * step,
+        ]
+    };
+    let mut out = Vec::with_capacity(2 * k * k);
+    for i in 0..k {
+        for j in 0..k {
+            out.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+            out.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+        }
+    }
+    out
 }
