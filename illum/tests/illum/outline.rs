@@ -164,3 +164,92 @@ fn a_patch_over_the_whole_view_leaves_only_its_gap() {
     assert!(through > 0.0);
     assert_rel(e, through, 1e-12);
 }
+
+#[test]
+fn wild_occluders_agree_and_stay_finite() {
+    // Soups of 24 to 60 triangles of every size: specks, sheets wider than
+    // the whole view, triangles through the light's plane or behind the
+    // point, repeated ones, fans about a shared corner, tilted lights.
+    let mut rng = Pcg64::seed_from_u64(1986);
+    let mut outlined = 0;
+    for case in 0..300 {
+        let tilt = rng.random_range(-0.4..0.4);
+        let light = AreaLight::new(
+            &[
+                [-1.0, 8.0 - tilt, -1.0],
+                [1.0, 8.0 + tilt, -1.0],
+                [1.0, 8.0 + tilt, 1.0],
+                [-1.0, 8.0 - tilt, 1.0],
+            ],
+            1.0,
+        )
+        .unwrap();
+        let p = [
+            rng.random_range(-3.0..3.0),
+            rng.random_range(-1.0..2.0),
+            rng.random_range(-3.0..3.0),
+        ];
+        let mut occ: Vec<[Vec3; 3]> = Vec::new();
+        let count = rng.random_range(24..60);
+        while occ.len() < count {
+            // About the segment from p to the light's centre (some past
+            // either end), where they cut the view.
+            let t = rng.random_range(-0.1..1.1);
+            let c = [
+                p[0] * (1.0 - t) + rng.random_range(-0.5..0.5),
+                p[1] * (1.0 - t) + 8.0 * t,
+                p[2] * (1.0 - t) + rng.random_range(-0.5..0.5),
+            ];
+            // One sheet wider than the view in every fourth case.
+            let size = if occ.is_empty() && case % 4 == 0 {
+                20.0
+            } else if rng.random_bool(0.15) {
+                1e-6
+            } else {
+                rng.random_range(0.02..0.3)
+            };
+            let kind = rng.random_range(0..8);
+            let mut corner = || {
+                [
+                    c[0] + size * rng.random_range(-1.0..1.0),
+                    c[1] + size * rng.random_range(-0.5..0.5),
+                    c[2] + size * rng.random_range(-1.0..1.0),
+                ]
+            };
+            let t = [corner(), corner(), corner()];
+            match kind {
+                // The same triangle twice, the other way round.
+                0 => occ.extend([t, [t[2], t[1], t[0]]]),
+                // A fan of three about the first corner.
+                1 => {
+                    let (d, e) = (corner(), corner());
+                    occ.extend([t, [t[0], t[2], d], [t[0], d, e]]);
+                }
+                _ => occ.push(t),
+            }
+        }
+        let n = unit([
+            rng.random_range(-2.0..2.0),
+            1.0,
+            rng.random_range(-2.0..2.0),
+        ]);
+        let sided = if case % 3 == 0 { TwoSided } else { OneSided };
+        let mut scratch = VisiblePart::new();
+        let e = visible_irradiance(&light, &occ, p, n, sided, &mut scratch);
+        let full = light.irradiance(p, n, sided);
+        assert!(
+            e.is_finite() && e >= 0.0 && e <= full * (1.0 + 1e-12),
+            "case {case}: {e} of {full}"
+        );
+        let want = by_pieces(&light, &occ, p, n, sided);
+        assert!(
+            (e - want).abs() <= 1e-9 * full,
+            "case {case}: outlines {e}, pieces {want} (unoccluded {full})"
+        );
+        if e > 0.0 && scratch.is_empty() {
+            outlined += 1;
+        }
+    }
+    println!("{outlined} by outlines");
+    assert!(outlined >= 50, "{outlined} cases by outlines");
+}
