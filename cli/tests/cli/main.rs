@@ -1,6 +1,7 @@
 //! Integration tests of the `umbra` library and command, as one binary.
 
 mod area;
+mod closed_mesh;
 mod commands;
 mod csg;
 mod cup_and_panel;

@@ -1,0 +1,185 @@
+//! A bumpy closed mesh (an icosphere of 320 triangles, its corners pushed
+//! in and out, so no body of its pieces is convex) over a floor, under a
+//! light smaller than it: each triangle casts its own shadow, none an
+//! umbra that reaches the floor, and the floor under the mesh is a joint
+//! umbra of many of them. A ray oracle checks that every umbra floor face
+//! sees none of the light, and `umbra dm` proves the joint umbra under the
+//! mesh. (`umbra shadow` leaves it penumbra: its floor fragments are cut
+//! by the triangles' volumes only, and each reaches past the joint umbra.)
+
+use crate::area::face_points;
+use crate::open_box::crosses;
+use crate::vectors::inner_points;
+use crate::{folder, umbra};
+use umbra::load_ply;
+
+/// The mesh's triangles, counter-clockwise seen from outside: an
+/// icosahedron split twice, its corners on radii 0.94 to 1.06 about (0,
+/// 2.5, 0).
+fn bumpy_sphere() -> Vec<[[f64; 3]; 3]> {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let unit = |v: [f64; 3]| {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        v.map(|c| c / l)
+    };
+    let mut corners: Vec<[f64; 3]> = [
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ]
+    .map(unit)
+    .to_vec();
+    let mut faces: Vec<[usize; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..2 {
+        let mut middles = std::collections::HashMap::new();
+        let mut split = Vec::new();
+        for [a, b, c] in faces {
+            let mut middle = |i: usize, j: usize| {
+                *middles.entry((i.min(j), i.max(j))).or_insert_with(|| {
+                    let m = unit(std::array::from_fn(|k| corners[i][k] + corners[j][k]));
+                    corners.push(m);
+                    corners.len() - 1
+                })
+            };
+            let (ab, bc, ca) = (middle(a, b), middle(b, c), middle(c, a));
+            split.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        faces = split;
+    }
+    // Radii from a fixed sequence: the same mesh every run.
+    let placed: Vec<[f64; 3]> = corners
+        .iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let radius = 1.0 + 0.06 * ((i * 37 % 19) as f64 / 9.0 - 1.0);
+            [radius * c[0], 2.5 + radius * c[1], radius * c[2]]
+        })
+        .collect();
+    faces.iter().map(|f| f.map(|i| placed[i])).collect()
+}
+
+fn scene() -> String {
+    let triangles: Vec<String> = bumpy_sphere()
+        .iter()
+        .map(|t| {
+            let corners: Vec<String> = t
+                .iter()
+                .map(|c| format!("[{:.6}, {:.6}, {:.6}]", c[0], c[1], c[2]))
+                .collect();
+            format!("[{}]", corners.join(", "))
+        })
+        .collect();
+    format!(
+        r#"
+[[object]]
+name = "floor"
+polygons = [[[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]]]
+
+[[object]]
+name = "blob"
+polygons = [{}]
+
+[[light]]
+type = "area"
+vertices = [[-0.4, 6, -0.4], [0.4, 6, -0.4], [0.4, 6, 0.4], [-0.4, 6, 0.4]]
+"#,
+        triangles.join(", ")
+    )
+}
+
+#[test]
+fn a_bumpy_closed_mesh_hides_its_joint_umbra() {
+    let dir = folder(&[("scene.toml", &scene())]);
+    let light: Vec<[f64; 3]> = (0..5 * 5)
+        .map(|k| {
+            [
+                -0.4 + 0.2 * (k % 5) as f64,
+                6.0,
+                -0.4 + 0.2 * (k / 5) as f64,
+            ]
+        })
+        .collect();
+    for command in ["shadow", "dm"] {
+        let out = format!("{command}.ply");
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", &out]);
+        assert_eq!(run.code, 0, "{command}: {}", run.stderr);
+        let mesh = load_ply(&dir.path().join(&out)).unwrap();
+        let faces: Vec<Vec<[f64; 3]>> = (0..mesh.faces.len())
+            .map(|f| face_points(&mesh, f))
+            .collect();
+        let blob: Vec<&Vec<[f64; 3]>> = (0..mesh.faces.len())
+            .filter(|&f| mesh.faces[f].source != 0)
+            .map(|f| &faces[f])
+            .collect();
+        let mut umbra_faces = 0;
+        for f in (0..mesh.faces.len()).filter(|&f| mesh.faces[f].source == 0) {
+            if mesh.faces[f].umbra_mask & 1 == 0 {
+                continue;
+            }
+            umbra_faces += 1;
+            for p in inner_points(&faces[f]) {
+                for &l in &light {
+                    let hits: Vec<Option<bool>> = blob.iter().map(|q| crosses(p, l, q)).collect();
+                    assert!(
+                        hits.contains(&Some(true)) || hits.contains(&None),
+                        "{command}: umbra floor face {f} sees the light from {p:?} at {l:?}"
+                    );
+                }
+            }
+        }
+        if command == "shadow" {
+            continue;
+        }
+        // The floor right under the mesh sees none of the light past it,
+        // and no triangle hides all of it alone: only proofs make it umbra.
+        let centre = (0..mesh.faces.len())
+            .filter(|&f| mesh.faces[f].source == 0)
+            .find(|&f| contains_xz(&faces[f], [0.0, 0.0]))
+            .expect("a floor face holds the centre");
+        assert!(
+            mesh.faces[centre].umbra_mask & 1 != 0,
+            "{command}: the floor under the mesh is not umbra ({umbra_faces} umbra floor faces)"
+        );
+    }
+}
+
+/// Whether a floor face (convex, in the plane y = 0) holds the point
+/// `[x, z]` (or has it on its border).
+fn contains_xz(face: &[[f64; 3]], [x, z]: [f64; 2]) -> bool {
+    let n = face.len();
+    let side = |i: usize| {
+        let (a, b) = (face[i], face[(i + 1) % n]);
+        (b[0] - a[0]) * (z - a[2]) - (b[2] - a[2]) * (x - a[0])
+    };
+    (0..n).all(|i| side(i) >= 0.0) || (0..n).all(|i| side(i) <= 0.0)
+}
