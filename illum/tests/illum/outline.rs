@@ -45,6 +45,45 @@ fn bumpy_patch(rng: &mut Pcg64, x0: f64, z0: f64, y: f64, k: usize, bump: f64) -
     out
 }
 
+/// A 2 x 2 light at height 8 over the origin, emitting down, of radiance
+/// `radiance`.
+fn ceiling_light(radiance: f64) -> AreaLight {
+    let corners = [
+        [-1.0, 8.0, -1.0],
+        [1.0, 8.0, -1.0],
+        [1.0, 8.0, 1.0],
+        [-1.0, 8.0, 1.0],
+    ];
+    AreaLight::new(&corners, radiance).unwrap()
+}
+
+/// `visible_irradiance` at `p` checked against the convex pieces (to 1e-9
+/// of the unoccluded irradiance) and the whole light: the value, the
+/// unoccluded one, and whether it was taken by outlines (some light seen,
+/// and no pieces left in the scratch).
+fn checked(
+    light: &AreaLight,
+    occ: &[[Vec3; 3]],
+    p: Vec3,
+    n: Vec3,
+    sided: Sidedness,
+    case: usize,
+) -> (f64, f64, bool) {
+    let mut scratch = VisiblePart::new();
+    let e = visible_irradiance(light, occ, p, n, sided, &mut scratch);
+    let full = light.irradiance(p, n, sided);
+    assert!(
+        e.is_finite() && e >= 0.0 && e <= full * (1.0 + 1e-12),
+        "case {case}: {e} of {full}"
+    );
+    let want = by_pieces(light, occ, p, n, sided);
+    assert!(
+        (e - want).abs() <= 1e-9 * full,
+        "case {case}: outlines {e}, pieces {want} (unoccluded {full})"
+    );
+    (e, full, e > 0.0 && scratch.is_empty())
+}
+
 /// The irradiance from the convex pieces of the visible part.
 fn by_pieces(light: &AreaLight, occ: &[[Vec3; 3]], p: Vec3, n: Vec3, sided: Sidedness) -> f64 {
     let mut pieces = VisiblePart::new();
@@ -55,17 +94,7 @@ fn by_pieces(light: &AreaLight, occ: &[[Vec3; 3]], p: Vec3, n: Vec3, sided: Side
 #[test]
 fn outlines_match_convex_pieces() {
     let mut rng = Pcg64::seed_from_u64(2026);
-    let light = AreaLight::new(
-        &[
-            [-1.0, 8.0, -1.0],
-            [1.0, 8.0, -1.0],
-            [1.0, 8.0, 1.0],
-            [-1.0, 8.0, 1.0],
-        ],
-        1.0,
-    )
-    .unwrap();
-    let mut scratch = VisiblePart::new();
+    let light = ceiling_light(1.0);
     let (mut outlined, mut partial, mut holes) = (0, 0, 0);
     for case in 0..60 {
         // A patch across part of the light's view, loose triangles
@@ -105,18 +134,10 @@ fn outlines_match_convex_pieces() {
             rng.random_range(-3.0..3.0),
         ]);
         let sided = if case % 5 == 4 { TwoSided } else { OneSided };
-        let full = light.irradiance(p, n, sided);
-        let e = visible_irradiance(&light, &occ, p, n, sided, &mut scratch);
-        let want = by_pieces(&light, &occ, p, n, sided);
-        assert!(
-            (e - want).abs() <= 1e-9 * full,
-            "case {case}: outlines {e}, pieces {want} (unoccluded {full})"
-        );
-        // The outlines were taken (no pieces left), and the cases cover
-        // partial shadows, some with holes of light inside the shadow.
-        if e > 0.0 && scratch.is_empty() {
-            outlined += 1;
-        }
+        let (e, full, by_outlines) = checked(&light, &occ, p, n, sided, case);
+        // The outlines were taken, and the cases cover partial shadows,
+        // some with holes of light inside the shadow.
+        outlined += usize::from(by_outlines);
         if e > 0.01 * full && e < 0.99 * full {
             partial += 1;
         }
@@ -137,16 +158,7 @@ fn a_patch_over_the_whole_view_leaves_only_its_gap() {
     // A flat patch of 2 x 64 triangles over all of the light's view (32 of
     // them cut it) hides all of it; with one triangle taken out, the light
     // seen is what that triangle alone hides (a hole in the union).
-    let light = AreaLight::new(
-        &[
-            [-1.0, 8.0, -1.0],
-            [1.0, 8.0, -1.0],
-            [1.0, 8.0, 1.0],
-            [-1.0, 8.0, 1.0],
-        ],
-        2.0,
-    )
-    .unwrap();
+    let light = ceiling_light(2.0);
     let mut rng = Pcg64::seed_from_u64(7);
     let patch = bumpy_patch(&mut rng, -1.5, -1.5, 4.0, 8, 0.0);
     let (p, up) = ([0.1, 0.0, 0.05], [0.0, 1.0, 0.0]);
@@ -234,21 +246,8 @@ fn wild_occluders_agree_and_stay_finite() {
             rng.random_range(-2.0..2.0),
         ]);
         let sided = if case % 3 == 0 { TwoSided } else { OneSided };
-        let mut scratch = VisiblePart::new();
-        let e = visible_irradiance(&light, &occ, p, n, sided, &mut scratch);
-        let full = light.irradiance(p, n, sided);
-        assert!(
-            e.is_finite() && e >= 0.0 && e <= full * (1.0 + 1e-12),
-            "case {case}: {e} of {full}"
-        );
-        let want = by_pieces(&light, &occ, p, n, sided);
-        assert!(
-            (e - want).abs() <= 1e-9 * full,
-            "case {case}: outlines {e}, pieces {want} (unoccluded {full})"
-        );
-        if e > 0.0 && scratch.is_empty() {
-            outlined += 1;
-        }
+        let (_, _, by_outlines) = checked(&light, &occ, p, n, sided, case);
+        outlined += usize::from(by_outlines);
     }
     println!("{outlined} by outlines");
     assert!(outlined >= 50, "{outlined} cases by outlines");
