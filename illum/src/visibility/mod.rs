@@ -441,9 +441,8 @@ pub fn visible_irradiance<O: AsRef<[Vec3]>>(
     if scratch.scratch.cutting.len() >= OUTLINE_FROM {
         let cutting = &scratch.scratch.cutting;
         let cut = cutting.iter().map(|&i| occluders[i as usize].as_ref());
+        // (`find_cutting` left no pieces.)
         if let Some(e) = scratch.outline.irradiance(light, cut, p, n, sidedness) {
-            scratch.verts.clear();
-            scratch.pieces.clear();
             return e;
         }
     }

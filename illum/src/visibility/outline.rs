@@ -16,9 +16,9 @@
 
 use super::{HalfSpace, light_pyramid};
 use crate::area_light::AreaLight;
-use crate::contour_integral::integrate_front_signed;
+use crate::contour_integral::{ClipBuf, clip_above, integrate_front_signed};
 use crate::point_light::Sidedness;
-use crate::vec3::{Vec3, cross, dot, lerp, norm, scale, sub};
+use crate::vec3::{Vec3, cross, dot, norm, scale, sub};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay_rule::OverlayRule;
 use i_overlay::core::solver::Solver;
@@ -36,8 +36,6 @@ pub(super) struct Outline {
     light: Vec<Point2>,
     images: FloatFlatContoursBuffer<Point2>,
     visible: FloatFlatContoursBuffer<Point2>,
-    clipped: Vec<Vec3>,
-    clip_scratch: Vec<Vec3>,
     outline: Vec<Vec3>,
 }
 
@@ -125,15 +123,15 @@ impl Outline {
             .extend(light.vertices().iter().map(|&x| frame.to_plane(x)));
         self.images.clear_and_reserve(0, 0);
         for occ in occluders {
-            clip_to(occ, &pyramid, &mut self.clipped, &mut self.clip_scratch);
-            if self.clipped.len() < 3 {
+            let clipped = clip_to(occ, &pyramid);
+            if clipped.len() < 3 {
                 continue;
             }
             // The image of each corner: where the ray from p through it
             // meets the light's plane (beyond the corner: inside the
             // pyramid a corner is nearer the plane than p is).
             let start = self.images.points.len();
-            for &x in &self.clipped {
+            for &x in &clipped {
                 let below = height - dot(sub(x, frame.origin), frame.normal);
                 if below.is_nan() || below <= 0.0 {
                     return None;
@@ -201,32 +199,15 @@ fn signed_area(points: &[Point2]) -> f64 {
     sum
 }
 
-/// `out`: convex polygon `poly` clipped to the half-spaces `planes` (their
-/// closed insides), Sutherland-Hodgman; `scratch` for the steps.
-fn clip_to(poly: &[Vec3], planes: &[HalfSpace], out: &mut Vec<Vec3>, scratch: &mut Vec<Vec3>) {
-    out.clear();
-    out.extend_from_slice(poly);
+/// Convex polygon `poly` clipped to the half-spaces `planes` (their closed
+/// insides), one after the other as the horizon clips a light.
+fn clip_to(poly: &[Vec3], planes: &[HalfSpace]) -> ClipBuf {
+    let mut out: ClipBuf = poly.iter().copied().collect();
     for h in planes {
         if out.len() < 3 {
-            return;
+            break;
         }
-        scratch.clear();
-        let Some(&last) = out.last() else {
-            return;
-        };
-        let mut prev = last;
-        let mut sp = dot(h.m, sub(prev, h.q));
-        for &x in out.iter() {
-            let sx = dot(h.m, sub(x, h.q));
-            if (sp > 0.0 && sx < 0.0) || (sp < 0.0 && sx > 0.0) {
-                scratch.push(lerp(prev, x, sp / (sp - sx)));
-            }
-            if sx >= 0.0 {
-                scratch.push(x);
-            }
-            prev = x;
-            sp = sx;
-        }
-        std::mem::swap(out, scratch);
+        out = clip_above(&out, h.q, h.m);
     }
+    out
 }
