@@ -23,7 +23,8 @@ use super::{Bounds, Occluder, Pairs, bounds};
 ///
 /// *Shell* ([`Self::shell`]): the body is a convex *core* inside a closed
 /// surface of occluders and caps over its hole (a cup, its rim closed),
-/// its boundary polygons no occluders. A segment whose ends are both
+/// or of occluders only (a closed surface that is concave, or that the
+/// grid bent), its boundary polygons no occluders. A segment whose ends are both
 /// outside the surface's hull and that meets the core crosses the
 /// surface, and not only its caps (see [`Self::shell`]); the convex-set
 /// argument carries that from the corner pairs to all of `K x L`.
@@ -103,7 +104,7 @@ impl Body {
     /// and caps over their hole), about a convex core with boundary
     /// polygons `core` (facing out) that lies behind every face plane of
     /// the surface. `None` when a core polygon has a corner that is no
-    /// grid point, or the surface has no caps.
+    /// grid point.
     ///
     /// Why it blocks: the surface's *winding number* about a point off it
     /// counts how many times it wraps the point (faces oriented out); a
@@ -121,6 +122,9 @@ impl Body {
     /// once; the number changes at `b` or between `b` and each end, so
     /// the segment meets the caps at two points or more, in two caps:
     ///
+    /// - With no cap (a closed surface, concave or bent by the grid,
+    ///   about a core of its kernel), every point where it meets the
+    ///   surface is on an occluder.
     /// - With one cap, that cannot be.
     /// - With several (the two triangles closing a bent hole), when all of
     ///   one end's side (`K` or `L`) lies strictly on one side of every
@@ -145,9 +149,6 @@ impl Body {
     ///
     /// So such segments meet an occluder.
     pub fn shell(core: &[&ConvexPolygon], surface: ShellSurface) -> Option<Self> {
-        if surface.caps.is_empty() {
-            return None;
-        }
         let faces = core.iter().map(|p| *p.support()).collect();
         Some(Self {
             shell: Some(Box::new(surface)),

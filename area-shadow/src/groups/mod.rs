@@ -38,8 +38,9 @@
 //!   hull, all facing out (or all in), and as a closed 2-cycle there they
 //!   cover all of it. A closed surface that the grid's rounding left a
 //!   few units from convex stands for a convex body inside it (module
-//!   `solid`), whose umbra is part of the surface's.
-//!
+//!   `solid`), whose umbra is part of the surface's; so does a closed
+//!   surface really concave (a bumpy sphere), for a convex core of its
+//!   kernel (module `kernel`), when it has one.
 //! - **open solid**: a surface closed but for one face (its unmatched
 //!   edges close into one planar convex cycle) that, closed by that face,
 //!   is a solid as above. From outside it blocks light as the solid does
@@ -56,9 +57,9 @@
 //!   pockets' penumbrae taken out (the holes are pockets too), in convex
 //!   parts.
 //!
-//! Anything else (concave or twice-open bodies, a face shared by two
-//! bodies) forms no group, and its umbra stays the union of its pieces'
-//! umbrae.
+//! Anything else (closed bodies with no kernel, concave open ones,
+//! twice-open bodies, a face shared by two bodies) forms no group, and
+//! its umbra stays the union of its pieces' umbrae.
 //!
 //! Closed convex bodies (of any objects) that touch face to face and make
 //! one convex body together join into it ([`convex_unions`], module
@@ -74,6 +75,7 @@ use std::collections::HashMap;
 mod flat_union;
 pub(crate) mod hull;
 mod joint;
+mod kernel;
 mod solid;
 
 pub use flat_union::FlatUnion;
@@ -308,6 +310,7 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
             } else {
                 Solid::of_surface(&outlines, &supports)
                     .or_else(|| Solid::of_open_surface(&outlines, &supports))
+                    .or_else(|| Solid::of_concave_surface(&outlines, &supports))
                     .map(Shape::Solid)
             }?;
             Some(ConvexGroup {

@@ -14,10 +14,13 @@
 //! towards the surface's centre until they are in `K`; if the surface so
 //! moved is convex, its solid lies in `K` (it is the hull of points of
 //! `K`, which is convex) and stands for `B`: its umbra is part of `S`'s,
-//! every plane still through three grid points. Bodies really concave get
-//! no such surface and form no group.
+//! every plane still through three grid points. A body really concave
+//! (a bumpy sphere) stands for the hull of grid points of `K` found along
+//! a few dozen directions from a centre (module `kernel`), when `K` holds
+//! one; a body with no kernel (a torus) forms no group.
 
 use super::hull::convex_hull;
+use super::kernel::kernel_points;
 use super::{MAX_SOLID_WORK, edge_set};
 use crate::{AreaSource, SourceSide};
 use bsp_core::predicates::{Side, side_of_point};
@@ -74,62 +77,48 @@ impl Solid {
     /// surface itself when convex, else the surface with the vertices that
     /// stand out moved in (module docs); `None` when neither is convex.
     pub(super) fn of_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
-        let edges = edge_set(outlines)?;
-        if edges.keys().any(|&(a, b)| !edges.contains_key(&(b, a))) {
-            return None;
-        }
-        let mut vertices: Vec<GridPoint> =
-            outlines.iter().flat_map(|o| o.iter().copied()).collect();
-        vertices.sort_unstable();
-        vertices.dedup();
-        if supports.len().saturating_mul(vertices.len()) > MAX_SOLID_WORK {
-            return None;
-        }
-        // Which vertices stand in front of some face (facing out), and
-        // which behind some face (facing in).
-        let (mut ahead, mut behind) = (vec![false; vertices.len()], vec![false; vertices.len()]);
-        for plane in supports {
-            for (k, &p) in vertices.iter().enumerate() {
-                match side_of_point(plane, p) {
-                    Side::Front => ahead[k] = true,
-                    Side::Back => behind[k] = true,
-                    Side::On => {}
-                }
-            }
-        }
-        // A closed surface in one plane is a two-sided sheet, not a body.
-        if !ahead.contains(&true) && !behind.contains(&true) {
-            return None;
-        }
-        let count = |flags: &[bool]| flags.iter().filter(|f| **f).count();
-        let faces_in = count(&ahead) > count(&behind);
-        let (faces, out): (Vec<Plane>, Vec<bool>) = if faces_in {
-            (supports.iter().map(Plane::flipped).collect(), behind)
+        let closed = ClosedFaces::of(outlines, supports, None)?;
+        let solid = if closed.out.contains(&true) {
+            let hull = closed.hull()?;
+            Self::moved_in(&closed.faces, &closed.vertices, &closed.out)
+                .map(|solid| Self { hull, ..solid })
         } else {
-            (supports.to_vec(), ahead)
+            Self::with_faces(outlines, closed.faces, closed.vertices, true)
         };
-        let solid = if out.contains(&true) {
-            let hull: Vec<Plane> = convex_hull(&vertices)?
-                .into_iter()
-                .map(|(_, plane)| plane)
-                .collect();
-            Self::moved_in(&faces, &vertices, &out).map(|solid| Self {
-                hull: distinct_planes(hull),
-                ..solid
-            })
-        } else {
-            Self::with_faces(outlines, faces, vertices, true)
-        };
+        solid.map(|solid| solid.made_of(outlines, supports, closed.faces_in))
+    }
+
+    /// The body a closed surface that is really concave (a bumpy sphere)
+    /// blocks light as: the hull of grid points of its kernel (module
+    /// `kernel`), when it has one.
+    pub(super) fn of_concave_surface(
+        outlines: &[&[GridPoint]],
+        supports: &[Plane],
+    ) -> Option<Self> {
+        // Far from convex, as many vertices may stand out of the faces'
+        // planes one way as the other: the enclosed volume's sign tells
+        // which way the pieces face.
+        let faces_in = signed_volume(outlines) < 0.0;
+        let closed = ClosedFaces::of(outlines, supports, Some(faces_in))?;
+        let points = kernel_points(&closed.faces, &closed.vertices)?;
+        let hull = closed.hull()?;
+        let solid = Self::of_hull(&points, false)?;
+        Some(Self { hull, ..solid }.made_of(outlines, supports, closed.faces_in))
+    }
+
+    /// The solid as made from the surface of `outlines` (with `supports`),
+    /// whose pieces face in when `faces_in`.
+    fn made_of(self, outlines: &[&[GridPoint]], supports: &[Plane], faces_in: bool) -> Self {
         let surface = outlines
             .iter()
             .zip(supports)
             .map(|(o, s)| (o.to_vec(), *s))
             .collect();
-        solid.map(|solid| Self {
+        Self {
             faces_in,
             surface,
-            ..solid
-        })
+            ..self
+        }
     }
 
     /// The body of a surface closed but for one face: its unmatched edges
@@ -275,13 +264,15 @@ impl Solid {
         crate::dark::Body::new(self.faces.clone(), self.open.clone(), surface)
     }
 
-    /// The shell of a surface closed over its hole
-    /// ([`crate::dark::Body::shell`]): the body (its own solid, or the
-    /// one moved in: either lies behind every face plane of the closed
-    /// surface) as the core, with the surface's hull and caps. `None`
-    /// when the body closes no open surface.
+    /// The shell of a surface closed over its hole, or of a closed one
+    /// the body only stands for ([`crate::dark::Body::shell`]): the body
+    /// (its own solid, one moved in, or a core of the kernel: each lies
+    /// behind every face plane of the closed surface) as the core, with
+    /// the surface's hull and caps (none for a closed surface). `None`
+    /// when the body is a closed surface's own solid (it blocks as
+    /// itself, [`Self::blocking_body`]).
     pub(super) fn shell(&self) -> Option<crate::dark::Body> {
-        if !self.capped {
+        if self.exact && !self.capped {
             return None;
         }
         let core: Vec<ConvexPolygon> = convex_hull(&self.vertices)?
@@ -536,9 +527,13 @@ impl Solid {
     /// [`super::ConvexGroup::umbra_planes`]).
     pub(super) fn umbra_planes(&self, light: &AreaSource) -> Option<Vec<Plane>> {
         let support = light.support();
+        // A body that stands for a surface blocks as it does only from
+        // outside the surface's hull: the light strictly behind it all.
+        let surface = self.surface.iter().flat_map(|(outline, _)| outline);
         if self
             .vertices
             .iter()
+            .chain(surface)
             .any(|&p| side_of_point(support, p) != Side::Front)
         {
             return None;
@@ -608,6 +603,105 @@ impl Solid {
             _ => None,
         }
     }
+}
+
+/// A closed surface (every directed edge matched by its reverse once)
+/// seen as the boundary of a body.
+struct ClosedFaces {
+    /// Its vertices, ascending.
+    vertices: Vec<GridPoint>,
+    /// Each piece's plane, turned to have the body behind it.
+    faces: Vec<Plane>,
+    /// Per vertex: whether it stands in front of some face (the surface
+    /// is not convex there).
+    out: Vec<bool>,
+    /// Whether the pieces face into the body.
+    faces_in: bool,
+}
+
+impl ClosedFaces {
+    /// The closed surface of `outlines` (with support planes `supports`,
+    /// all facing out or all in: in when `faces_in`, or if `None`, the
+    /// way fewer vertices stand out of); `None` when it is not closed,
+    /// lies in one plane, or is too big to check ([`MAX_SOLID_WORK`]).
+    fn of(outlines: &[&[GridPoint]], supports: &[Plane], faces_in: Option<bool>) -> Option<Self> {
+        let edges = edge_set(outlines)?;
+        if edges.keys().any(|&(a, b)| !edges.contains_key(&(b, a))) {
+            return None;
+        }
+        let mut vertices: Vec<GridPoint> =
+            outlines.iter().flat_map(|o| o.iter().copied()).collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        if supports.len().saturating_mul(vertices.len()) > MAX_SOLID_WORK {
+            return None;
+        }
+        // Which vertices stand in front of some face (facing out), and
+        // which behind some face (facing in).
+        let (mut ahead, mut behind) = (vec![false; vertices.len()], vec![false; vertices.len()]);
+        for plane in supports {
+            for (k, &p) in vertices.iter().enumerate() {
+                match side_of_point(plane, p) {
+                    Side::Front => ahead[k] = true,
+                    Side::Back => behind[k] = true,
+                    Side::On => {}
+                }
+            }
+        }
+        // A closed surface in one plane is a two-sided sheet, not a body.
+        if !ahead.contains(&true) && !behind.contains(&true) {
+            return None;
+        }
+        let count = |flags: &[bool]| flags.iter().filter(|f| **f).count();
+        let faces_in = faces_in.unwrap_or_else(|| count(&ahead) > count(&behind));
+        let (faces, out) = if faces_in {
+            (supports.iter().map(Plane::flipped).collect(), behind)
+        } else {
+            (supports.to_vec(), ahead)
+        };
+        Some(Self {
+            vertices,
+            faces,
+            out,
+            faces_in,
+        })
+    }
+
+    /// The planes of the convex hull of the vertices, facing out.
+    fn hull(&self) -> Option<Vec<Plane>> {
+        let hull = convex_hull(&self.vertices)?;
+        Some(distinct_planes(
+            hull.into_iter().map(|(_, plane)| plane).collect(),
+        ))
+    }
+}
+
+/// The volume a closed surface of convex `outlines` encloses, positive
+/// when they turn counter-clockwise seen from outside (floating point:
+/// only its sign is used, where it is far from zero).
+fn signed_volume(outlines: &[&[GridPoint]]) -> f64 {
+    let Some(origin) = outlines.first().and_then(|o| o.first()) else {
+        return 0.0;
+    };
+    let o = origin.to_f64();
+    let at = |p: &GridPoint| -> [f64; 3] {
+        let p = p.to_f64();
+        [p[0] - o[0], p[1] - o[1], p[2] - o[2]]
+    };
+    let det = |a: [f64; 3], b: [f64; 3], c: [f64; 3]| {
+        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+            + a[2] * (b[0] * c[1] - b[1] * c[0])
+    };
+    outlines
+        .iter()
+        .map(|outline| {
+            let first = at(&outline[0]);
+            (1..outline.len().saturating_sub(1))
+                .map(|i| det(first, at(&outline[i]), at(&outline[i + 1])))
+                .sum::<f64>()
+        })
+        .sum::<f64>()
+        / 6.0
 }
 
 /// The planes with repeats (coincident planes) dropped, in order.

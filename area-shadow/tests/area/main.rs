@@ -5,6 +5,7 @@ mod figure4;
 mod flat_unions;
 mod groups;
 mod joint;
+mod kernel;
 mod oracle;
 mod pieces;
 mod random;

@@ -1,0 +1,144 @@
+//! A convex core inside a closed surface that is really concave (a bumpy
+//! sphere, a rock): grid points of the surface's *kernel*, the
+//! intersection `K` of the half-spaces behind its faces.
+//!
+//! From a point of `K` every face turns its back, so the point has a
+//! winding number of at least one about the surface (module `solid`), and
+//! a segment from it to a point outside the surface's hull crosses the
+//! surface. The hull of grid points of `K` lies in `K` (it is convex), so
+//! it blocks no segment from outside the hull that the surface does not:
+//! its umbra is part of the surface's. A star-shaped surface whose bumps
+//! are shallow has a kernel nearly as large as itself; one with none (a
+//! torus, an L) gets no core.
+//!
+//! The points are found in floating point (how far `K` reaches from a
+//! centre along a few dozen directions) and kept only when exactly behind
+//! or on every face's plane, so rounding can shrink the core, never put it
+//! outside `K`.
+
+use bsp_core::predicates::{Side, side_of_point};
+use bsp_core::{GridPoint, Plane};
+
+/// How far short of `K`'s boundary each point is aimed, as a fraction of
+/// its distance from the centre: room for rounding to the grid.
+const MARGIN: f64 = 1.0 / 256.0;
+
+/// The fewest grid units a point is aimed short of `K`'s boundary.
+const MIN_MARGIN: f64 = 2.0;
+
+/// The directions from the centre along which the core reaches out: the
+/// corners of an icosahedron with each edge's midpoint (42), stretched by
+/// the surface's extent along each axis so that a long body gets a long
+/// core.
+fn directions() -> Vec<[f64; 3]> {
+    let phi = (1.0 + 5.0_f64.sqrt()) / 2.0;
+    let mut corners: Vec<[f64; 3]> = Vec::with_capacity(12);
+    for s in [-1.0, 1.0] {
+        for t in [-1.0, 1.0] {
+            corners.push([0.0, s, t * phi]);
+            corners.push([s, t * phi, 0.0]);
+            corners.push([t * phi, 0.0, s]);
+        }
+    }
+    let dist2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>();
+    let mut out = corners.clone();
+    for (i, a) in corners.iter().enumerate() {
+        for b in &corners[i + 1..] {
+            // Neighbouring corners are 2 apart; the others farther.
+            if dist2(a, b) < 4.5 {
+                out.push(std::array::from_fn(|k| (a[k] + b[k]) / 2.0));
+            }
+        }
+    }
+    out
+}
+
+/// Grid points of the kernel of a closed surface with vertices `vertices`
+/// and faces' planes `faces` (the kernel behind them all), each behind or
+/// on every plane, among them one strictly behind every plane (the centre
+/// the others were sought from). `None` when no centre is found strictly
+/// behind every plane (no kernel, or the faces face the other way).
+pub(super) fn kernel_points(faces: &[Plane], vertices: &[GridPoint]) -> Option<Vec<GridPoint>> {
+    let (least, most) = extent(vertices)?;
+    let centre = centre(faces, vertices, least, most)?;
+    let from = centre.to_f64();
+    let planes: Vec<[f64; 4]> = faces.iter().map(Plane::approx).collect();
+    let half: [f64; 3] = std::array::from_fn(|a| (most[a] - least[a]) / 2.0);
+    let inside = |p: GridPoint| faces.iter().all(|f| side_of_point(f, p) != Side::Front);
+    let mut points = Vec::new();
+    for unit in directions() {
+        let d: [f64; 3] = std::array::from_fn(|a| unit[a] * half[a].max(1.0));
+        // The farthest `t` with `from + t d` behind every plane.
+        let reach = planes
+            .iter()
+            .filter_map(|[a, b, c, w]| {
+                let along = a * d[0] + b * d[1] + c * d[2];
+                let at = a * from[0] + b * from[1] + c * from[2] + w;
+                (along > 0.0).then(|| -at / along)
+            })
+            .fold(f64::INFINITY, f64::min);
+        if !reach.is_finite() || reach <= 0.0 {
+            continue;
+        }
+        let length = reach * d.iter().map(|c| c * c).sum::<f64>().sqrt();
+        let short = (length * MARGIN).max(MIN_MARGIN);
+        if short >= length {
+            continue;
+        }
+        let t = reach * (1.0 - short / length);
+        let point = GridPoint::new(
+            (from[0] + t * d[0]).round() as i64,
+            (from[1] + t * d[1]).round() as i64,
+            (from[2] + t * d[2]).round() as i64,
+        );
+        if let Ok(point) = point
+            && inside(point)
+        {
+            points.push(point);
+        }
+    }
+    points.push(centre);
+    points.sort_unstable();
+    points.dedup();
+    Some(points)
+}
+
+/// The least and greatest coordinates of `vertices`.
+fn extent(vertices: &[GridPoint]) -> Option<([f64; 3], [f64; 3])> {
+    let first = vertices.first()?.to_f64();
+    let (mut least, mut most) = (first, first);
+    for p in vertices {
+        let p = p.to_f64();
+        for a in 0..3 {
+            least[a] = least[a].min(p[a]);
+            most[a] = most[a].max(p[a]);
+        }
+    }
+    Some((least, most))
+}
+
+/// A grid point strictly behind every plane: the vertices' mean or the
+/// centre of their box, rounded, whichever is.
+fn centre(
+    faces: &[Plane],
+    vertices: &[GridPoint],
+    least: [f64; 3],
+    most: [f64; 3],
+) -> Option<GridPoint> {
+    let n = vertices.len() as f64;
+    let mean: [f64; 3] =
+        std::array::from_fn(|a| vertices.iter().map(|p| p.to_f64()[a]).sum::<f64>() / n);
+    let middle: [f64; 3] = std::array::from_fn(|a| (least[a] + most[a]) / 2.0);
+    [mean, middle].into_iter().find_map(|c| {
+        let p = GridPoint::new(
+            c[0].round() as i64,
+            c[1].round() as i64,
+            c[2].round() as i64,
+        )
+        .ok()?;
+        faces
+            .iter()
+            .all(|f| side_of_point(f, p) == Side::Back)
+            .then_some(p)
+    })
+}
