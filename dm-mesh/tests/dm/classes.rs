@@ -3,8 +3,8 @@
 //! of the whole scene) area for area.
 
 use crate::common::{
-    TestScene, class_areas, closed_surface_flags, cuboid, facing_boxes, floor, scene, scene_with,
-    triangulated_cuboid, two_sided_flags,
+    TestScene, bumpy_bodies, class_areas, closed_surface_flags, cuboid, facing_boxes, floor, scene,
+    scene_with, triangulated_cuboid, two_sided_flags,
 };
 use crate::oracle::{hidden, interior_samples};
 use area_shadow::{Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
@@ -268,6 +268,19 @@ proptest! {
         for overlap in [OverlapKind::Grid, OverlapKind::Cube] {
             check_against_area_shadow_with(&t, DmOptions { overlap, ..DmOptions::default() })?;
         }
+        check_against_oracle(&t, false)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(6))]
+
+    /// Bumpy bodies far from convex: the umbra of their kernels' cores
+    /// is where area-shadow puts it, and the cells' classes hold against
+    /// the oracle.
+    #[test]
+    fn bumpy_bodies_agree_with_area_shadow_and_the_oracle(t in bumpy_bodies()) {
+        check_against_area_shadow(&t)?;
         check_against_oracle(&t, false)?;
     }
 }

@@ -336,3 +336,98 @@ pub fn facing_boxes() -> impl Strategy<Value = TestScene> {
             },
         )
 }
+
+/// A closed surface far from convex: an octahedron whose faces are split
+/// in four, its 6 corners pushed out by 30-40 % of `radius` about
+/// `centre` and its 12 edges' midpoints in by as much (`seed` picks how
+/// far), triangles facing out. Each corner then stands over 100 grid
+/// units (for a radius of 600) in front of the plane of the triangle
+/// between its neighbours' midpoints.
+pub fn bumpy_body(centre: [i64; 3], radius: f64, seed: u32) -> Vec<ConvexPolygon> {
+    let axes: [[f64; 3]; 6] = [
+        [1.0, 0.0, 0.0],
+        [-1.0, 0.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [0.0, -1.0, 0.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, -1.0],
+    ];
+    // The octahedron's faces, counter-clockwise seen from outside.
+    let faces = [
+        [0, 2, 4],
+        [4, 2, 1],
+        [1, 2, 5],
+        [5, 2, 0],
+        [0, 4, 3],
+        [4, 1, 3],
+        [1, 5, 3],
+        [5, 0, 3],
+    ];
+    let unit = |v: [f64; 3]| {
+        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        v.map(|c| c / l)
+    };
+    // Each direction's corner, pushed by a hash of its rounded direction:
+    // out along an axis, in between.
+    let corner = |d: [f64; 3]| {
+        let key = d.iter().fold(seed, |h, c| {
+            (h ^ ((c * 1000.0).round() as i32 as u32)).wrapping_mul(0x9e37_79b9)
+        });
+        let push = 0.3 + 0.1 * f64::from(key >> 16) / 65_536.0;
+        let axis = d.iter().any(|c| c.abs() == 1.0);
+        let r = radius * if axis { 1.0 + push } else { 1.0 - push };
+        gp(
+            centre[0] + (r * d[0]).round() as i64,
+            centre[1] + (r * d[1]).round() as i64,
+            centre[2] + (r * d[2]).round() as i64,
+        )
+    };
+    let mut out = Vec::new();
+    for [a, b, c] in faces {
+        let (a, b, c) = (axes[a], axes[b], axes[c]);
+        let mid = |p: [f64; 3], q: [f64; 3]| unit(std::array::from_fn(|k| p[k] + q[k]));
+        let (ab, bc, ca) = (mid(a, b), mid(b, c), mid(c, a));
+        for t in [[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]] {
+            out.push(ConvexPolygon::from_grid_points(&t.map(corner), 0).unwrap());
+        }
+    }
+    out
+}
+
+/// How far (grid units) a closed surface facing out is from convex: the
+/// most any of its corners stands in front of one of its faces' planes.
+pub fn concavity(faces: &[ConvexPolygon]) -> f64 {
+    let corners: Vec<[f64; 3]> = faces.iter().flat_map(|f| f.vertices_f64()).collect();
+    faces
+        .iter()
+        .map(|f| {
+            let [a, b, c, d] = f.support().approx();
+            let norm = (a * a + b * b + c * c).sqrt();
+            corners
+                .iter()
+                .map(|v| (a * v[0] + b * v[1] + c * v[2] + d) / norm)
+                .fold(0.0, f64::max)
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Two bumpy closed bodies (far from convex: each casts the umbra of a
+/// convex core of its kernel, besides its triangles' shadows) over a
+/// floor, under a light smaller than they are.
+pub fn bumpy_bodies() -> impl Strategy<Value = TestScene> {
+    (
+        prop::array::uniform2((prop::array::uniform3(-1500_i64..1500), any::<u32>())),
+        (-600_i64..200, -600_i64..200, 100_i64..500),
+    )
+        .prop_map(|(bodies, (x0, z0, w))| {
+            let mut objects = vec![(vec![floor(5000)], svbsp::PieceFlags::default())];
+            for (c, seed) in bodies {
+                let centre = [c[0], 1500 + c[1] / 3, c[2]];
+                objects.push((bumpy_body(centre, 600.0, seed), closed_surface_flags()));
+            }
+            TestScene {
+                objects,
+                light: light(x0, z0, w, w, 4000, 0),
+            }
+        })
+}

@@ -4,7 +4,10 @@
 //! points, and the same irradiance at vertices both meshes have; the trees
 //! keep their invariants after every operation.
 
-use crate::common::{Object, TestScene, class_areas, facing_boxes, scene, scene_with, translated};
+use crate::common::{
+    Object, TestScene, bumpy_bodies, class_areas, concavity, facing_boxes, scene, scene_with,
+    translated,
+};
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
 use dm_mesh::{Deletion, DmLight, DmOptions, DmScene, ObjectId, OverlapKind, PieceId};
@@ -252,6 +255,23 @@ proptest! {
     fn updates_through_the_cube_agree_with_a_rebuild(t in scene_with(3..10), ops in ops()) {
         let options = DmOptions { overlap: OverlapKind::Cube, ..DmOptions::default() };
         run_with(&t, &ops, options)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(8))]
+
+    /// Bumpy bodies moved, removed and added back agree with a rebuild:
+    /// the umbra of a kernel's core goes with its body.
+    #[test]
+    fn bumpy_bodies_move_and_agree_with_a_rebuild(t in bumpy_bodies(), ops in ops()) {
+        for (body, _) in &t.objects[1..] {
+            prop_assert!(concavity(body) > 64.0, "nearly convex: {}", concavity(body));
+            // It forms a body all the same: the core of its kernel.
+            let groups = area_shadow::convex_groups(body, &vec![Some(0); body.len()]);
+            prop_assert!(groups.len() == 1 && !groups[0].is_closed_convex());
+        }
+        run(&t, &ops)?;
     }
 }
 
