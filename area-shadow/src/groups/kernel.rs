@@ -142,3 +142,29 @@ fn centre(
             .then_some(p)
     })
 }
+
+/// The planes of a convex polytope around `vertices`, facing out: for
+/// each of the 26 directions with components in {-1, 0, 1}, the plane
+/// with that normal through the vertex farthest along it (a box with its
+/// edges and corners cut). A point in front of one is outside the
+/// vertices' hull. Far fewer planes than the hull of a dense surface has,
+/// for tests run at every step of a joint-umbra proof.
+pub(super) fn bounding_planes(vertices: &[GridPoint]) -> Vec<Plane> {
+    let mut planes = Vec::with_capacity(26);
+    for x in -1..=1_i64 {
+        for y in -1..=1_i64 {
+            for z in -1..=1_i64 {
+                let normal = [x, y, z];
+                let along = |p: &GridPoint| {
+                    let [px, py, pz] = p.to_i64();
+                    x * px + y * py + z * pz
+                };
+                let Some(farthest) = vertices.iter().max_by_key(|p| along(p)) else {
+                    continue;
+                };
+                planes.extend(Plane::with_normal_through(normal, *farthest));
+            }
+        }
+    }
+    planes
+}

@@ -20,7 +20,7 @@
 //! one; a body with no kernel (a torus) forms no group.
 
 use super::hull::convex_hull;
-use super::kernel::kernel_points;
+use super::kernel::{bounding_planes, kernel_points};
 use super::{MAX_SOLID_WORK, edge_set};
 use crate::{AreaSource, SourceSide};
 use bsp_core::predicates::{Side, side_of_point};
@@ -67,7 +67,9 @@ pub(super) struct Solid {
     /// the hull behind each: a point in front of one is outside the
     /// surface. The faces themselves when the body is exact; the hull's
     /// when it was moved in, which leaves a layer of the surface's inside
-    /// outside the body.
+    /// outside the body; for a core of the kernel, those of a box with
+    /// its edges and corners cut around the surface (a convex set that
+    /// holds it, of 26 planes at most).
     hull: Vec<Plane>,
 }
 
@@ -101,7 +103,7 @@ impl Solid {
         let faces_in = signed_volume(outlines) < 0.0;
         let closed = ClosedFaces::of(outlines, supports, Some(faces_in))?;
         let points = kernel_points(&closed.faces, &closed.vertices)?;
-        let hull = closed.hull()?;
+        let hull = bounding_planes(&closed.vertices);
         let solid = Self::of_hull(&points, false)?;
         Some(Self { hull, ..solid }.made_of(outlines, supports, closed.faces_in))
     }
