@@ -63,11 +63,27 @@ impl<'a> Arbitrary<'a> for DmCase {
             ])
         };
         for _ in 0..n {
-            // One or two triangles, (3) a tetrahedron: a convex body, or
-            // (4) an axis-aligned box of twelve triangles (small sizes on
-            // the small grid: boxes often touch face to face and join).
-            let k = u.int_in_range(1_usize..=4)?;
-            let triangles = if k == 4 {
+            // One or two triangles, (3) a tetrahedron: a convex body, (4)
+            // an axis-aligned box of twelve triangles (small sizes on the
+            // small grid: boxes often touch face to face and join), or (5)
+            // a box with its top dented: a closed surface no nudge makes
+            // convex, which a core of its kernel stands for.
+            let k = u.int_in_range(1_usize..=5)?;
+            let triangles = if k == 5 {
+                let lo = point(u)?;
+                let size = [
+                    coordinate(u, 2, 4)?,
+                    coordinate(u, 2, 4)?,
+                    coordinate(u, 2, 4)?,
+                ];
+                let hi = [0, 1, 2].map(|a| lo[a] + size[a]);
+                let apex = [
+                    u.int_in_range(lo[0] + 1..=hi[0] - 1)?,
+                    u.int_in_range(lo[1] + 1..=hi[1] - 1)?,
+                    u.int_in_range(lo[2] + 1..=hi[2] - 1)?,
+                ];
+                dented_box_triangles(lo, hi, apex)
+            } else if k == 4 {
                 let lo = point(u)?;
                 let size = [
                     coordinate(u, 1, 4)?,
@@ -125,6 +141,28 @@ impl<'a> Arbitrary<'a> for DmCase {
             deletion,
         })
     }
+}
+
+/// The box `lo..hi` with its top (`y = hi[1]`) replaced by the four
+/// triangles from its edges down to `apex` (inside the box):
+/// counter-clockwise seen from outside.
+fn dented_box_triangles(lo: [i64; 3], hi: [i64; 3], apex: [i64; 3]) -> Vec<[[i64; 3]; 3]> {
+    let top = [lo[0], hi[1], lo[2]];
+    let mut out: Vec<[[i64; 3]; 3]> = box_triangles(lo, hi)
+        .into_iter()
+        .filter(|t| t.iter().any(|p| p[1] != hi[1]))
+        .collect();
+    // The top's corners counter-clockwise seen from above.
+    let corners = [
+        top,
+        [lo[0], hi[1], hi[2]],
+        [hi[0], hi[1], hi[2]],
+        [hi[0], hi[1], lo[2]],
+    ];
+    for i in 0..4 {
+        out.push([corners[i], corners[(i + 1) % 4], apex]);
+    }
+    out
 }
 
 /// The twelve triangles of the box `lo..hi`, counter-clockwise seen from
@@ -481,6 +519,33 @@ mod tests {
             deletion: Deletion::Local,
         };
         check_dm_update(&case).unwrap();
+    }
+
+    /// A box with its top dented (no nudge makes it convex: a core of its
+    /// kernel stands for it and casts an umbra) beside a box, moved
+    /// under the light and against the other box, removed and added back,
+    /// both ways of deleting.
+    #[test]
+    fn a_dented_box_moves_beside_a_box() {
+        let dented = dented_box_triangles([-4, 3, -3], [0, 7, 1], [-2, 6, -1]);
+        let polygons = triangles(&dented, [0, 0, 0]);
+        let groups = area_shadow::convex_groups(&polygons, &vec![Some(0); polygons.len()]);
+        assert!(groups.len() == 1 && !groups[0].is_closed_convex());
+        for deletion in [Deletion::Local, Deletion::Collapse] {
+            let case = DmCase {
+                objects: vec![dented.clone(), box_triangles([1, 3, -2], [3, 5, 2])],
+                light: ([-4, 11, -3], [3, 3], 0),
+                ops: vec![
+                    Op::Move(0, [1, 0, 1]),
+                    Op::Move(0, [1, -1, 0]),
+                    Op::Remove(1),
+                    Op::Move(0, [-2, 1, -1]),
+                    Op::ReAdd(1),
+                ],
+                deletion,
+            };
+            check_dm_update(&case).unwrap();
+        }
     }
 
     /// Two tetrahedra (convex bodies, each casting one unit while wholly

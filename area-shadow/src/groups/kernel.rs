@@ -19,11 +19,12 @@
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{GridPoint, Plane};
 
-/// How far short of `K`'s boundary each point is aimed, as a fraction of
-/// its distance from the centre: room for rounding to the grid.
+/// How far short of `K`'s boundary a point is aimed, as a fraction of
+/// its distance from the centre, when the grid point nearest the boundary
+/// is not in `K`: room for rounding to the grid.
 const MARGIN: f64 = 1.0 / 256.0;
 
-/// The fewest grid units a point is aimed short of `K`'s boundary.
+/// The fewest grid units such a point is aimed short of the boundary.
 const MIN_MARGIN: f64 = 2.0;
 
 /// The directions from the centre along which the core reaches out: the
@@ -80,22 +81,30 @@ pub(super) fn kernel_points(faces: &[Plane], vertices: &[GridPoint]) -> Option<V
         if !reach.is_finite() || reach <= 0.0 {
             continue;
         }
+        // The grid point nearest where the ray leaves `K`, else that
+        // nearest it truncated towards the centre (a small body's corners
+        // are often grid points of `K` just so), else one aimed short.
         let length = reach * d.iter().map(|c| c * c).sum::<f64>().sqrt();
-        let short = (length * MARGIN).max(MIN_MARGIN);
-        if short >= length {
-            continue;
-        }
-        let t = reach * (1.0 - short / length);
-        let point = GridPoint::new(
-            (from[0] + t * d[0]).round() as i64,
-            (from[1] + t * d[1]).round() as i64,
-            (from[2] + t * d[2]).round() as i64,
-        );
-        if let Ok(point) = point
-            && inside(point)
-        {
-            points.push(point);
-        }
+        let short = (length * MARGIN).max(MIN_MARGIN).min(length);
+        let at = |t: f64| -> [f64; 3] { std::array::from_fn(|a| from[a] + t * d[a]) };
+        let (edge, aimed) = (at(reach), at(reach * (1.0 - short / length)));
+        let towards_centre: [f64; 3] = std::array::from_fn(|a| {
+            if edge[a] > from[a] {
+                edge[a].floor()
+            } else {
+                edge[a].ceil()
+            }
+        });
+        let found = [edge, towards_centre, aimed].into_iter().find_map(|q| {
+            GridPoint::new(
+                q[0].round() as i64,
+                q[1].round() as i64,
+                q[2].round() as i64,
+            )
+            .ok()
+            .filter(|&p| inside(p))
+        });
+        points.extend(found);
     }
     points.push(centre);
     points.sort_unstable();
@@ -118,7 +127,8 @@ fn extent(vertices: &[GridPoint]) -> Option<([f64; 3], [f64; 3])> {
 }
 
 /// A grid point strictly behind every plane: the vertices' mean or the
-/// centre of their box, rounded, whichever is.
+/// centre of their box, rounded, whichever is; else where a relaxation
+/// from the mean ends (a box dented deep has its mean in the dent).
 fn centre(
     faces: &[Plane],
     vertices: &[GridPoint],
@@ -129,7 +139,7 @@ fn centre(
     let mean: [f64; 3] =
         std::array::from_fn(|a| vertices.iter().map(|p| p.to_f64()[a]).sum::<f64>() / n);
     let middle: [f64; 3] = std::array::from_fn(|a| (least[a] + most[a]) / 2.0);
-    [mean, middle].into_iter().find_map(|c| {
+    let behind_all = |c: [f64; 3]| {
         let p = GridPoint::new(
             c[0].round() as i64,
             c[1].round() as i64,
@@ -140,7 +150,48 @@ fn centre(
             .iter()
             .all(|f| side_of_point(f, p) == Side::Back)
             .then_some(p)
-    })
+    };
+    [mean, middle]
+        .into_iter()
+        .find_map(behind_all)
+        .or_else(|| behind_all(relaxed(faces, mean)))
+}
+
+/// The most steps [`relaxed`] takes.
+const RELAXATION_STEPS: usize = 64;
+
+/// How far (grid units) [`relaxed`] puts a point behind every plane:
+/// rounding to the grid moves it less than one unit.
+const CLEARANCE: f64 = 1.5;
+
+/// A point behind every plane by [`CLEARANCE`], if the relaxation from
+/// `from` finds one: step by step, across the plane it is farthest in
+/// front of (or least behind) to twice the clearance behind it.
+fn relaxed(faces: &[Plane], from: [f64; 3]) -> [f64; 3] {
+    let planes: Vec<([f64; 3], f64)> = faces
+        .iter()
+        .map(|f| {
+            let [a, b, c, d] = f.approx();
+            let norm = (a * a + b * b + c * c).sqrt();
+            ([a / norm, b / norm, c / norm], d / norm)
+        })
+        .collect();
+    let mut p = from;
+    for _ in 0..RELAXATION_STEPS {
+        let Some((normal, ahead)) = planes
+            .iter()
+            .map(|(n, d)| (*n, n[0] * p[0] + n[1] * p[1] + n[2] * p[2] + d))
+            .max_by(|x, y| x.1.total_cmp(&y.1))
+        else {
+            break;
+        };
+        if ahead < -CLEARANCE {
+            break;
+        }
+        let step = ahead + 2.0 * CLEARANCE;
+        p = std::array::from_fn(|a| p[a] - step * normal[a]);
+    }
+    p
 }
 
 /// The planes of a convex polytope around `vertices`, facing out: for
