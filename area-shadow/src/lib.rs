@@ -12,8 +12,11 @@
 //! lit, inside the umbra tree it is in umbra, otherwise in penumbra
 //! ([`AreaTrees`], [`shadow_area_light`]). Pieces that form one convex
 //! body ([`convex_groups`]) add the body's umbra too, where they hide the
-//! whole light only together; an exactly convex body's penumbra volume is
-//! one convex volume too ([`ConvexGroup::penumbra_planes`]). Where pieces
+//! whole light only together (a closed surface that is not convex, for a
+//! convex body inside it: moved in from a surface the grid bent, or a
+//! core of the kernel of one really concave); an exactly convex body's
+//! penumbra volume is one convex volume too
+//! ([`ConvexGroup::penumbra_planes`]). Where pieces
 //! hide the light together in a region that is no convex volume (coplanar
 //! pieces covering a concave polygon, [`FlatUnion`]; a surface one face
 //! short of a convex body, a body holding the light in,
