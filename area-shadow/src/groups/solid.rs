@@ -16,7 +16,7 @@
 //! `K`, which is convex) and stands for `B`: its umbra is part of `S`'s,
 //! every plane still through three grid points. A body really concave
 //! (a bumpy sphere) stands for the hull of grid points of `K` found along
-//! a few dozen directions from a centre (module `kernel`), when `K` holds
+//! 162 directions from a centre (module `kernel`), when `K` holds
 //! one; a body with no kernel (a torus) forms no group.
 
 use super::hull::convex_hull;
