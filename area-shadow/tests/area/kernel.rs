@@ -3,6 +3,7 @@
 //! occlusion oracle of the surface's own triangles.
 
 use crate::oracle::{Caster, blocked, gp, light_samples, samples};
+use area_shadow::dark::sees_none;
 use area_shadow::{
     AreaSource, Class, SceneLight, ShadowGroups, compute_shadows_with_groups, convex_groups,
 };
@@ -252,4 +253,47 @@ fn a_torus_forms_no_group() {
         }
     }
     assert!(convex_groups(&faces, &vec![Some(0); faces.len()]).is_empty());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(12))]
+
+    /// Joint-umbra proofs with a bumpy sphere's triangles and the shell of
+    /// its kernel's core: a floor square proven dark sees none of the
+    /// light past the triangles (the oracle), and the floor right under
+    /// the sphere is proven.
+    #[test]
+    fn proofs_through_a_kernels_shell_hold(
+        seed in any::<u32>(),
+        inward in any::<bool>(),
+        bump in 0.03_f64..0.08,
+        squares in prop::collection::vec((-7000_i64..7000, -7000_i64..7000, 200_i64..2500), 6),
+    ) {
+        let faces = bumpy_sphere([0.0, 9000.0, 0.0], 5000.0, (10, 12), bump, seed, inward);
+        let groups = convex_groups(&faces, &vec![Some(0); faces.len()]);
+        prop_assert_eq!(groups.len(), 1);
+        let shell = groups[0].shell().expect("a kernel's core is a shell");
+        let light = ceiling_light(-2000, -2000, 4000, 24_000);
+        let triangles: Vec<&ConvexPolygon> = faces.iter().collect();
+        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+        let targets: Vec<[f64; 3]> =
+            light.vertices().map(GridPoint::to_f64).chain(light_samples(light.polygon())).collect();
+        let square = |x: i64, z: i64, w: i64| {
+            let c = [gp(x, 0, z), gp(x, 0, z + w), gp(x + w, 0, z + w), gp(x + w, 0, z)];
+            ConvexPolygon::from_grid_points(&c, 0).unwrap()
+        };
+        let under = square(-300, -300, 600);
+        prop_assert!(sees_none(&under, false, &light, &triangles, &[&shell]));
+        for (x, z, w) in squares {
+            let region = square(x, z, w);
+            if !sees_none(&region, false, &light, &triangles, &[&shell]) {
+                continue;
+            }
+            for q in samples(&region) {
+                for x in &targets {
+                    prop_assert!(blocked(q, *x, &casters, &region), "{q:?} proven dark sees {x:?}");
+                }
+            }
+        }
+    }
 }
