@@ -3,16 +3,20 @@
 //! floor, those whose corners see none of the light (sampled in floating
 //! point), under a level square light and under the same light tilted
 //! (halved in its plane's lattice), timed as a batch; proofs that succeed
-//! and proofs that fail both count.
+//! and proofs that fail both count. Then the floor under a 1,280-triangle
+//! bumpy sphere: finding its body (a core of its kernel), and the proofs
+//! of the floor squares whose corners see none of the light, with the
+//! core's shell among the blockers.
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
 
-use area_shadow::AreaSource;
 use area_shadow::dark::sees_none;
+use area_shadow::{AreaSource, convex_groups};
 use bsp_core::{ConvexPolygon, GridPoint};
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::Rng;
 use std::hint::black_box;
+use umbra_benches::blob::bumpy_sphere;
 use umbra_benches::random::rng;
 
 fn g(x: i64, y: i64, z: i64) -> GridPoint {
@@ -128,5 +132,89 @@ fn dark(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, dark);
+/// Whether the segment from `k` to `l` crosses the triangle (floating
+/// point, for choosing cases only).
+fn crosses_triangle(k: [f64; 3], l: [f64; 3], t: &[[f64; 3]]) -> bool {
+    let sub = |a: [f64; 3], b: [f64; 3]| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (d, e1, e2) = (sub(l, k), sub(t[1], t[0]), sub(t[2], t[0]));
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    if det.abs() < 1e-12 {
+        return false;
+    }
+    let s = sub(k, t[0]);
+    let u = dot(s, p) / det;
+    let q = cross(s, e1);
+    let v = dot(d, q) / det;
+    let w = dot(e2, q) / det;
+    u >= 0.0 && v >= 0.0 && u + v <= 1.0 && (0.0..=1.0).contains(&w)
+}
+
+fn bumpy(c: &mut Criterion) {
+    let faces = bumpy_sphere([0, 9000, 0], 5000.0, 0.03, 3);
+    let objects = vec![Some(0); faces.len()];
+    c.bench_function("kernel_core_1280_triangles", |b| {
+        b.iter(|| black_box(convex_groups(&faces, &objects)))
+    });
+    let groups = convex_groups(&faces, &objects);
+    let shell = groups[0].shell().expect("a core of the kernel");
+    let y = 24_000;
+    let light = AreaSource::from_grid_points(&[
+        g(-2000, y, -2000),
+        g(2000, y, -2000),
+        g(2000, y, 2000),
+        g(-2000, y, 2000),
+    ])
+    .unwrap();
+    let triangles: Vec<&ConvexPolygon> = faces.iter().collect();
+    let outlines: Vec<Vec<[f64; 3]>> = faces.iter().map(ConvexPolygon::vertices_f64).collect();
+    // Floor squares (300 grid units) on a grid under the sphere whose
+    // corners see none of 9 x 9 points of the light.
+    let squares: Vec<ConvexPolygon> = (0..24 * 24)
+        .map(|k| {
+            let (x, z) = (-7200 + 600 * (k % 24), -7200 + 600 * (k / 24));
+            let c = [
+                g(x, 0, z),
+                g(x, 0, z + 300),
+                g(x + 300, 0, z + 300),
+                g(x + 300, 0, z),
+            ];
+            ConvexPolygon::from_grid_points(&c, 1).unwrap()
+        })
+        .filter(|square| {
+            square.vertices_f64().iter().all(|&k| {
+                (0..81).all(|s| {
+                    let l = [
+                        -2000.0 + 500.0 * (s % 9) as f64,
+                        y as f64,
+                        -2000.0 + 500.0 * (s / 9) as f64,
+                    ];
+                    outlines.iter().any(|t| crosses_triangle(k, l, t))
+                })
+            })
+        })
+        .collect();
+    let prove = || {
+        squares
+            .iter()
+            .filter(|square| sees_none(square, false, &light, &triangles, &[&shell]))
+            .count()
+    };
+    eprintln!(
+        "dark_under_bumpy_sphere: {} squares tried, {} proven",
+        squares.len(),
+        prove()
+    );
+    c.bench_function("dark_under_bumpy_sphere", |b| b.iter(|| black_box(prove())));
+}
+
+criterion_group!(benches, dark, bumpy);
 criterion_main!(benches);

@@ -4,8 +4,9 @@
 //! [`random`] makes deterministic kernel inputs (grid points, planes,
 //! implicit-point queries, quads, triangle soups); [`scene`] and [`tetra`]
 //! build the scenes of the papers; [`output_change`] weighs what a move
-//! must rewrite.
+//! must rewrite; [`blob`] makes a dense closed mesh far from convex.
 
+pub mod blob;
 pub mod dm_table;
 pub mod illum_scene;
 pub mod output_change;
