@@ -24,10 +24,11 @@ use super::{Bounds, Occluder, Pairs, bounds};
 /// *Shell* ([`Self::shell`]): the body is a convex *core* inside a closed
 /// surface of occluders and caps over its hole (a cup, its rim closed),
 /// or of occluders only (a closed surface that is concave, or that the
-/// grid bent), its boundary polygons no occluders. A segment whose ends are both
-/// outside the surface's hull and that meets the core crosses the
-/// surface, and not only its caps (see [`Self::shell`]); the convex-set
-/// argument carries that from the corner pairs to all of `K x L`.
+/// grid bent), its boundary polygons no occluders. A segment whose ends
+/// are both outside the surface's hull and that meets the core crosses
+/// the surface, and not only its caps (see [`Self::shell`]); the
+/// convex-set argument carries that from the corner pairs to all of
+/// `K x L`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
     /// The box around the corners.

@@ -41,6 +41,7 @@
 //!   `solid`), whose umbra is part of the surface's; so does a closed
 //!   surface really concave (a bumpy sphere), for a convex core of its
 //!   kernel (module `kernel`), when it has one.
+//!
 //! - **open solid**: a surface closed but for one face (its unmatched
 //!   edges close into one planar convex cycle) that, closed by that face,
 //!   is a solid as above. From outside it blocks light as the solid does
@@ -72,6 +73,7 @@ use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use solid::Solid;
 use std::collections::HashMap;
 
+mod closed;
 mod flat_union;
 pub(crate) mod hull;
 mod joint;
