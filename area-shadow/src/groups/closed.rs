@@ -7,6 +7,7 @@ use super::solid::distinct_planes;
 use super::{MAX_SOLID_WORK, edge_set};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{GridPoint, Plane};
+use std::borrow::Cow;
 
 /// A closed surface (every directed edge matched by its reverse once)
 /// seen as the boundary of a body.
@@ -24,14 +25,10 @@ pub(super) struct ClosedFaces {
 
 impl ClosedFaces {
     /// The closed surface of `outlines` (with support planes `supports`,
-    /// all facing out or all in: in when `faces_in`, or if `None`, the
-    /// way fewer vertices stand out of); `None` when it is not closed,
-    /// lies in one plane, or is too big to check ([`MAX_SOLID_WORK`]).
-    pub(super) fn of(
-        outlines: &[&[GridPoint]],
-        supports: &[Plane],
-        faces_in: Option<bool>,
-    ) -> Option<Self> {
+    /// all facing out or all in: taken to face the way fewer vertices
+    /// stand out of); `None` when it is not closed, lies in one plane, or
+    /// is too big to check ([`MAX_SOLID_WORK`]).
+    pub(super) fn of(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
         let edges = edge_set(outlines)?;
         if edges.keys().any(|&(a, b)| !edges.contains_key(&(b, a))) {
             return None;
@@ -60,7 +57,7 @@ impl ClosedFaces {
             return None;
         }
         let count = |flags: &[bool]| flags.iter().filter(|f| **f).count();
-        let faces_in = faces_in.unwrap_or_else(|| count(&ahead) > count(&behind));
+        let faces_in = count(&ahead) > count(&behind);
         let (faces, out) = if faces_in {
             (supports.iter().map(Plane::flipped).collect(), behind)
         } else {
@@ -72,6 +69,18 @@ impl ClosedFaces {
             out,
             faces_in,
         })
+    }
+
+    /// The faces' planes turned to have the body behind them if the
+    /// pieces (with `supports`) face in when `faces_in`.
+    pub(super) fn faces_turned(&self, faces_in: bool, supports: &[Plane]) -> Cow<'_, [Plane]> {
+        if faces_in == self.faces_in {
+            Cow::Borrowed(&self.faces)
+        } else if faces_in {
+            Cow::Owned(supports.iter().map(Plane::flipped).collect())
+        } else {
+            Cow::Owned(supports.to_vec())
+        }
     }
 
     /// The planes of the convex hull of the vertices, facing out.

@@ -310,9 +310,8 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
             let shape = if supports.iter().all(|s| *s == supports[0]) {
                 flat_shape(&outlines, &supports[0]).map(Shape::Flat)
             } else {
-                Solid::of_surface(&outlines, &supports)
+                Solid::of_closed_surface(&outlines, &supports)
                     .or_else(|| Solid::of_open_surface(&outlines, &supports))
-                    .or_else(|| Solid::of_concave_surface(&outlines, &supports))
                     .map(Shape::Solid)
             }?;
             Some(ConvexGroup {

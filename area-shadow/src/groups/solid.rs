@@ -80,21 +80,44 @@ impl Solid {
     /// surface itself when convex, else the surface with the vertices that
     /// stand out moved in (module docs); `None` when neither is convex.
     pub(super) fn of_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
-        let closed = ClosedFaces::of(outlines, supports, None)?;
+        let closed = ClosedFaces::of(outlines, supports)?;
+        Self::of_closed(&closed, outlines, supports)
+    }
+
+    /// As [`Self::of_surface`], and for a closed surface that is really
+    /// concave (a bumpy sphere) the hull of grid points of its kernel
+    /// (module `kernel`), when it has one. The surface is checked once
+    /// for both.
+    pub(super) fn of_closed_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
+        let closed = ClosedFaces::of(outlines, supports)?;
+        Self::of_closed(&closed, outlines, supports)
+            .or_else(|| Self::of_kernel(&closed, outlines, supports))
+    }
+
+    /// [`Self::of_surface`] of a surface already checked closed.
+    fn of_closed(
+        closed: &ClosedFaces,
+        outlines: &[&[GridPoint]],
+        supports: &[Plane],
+    ) -> Option<Self> {
         let solid = if closed.out.contains(&true) {
             let hull = closed.hull()?;
             Self::moved_in(&closed.faces, &closed.vertices, &closed.out)
                 .map(|solid| Self { hull, ..solid })
         } else {
-            Self::with_faces(outlines, closed.faces, closed.vertices, true)
+            Self::with_faces(
+                outlines,
+                closed.faces.clone(),
+                closed.vertices.clone(),
+                true,
+            )
         };
         solid.map(|solid| solid.made_of(outlines, supports, closed.faces_in))
     }
 
-    /// The body a closed surface that is really concave (a bumpy sphere)
-    /// blocks light as: the hull of grid points of its kernel (module
-    /// `kernel`), when it has one.
-    pub(super) fn of_concave_surface(
+    /// The hull of grid points of a closed surface's kernel, if it has one.
+    fn of_kernel(
+        closed: &ClosedFaces,
         outlines: &[&[GridPoint]],
         supports: &[Plane],
     ) -> Option<Self> {
@@ -102,11 +125,11 @@ impl Solid {
         // planes one way as the other: the enclosed volume's sign tells
         // which way the pieces face.
         let faces_in = signed_volume(outlines) < 0.0;
-        let closed = ClosedFaces::of(outlines, supports, Some(faces_in))?;
-        let points = kernel_points(&closed.faces, &closed.vertices)?;
+        let faces = closed.faces_turned(faces_in, supports);
+        let points = kernel_points(&faces, &closed.vertices)?;
         let hull = bounding_planes(&closed.vertices);
         let solid = Self::of_hull(&points, false)?;
-        Some(Self { hull, ..solid }.made_of(outlines, supports, closed.faces_in))
+        Some(Self { hull, ..solid }.made_of(outlines, supports, faces_in))
     }
 
     /// The solid as made from the surface of `outlines` (with `supports`),
@@ -532,7 +555,12 @@ impl Solid {
         let support = light.support();
         // A body that stands for a surface blocks as it does only from
         // outside the surface's hull: the light strictly behind it all.
-        let surface = self.surface.iter().flat_map(|(outline, _)| outline);
+        let stands_for = if self.exact {
+            &[][..]
+        } else {
+            &self.surface[..]
+        };
+        let surface = stands_for.iter().flat_map(|(outline, _)| outline);
         if self
             .vertices
             .iter()
