@@ -13,8 +13,9 @@
 //! ([`AreaTrees`], [`shadow_area_light`]). Pieces that form one convex
 //! body ([`convex_groups`]) add the body's umbra too, where they hide the
 //! whole light only together (a closed surface that is not convex, for a
-//! convex body inside it: moved in from a surface the grid bent, or a
-//! core of the kernel of one really concave); an exactly convex body's
+//! convex body inside it: moved in from a surface the grid bent, a core
+//! of the kernel of one really concave, or several cores in local
+//! kernels of one with no kernel, a torus); an exactly convex body's
 //! penumbra volume is one convex volume too
 //! ([`ConvexGroup::penumbra_planes`]). Where pieces
 //! hide the light together in a region that is no convex volume (coplanar

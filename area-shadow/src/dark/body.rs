@@ -103,16 +103,17 @@ impl Body {
 
     /// The shell (see the type's docs) of a closed `surface` (occluders
     /// and caps over their hole), about a convex core with boundary
-    /// polygons `core` (facing out) that lies behind every face plane of
-    /// the surface. `None` when a core polygon has a corner that is no
-    /// grid point.
+    /// polygons `core` (facing out) that lies inside the surface: behind
+    /// every face plane of the surface, or where its winding number is
+    /// at least 1 (off the surface). `None` when a core polygon has a
+    /// corner that is no grid point.
     ///
     /// Why it blocks: the surface's *winding number* about a point off it
     /// counts how many times it wraps the point (faces oriented out); a
     /// segment meets the surface wherever that number changes along it.
     /// It is 0 outside the hull, and at least 1 at a point strictly behind
-    /// every face plane (every face turns its back to it), or of the core
-    /// off the surface.
+    /// every face plane (every face turns its back to it), and at every
+    /// point of the core off the surface.
     ///
     /// *From outside*: take a segment with both ends outside the hull that
     /// meets the core at `b`, and suppose it meets no occluder. Then every
@@ -124,8 +125,8 @@ impl Body {
     /// the segment meets the caps at two points or more, in two caps:
     ///
     /// - With no cap (a closed surface, concave or bent by the grid,
-    ///   about a core of its kernel), every point where it meets the
-    ///   surface is on an occluder.
+    ///   about a core inside it), every point where it meets the surface
+    ///   is on an occluder.
     /// - With one cap, that cannot be.
     /// - With several (the two triangles closing a bent hole), when all of
     ///   one end's side (`K` or `L`) lies strictly on one side of every

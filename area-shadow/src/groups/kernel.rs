@@ -34,14 +34,19 @@ const MIN_MARGIN: f64 = 2.0;
 /// sphere's `umbra dm` (2 cores): 42 directions 44.8 s, floor umbra
 /// 2.448; 162: 38.6 s, 2.490; 642: 40.8 s, 2.493. Its 320-triangle
 /// sibling: 12: 3.5 s; 42: 2.1 s; 162: 1.7 s; 642: 1.9 s.
-const SUBDIVISIONS: usize = 2;
+pub(super) const SUBDIVISIONS: usize = 2;
+
+/// How many directions [`directions`] gives for `subdivisions`.
+pub(super) fn direction_count(subdivisions: usize) -> usize {
+    10 * 4_usize.pow(subdivisions as u32) + 2
+}
 
 /// The directions from the centre along which the core reaches out: the
 /// corners of an icosahedron, with each edge's midpoint added
 /// [`SUBDIVISIONS`] times over (a geodesic sphere), stretched by the
 /// surface's extent along each axis (in [`kernel_points`]) so that a long
 /// body gets a long core.
-fn directions() -> Vec<[f64; 3]> {
+fn directions(subdivisions: usize) -> Vec<[f64; 3]> {
     let unit = |v: [f64; 3]| {
         let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
         v.map(|c| c / l)
@@ -56,7 +61,7 @@ fn directions() -> Vec<[f64; 3]> {
         }
     }
     let dist2 = |a: &[f64; 3], b: &[f64; 3]| (0..3).map(|i| (a[i] - b[i]).powi(2)).sum::<f64>();
-    for _ in 0..SUBDIVISIONS {
+    for _ in 0..subdivisions {
         // Neighbours are the closest pairs; the edges of a geodesic sphere
         // differ in length by less than a fifth, and the nearest points
         // that are no neighbours are farther by more than half.
@@ -86,12 +91,39 @@ fn directions() -> Vec<[f64; 3]> {
 pub(super) fn kernel_points(faces: &[Plane], vertices: &[GridPoint]) -> Option<Vec<GridPoint>> {
     let (least, most) = extent(vertices)?;
     let centre = centre(faces, vertices, least, most)?;
+    let half: [f64; 3] = std::array::from_fn(|a| (most[a] - least[a]) / 2.0);
+    let found = points_along(faces, centre, half, SUBDIVISIONS);
+    Some(with_centre(found.into_iter().flatten(), centre))
+}
+
+/// `points` and `centre`, ascending, each once.
+pub(super) fn with_centre(
+    points: impl Iterator<Item = GridPoint>,
+    centre: GridPoint,
+) -> Vec<GridPoint> {
+    let mut points: Vec<GridPoint> = points.chain([centre]).collect();
+    points.sort_unstable();
+    points.dedup();
+    points
+}
+
+/// Per direction (in the order of a geodesic sphere's `subdivisions`: the
+/// icosahedron's 12 corners first), a grid point behind or on every plane
+/// of `faces` (facing out of a bounded convex region) found along it from
+/// `centre` (a grid point strictly behind them all), if any; directions
+/// stretched by `half` (half the extent along each axis of what the
+/// region lies in).
+pub(super) fn points_along(
+    faces: &[Plane],
+    centre: GridPoint,
+    half: [f64; 3],
+    subdivisions: usize,
+) -> Vec<Option<GridPoint>> {
     let from = centre.to_f64();
     let planes: Vec<[f64; 4]> = faces.iter().map(Plane::approx).collect();
-    let half: [f64; 3] = std::array::from_fn(|a| (most[a] - least[a]) / 2.0);
     let inside = |p: GridPoint| faces.iter().all(|f| side_of_point(f, p) != Side::Front);
     let mut points = Vec::new();
-    for unit in directions() {
+    for unit in directions(subdivisions) {
         let d: [f64; 3] = std::array::from_fn(|a| unit[a] * half[a].max(1.0));
         // The farthest `t` with `from + t d` behind every plane.
         let reach = planes
@@ -103,6 +135,7 @@ pub(super) fn kernel_points(faces: &[Plane], vertices: &[GridPoint]) -> Option<V
             })
             .fold(f64::INFINITY, f64::min);
         if !reach.is_finite() || reach <= 0.0 {
+            points.push(None);
             continue;
         }
         // The grid point nearest where the ray leaves `K`, else that
@@ -128,16 +161,13 @@ pub(super) fn kernel_points(faces: &[Plane], vertices: &[GridPoint]) -> Option<V
             .ok()
             .filter(|&p| inside(p))
         });
-        points.extend(found);
+        points.push(found);
     }
-    points.push(centre);
-    points.sort_unstable();
-    points.dedup();
-    Some(points)
+    points
 }
 
 /// The least and greatest coordinates of `vertices`.
-fn extent(vertices: &[GridPoint]) -> Option<([f64; 3], [f64; 3])> {
+pub(super) fn extent(vertices: &[GridPoint]) -> Option<([f64; 3], [f64; 3])> {
     let first = vertices.first()?.to_f64();
     let (mut least, mut most) = (first, first);
     for p in vertices {
@@ -250,8 +280,8 @@ mod tests {
 
     #[test]
     fn the_directions_are_a_geodesic_sphere() {
-        let d = directions();
-        assert_eq!(d.len(), 10 * 4_usize.pow(SUBDIVISIONS as u32) + 2);
+        let d = directions(SUBDIVISIONS);
+        assert_eq!(d.len(), direction_count(SUBDIVISIONS));
         for (i, a) in d.iter().enumerate() {
             assert!((a.iter().map(|c| c * c).sum::<f64>() - 1.0).abs() < 1e-12);
             for b in &d[i + 1..] {

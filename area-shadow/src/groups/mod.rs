@@ -40,7 +40,10 @@
 //!   few units from convex stands for a convex body inside it (module
 //!   `solid`), whose umbra is part of the surface's; so does a closed
 //!   surface really concave (a bumpy sphere), for a convex core of its
-//!   kernel (module `kernel`), when it has one.
+//!   kernel (module `kernel`), when it has one, and one with no kernel
+//!   (a torus) for several convex cores inside it, each in the local
+//!   kernel of a point (module `cores`): a group each, of the same
+//!   pieces.
 //!
 //! - **open solid**: a surface closed but for one face (its unmatched
 //!   edges close into one planar convex cycle) that, closed by that face,
@@ -58,7 +61,7 @@
 //!   pockets' penumbrae taken out (the holes are pockets too), in convex
 //!   parts.
 //!
-//! Anything else (closed bodies with no kernel, concave open ones,
+//! Anything else (closed bodies where no core is found, concave open ones,
 //! twice-open bodies, a face shared by two bodies) forms no group, and
 //! its umbra stays the union of its pieces' umbrae.
 //!
@@ -74,11 +77,13 @@ use solid::Solid;
 use std::collections::HashMap;
 
 mod closed;
+mod cores;
 mod flat_union;
 pub(crate) mod hull;
 mod joint;
 mod kernel;
 mod solid;
+mod winding;
 
 pub use flat_union::FlatUnion;
 pub use joint::{convex_unions, edge_contact, flat_joints, one_way};
@@ -265,6 +270,8 @@ impl ConvexGroup {
 /// `k`, or `None` when it casts no shadow (it joins no group). Pieces group
 /// only within their object. Groups of one piece are left out (its own
 /// umbra volume is the group's); the list is in order of first piece.
+/// A closed surface with several cores (module `cores`) makes a group of
+/// its pieces for each.
 ///
 /// # Panics
 ///
@@ -298,7 +305,7 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
         .collect();
     let mut out: Vec<ConvexGroup> = groups
         .into_iter()
-        .filter_map(|members| {
+        .flat_map(|members| {
             let outlines: Vec<&[GridPoint]> = members
                 .iter()
                 .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
@@ -307,15 +314,22 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
                 .iter()
                 .map(|&k| *pieces[k as usize].support())
                 .collect();
-            let shape = if supports.iter().all(|s| *s == supports[0]) {
-                flat_shape(&outlines, &supports[0]).map(Shape::Flat)
+            // A closed surface with no kernel may stand for several
+            // cores, a group each.
+            let shapes: Vec<Shape> = if supports.iter().all(|s| *s == supports[0]) {
+                flat_shape(&outlines, &supports[0])
+                    .map(Shape::Flat)
+                    .into_iter()
+                    .collect()
             } else {
-                Solid::of_closed_surface(&outlines, &supports)
-                    .or_else(|| Solid::of_open_surface(&outlines, &supports))
-                    .map(Shape::Solid)
-            }?;
-            Some(ConvexGroup {
-                pieces: members,
+                let mut solids = Solid::of_closed_surface(&outlines, &supports);
+                if solids.is_empty() {
+                    solids.extend(Solid::of_open_surface(&outlines, &supports));
+                }
+                solids.into_iter().map(Shape::Solid).collect()
+            };
+            shapes.into_iter().map(move |shape| ConvexGroup {
+                pieces: members.clone(),
                 shape,
             })
         })

@@ -17,9 +17,11 @@
 //! every plane still through three grid points. A body really concave
 //! (a bumpy sphere) stands for the hull of grid points of `K` found along
 //! 162 directions from a centre (module `kernel`), when `K` holds
-//! one; a body with no kernel (a torus) forms no group.
+//! one; a body with no kernel (a torus) for up to 8 convex cores, each
+//! in the local kernel of a point inside it (module `cores`).
 
 use super::closed::{ClosedFaces, signed_volume};
+use super::cores::local_cores;
 use super::edge_set;
 use super::hull::convex_hull;
 use super::kernel::{bounding_planes, kernel_points};
@@ -72,6 +74,11 @@ pub(super) struct Solid {
     /// its edges and corners cut around the surface (a convex set that
     /// holds it, of 26 planes at most).
     hull: Vec<Plane>,
+    /// The corners of the core a shell is made about ([`Self::shell`])
+    /// when it is not the body itself: a core of a local kernel makes its
+    /// shell about the hull of fewer of its points (within the body), for
+    /// proofs that test its faces at every step. Empty: the body's.
+    shell_core: Vec<GridPoint>,
 }
 
 impl Solid {
@@ -85,13 +92,18 @@ impl Solid {
     }
 
     /// As [`Self::of_surface`], and for a closed surface that is really
-    /// concave (a bumpy sphere) the hull of grid points of its kernel
-    /// (module `kernel`), when it has one. The surface is checked once
-    /// for both.
-    pub(super) fn of_closed_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Option<Self> {
-        let closed = ClosedFaces::of(outlines, supports)?;
-        Self::of_closed(&closed, outlines, supports)
-            .or_else(|| Self::of_kernel(&closed, outlines, supports))
+    /// concave the hull of grid points of its kernel (a bumpy sphere,
+    /// module `kernel`), or with no kernel (a torus) several cores, each
+    /// in the local kernel of a point inside (module `cores`). The
+    /// surface is checked once for all.
+    pub(super) fn of_closed_surface(outlines: &[&[GridPoint]], supports: &[Plane]) -> Vec<Self> {
+        let Some(closed) = ClosedFaces::of(outlines, supports) else {
+            return Vec::new();
+        };
+        match Self::of_closed(&closed, outlines, supports) {
+            Some(solid) => vec![solid],
+            None => Self::cores(&closed, outlines, supports),
+        }
     }
 
     /// [`Self::of_surface`] of a surface already checked closed.
@@ -115,21 +127,43 @@ impl Solid {
         solid.map(|solid| solid.made_of(outlines, supports, closed.faces_in))
     }
 
-    /// The hull of grid points of a closed surface's kernel, if it has one.
-    fn of_kernel(
-        closed: &ClosedFaces,
-        outlines: &[&[GridPoint]],
-        supports: &[Plane],
-    ) -> Option<Self> {
+    /// Convex cores inside a closed surface that is no convex body: the
+    /// hull of grid points of its kernel, if it has one, else of local
+    /// kernels (module `cores`).
+    fn cores(closed: &ClosedFaces, outlines: &[&[GridPoint]], supports: &[Plane]) -> Vec<Self> {
         // Far from convex, as many vertices may stand out of the faces'
         // planes one way as the other: the enclosed volume's sign tells
         // which way the pieces face.
         let faces_in = signed_volume(outlines) < 0.0;
         let faces = closed.faces_turned(faces_in, supports);
-        let points = kernel_points(&faces, &closed.vertices)?;
+        let cores = match kernel_points(&faces, &closed.vertices) {
+            Some(points) => Self::of_hull(&points, false).into_iter().collect(),
+            None => local_cores(outlines, &faces),
+        };
         let hull = bounding_planes(&closed.vertices);
-        let solid = Self::of_hull(&points, false)?;
-        Some(Self { hull, ..solid }.made_of(outlines, supports, faces_in))
+        cores
+            .into_iter()
+            .map(|core| {
+                Self {
+                    hull: hull.clone(),
+                    ..core
+                }
+                .made_of(outlines, supports, faces_in)
+            })
+            .collect()
+    }
+
+    /// The solid with its shell made about the hull of `corners` (points
+    /// of the body) rather than the body ([`Self::shell`]); the body's
+    /// when they span no volume.
+    pub(super) fn with_shell_core(self, corners: Vec<GridPoint>) -> Self {
+        if convex_hull(&corners).is_none() {
+            return self;
+        }
+        Self {
+            shell_core: corners,
+            ..self
+        }
     }
 
     /// The solid as made from the surface of `outlines` (with `supports`),
@@ -293,7 +327,9 @@ impl Solid {
     /// The shell of a surface closed over its hole, or of a closed one
     /// the body only stands for ([`crate::dark::Body::shell`]): the body
     /// (its own solid, one moved in, or a core of the kernel: each lies
-    /// behind every face plane of the closed surface) as the core, with
+    /// behind every face plane of the closed surface; or of a local
+    /// kernel, inside the surface) or the hull of some of its points as
+    /// the core, with
     /// the surface's hull and caps (none for a closed surface). `None`
     /// when the body is a closed surface's own solid (it blocks as
     /// itself, [`Self::blocking_body`]).
@@ -301,7 +337,12 @@ impl Solid {
         if self.exact && !self.capped {
             return None;
         }
-        let core: Vec<ConvexPolygon> = convex_hull(&self.vertices)?
+        let core_corners = if self.shell_core.is_empty() {
+            &self.vertices
+        } else {
+            &self.shell_core
+        };
+        let core: Vec<ConvexPolygon> = convex_hull(core_corners)?
             .iter()
             .map(|(triangle, _)| ConvexPolygon::from_grid_points(triangle, 0).ok())
             .collect::<Option<_>>()?;
@@ -474,6 +515,7 @@ impl Solid {
             open: Vec::new(),
             cap_corners: Vec::new(),
             surface: Vec::new(),
+            shell_core: Vec::new(),
         })
     }
 

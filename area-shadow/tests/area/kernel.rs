@@ -83,7 +83,7 @@ fn concavity(faces: &[ConvexPolygon], inward: bool) -> f64 {
 
 /// A light over x, z in `[x0, x0 + w]`, `[z0, z0 + w]` at height `h`,
 /// facing down.
-fn ceiling_light(x0: i64, z0: i64, w: i64, h: i64) -> AreaSource {
+pub fn ceiling_light(x0: i64, z0: i64, w: i64, h: i64) -> AreaSource {
     let pts = [
         gp(x0, h, z0),
         gp(x0 + w, h, z0),
@@ -154,9 +154,9 @@ proptest! {
     }
 }
 
-/// The floor's fragments under a bumpy sphere: umbra ones see none of the
+/// The floor's fragments under a closed surface (a bumpy sphere): umbra ones see none of the
 /// light (the oracle), lit ones all of it; returns the floor's umbra area.
-fn floor_umbra(faces: Vec<ConvexPolygon>, light: &AreaSource, groups: bool) -> f64 {
+pub fn floor_umbra(faces: Vec<ConvexPolygon>, light: &AreaSource, groups: bool) -> f64 {
     let floor = [
         gp(-40_000, 0, 40_000),
         gp(40_000, 0, 40_000),
@@ -224,35 +224,6 @@ fn a_bumpy_sphere_darkens_the_floor_by_its_kernel() {
         together > 3.0e7 && together > 10.0 * alone,
         "umbra {together} against {alone}"
     );
-}
-
-/// A torus has no kernel (its hole's centre is outside it): no group.
-#[test]
-fn a_torus_forms_no_group() {
-    let (big, small) = (4000.0, 1500.0);
-    let (rings, segments) = (12_u32, 8_u32);
-    let at = |i: u32, j: u32| {
-        let (u, v) = (
-            2.0 * std::f64::consts::PI * f64::from(i % rings) / f64::from(rings),
-            2.0 * std::f64::consts::PI * f64::from(j % segments) / f64::from(segments),
-        );
-        let r = big + small * v.cos();
-        gp(
-            (r * u.cos()).round() as i64,
-            (9000.0 + small * v.sin()).round() as i64,
-            (r * u.sin()).round() as i64,
-        )
-    };
-    let mut faces = Vec::new();
-    for i in 0..rings {
-        for j in 0..segments {
-            let (a, b, c, d) = (at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
-            for t in [[a, b, c], [a, c, d]] {
-                faces.push(ConvexPolygon::from_grid_points(&t, 0).unwrap());
-            }
-        }
-    }
-    assert!(convex_groups(&faces, &vec![Some(0); faces.len()]).is_empty());
 }
 
 proptest! {

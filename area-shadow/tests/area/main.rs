@@ -1,5 +1,6 @@
 //! Integration tests of `area-shadow`, one binary.
 
+mod cores;
 mod culled;
 mod figure4;
 mod flat_unions;

@@ -3,8 +3,8 @@
 //! of the whole scene) area for area.
 
 use crate::common::{
-    TestScene, bumpy_bodies, class_areas, closed_surface_flags, cuboid, facing_boxes, floor, scene,
-    scene_with, triangulated_cuboid, two_sided_flags,
+    TestScene, bumpy_bodies, class_areas, closed_surface_flags, cuboid, facing_boxes, floor,
+    ring_bodies, scene, scene_with, triangulated_cuboid, two_sided_flags,
 };
 use crate::oracle::{hidden, interior_samples};
 use area_shadow::{Class, SceneLight, ShadowGroups, compute_shadows_with_groups};
@@ -280,6 +280,15 @@ proptest! {
     /// the oracle.
     #[test]
     fn bumpy_bodies_agree_with_area_shadow_and_the_oracle(t in bumpy_bodies()) {
+        check_against_area_shadow(&t)?;
+        check_against_oracle(&t, false)?;
+    }
+
+    /// A ring (no kernel) beside a bumpy body: the umbrae of the ring's
+    /// cores are where area-shadow puts them, and the cells' classes hold
+    /// against the oracle.
+    #[test]
+    fn rings_agree_with_area_shadow_and_the_oracle(t in ring_bodies()) {
         check_against_area_shadow(&t)?;
         check_against_oracle(&t, false)?;
     }

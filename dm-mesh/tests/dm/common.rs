@@ -394,6 +394,39 @@ pub fn bumpy_body(centre: [i64; 3], radius: f64, seed: u32) -> Vec<ConvexPolygon
     out
 }
 
+/// A ring about the vertical axis through `centre`: `rings` x
+/// `segments` quads (a tube of radius `small` along a circle of radius
+/// `big`) cut into triangles, facing out. It has no kernel (the hole's
+/// centre is outside it): it stands for several convex cores inside it.
+pub fn ring_body(
+    centre: [i64; 3],
+    (big, small): (f64, f64),
+    (rings, segments): (u32, u32),
+) -> Vec<ConvexPolygon> {
+    let at = |i: u32, j: u32| {
+        let (u, v) = (
+            std::f64::consts::TAU * f64::from(i % rings) / f64::from(rings),
+            std::f64::consts::TAU * f64::from(j % segments) / f64::from(segments),
+        );
+        let r = big + small * v.cos();
+        gp(
+            centre[0] + (r * u.cos()).round() as i64,
+            centre[1] + (small * v.sin()).round() as i64,
+            centre[2] + (r * u.sin()).round() as i64,
+        )
+    };
+    let mut out = Vec::new();
+    for i in 0..rings {
+        for j in 0..segments {
+            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
+            for t in [[a, b, c], [a, c, d]] {
+                out.push(ConvexPolygon::from_grid_points(&t, 0).unwrap());
+            }
+        }
+    }
+    out
+}
+
 /// How far (grid units) a closed surface facing out is from convex: the
 /// most any of its corners stands in front of one of its faces' planes.
 pub fn concavity(faces: &[ConvexPolygon]) -> f64 {
@@ -425,6 +458,31 @@ pub fn bumpy_bodies() -> impl Strategy<Value = TestScene> {
                 let centre = [c[0], 1500 + c[1] / 3, c[2]];
                 objects.push((bumpy_body(centre, 600.0, seed), closed_surface_flags()));
             }
+            TestScene {
+                objects,
+                light: light(x0, z0, w, w, 4000, 0),
+            }
+        })
+}
+
+/// A ring (no kernel: several cores) and a bumpy body over a floor, under
+/// a light smaller than the ring's tube is thick.
+pub fn ring_bodies() -> impl Strategy<Value = TestScene> {
+    (
+        prop::array::uniform3(-1500_i64..1500),
+        (prop::array::uniform3(-1500_i64..1500), any::<u32>()),
+        (6_u32..10, 4_u32..7),
+        (-600_i64..200, -600_i64..200, 100_i64..400),
+    )
+        .prop_map(|(ring, (c, seed), counts, (x0, z0, w))| {
+            let mut objects = vec![(vec![floor(5000)], svbsp::PieceFlags::default())];
+            let centre = [ring[0], 1500 + ring[1] / 3, ring[2]];
+            objects.push((
+                ring_body(centre, (900.0, 450.0), counts),
+                closed_surface_flags(),
+            ));
+            let centre = [c[0], 1500 + c[1] / 3, c[2]];
+            objects.push((bumpy_body(centre, 600.0, seed), closed_surface_flags()));
             TestScene {
                 objects,
                 light: light(x0, z0, w, w, 4000, 0),

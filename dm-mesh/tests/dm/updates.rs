@@ -5,8 +5,8 @@
 //! keep their invariants after every operation.
 
 use crate::common::{
-    Object, TestScene, bumpy_bodies, class_areas, concavity, facing_boxes, scene, scene_with,
-    translated,
+    Object, TestScene, bumpy_bodies, class_areas, concavity, facing_boxes, ring_bodies, scene,
+    scene_with, translated,
 };
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
@@ -271,6 +271,17 @@ proptest! {
             let groups = area_shadow::convex_groups(body, &vec![Some(0); body.len()]);
             prop_assert!(groups.len() == 1 && !groups[0].is_closed_convex());
         }
+        run(&t, &ops)?;
+    }
+
+    /// A ring (no kernel) and a bumpy body moved, removed and added back
+    /// agree with a rebuild: the umbrae of the ring's cores go with it.
+    #[test]
+    fn rings_move_and_agree_with_a_rebuild(t in ring_bodies(), ops in ops()) {
+        let ring = &t.objects[1].0;
+        let groups = area_shadow::convex_groups(ring, &vec![Some(0); ring.len()]);
+        prop_assert!(groups.len() >= 2, "{} cores", groups.len());
+        prop_assert!(groups.iter().all(|g| g.pieces.len() == ring.len() && !g.is_closed_convex()));
         run(&t, &ops)?;
     }
 }
