@@ -36,8 +36,9 @@ pub enum Op {
 /// code.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct DmCase {
-    /// Objects of one or two triangles, a tetrahedron's four or a box's
-    /// twelve, over the floor.
+    /// Objects of one or two triangles, a tetrahedron's four, a box's
+    /// twelve, a dented box's fourteen or a square frame's 32, over the
+    /// floor.
     pub objects: Vec<Vec<[[i64; 3]; 3]>>,
     /// The light: corner, extents along x and z, rise along x.
     pub light: ([i64; 3], [i64; 2], i64),
@@ -67,9 +68,28 @@ impl<'a> Arbitrary<'a> for DmCase {
             // an axis-aligned box of twelve triangles (small sizes on the
             // small grid: boxes often touch face to face and join), or (5)
             // a box with its top dented: a closed surface no nudge makes
-            // convex, which a core of its kernel stands for.
-            let k = u.int_in_range(1_usize..=5)?;
-            let triangles = if k == 5 {
+            // convex, which a core of its kernel stands for, or (6) a
+            // square frame: a closed surface with no kernel, which cores
+            // of local kernels stand for.
+            let k = u.int_in_range(1_usize..=6)?;
+            let triangles = if k == 6 {
+                let lo = point(u)?;
+                let size = [
+                    coordinate(u, 3, 6)?,
+                    coordinate(u, 1, 3)?,
+                    coordinate(u, 3, 6)?,
+                ];
+                let hi = [0, 1, 2].map(|a| lo[a] + size[a]);
+                let hole_lo = [
+                    u.int_in_range(lo[0] + 1..=hi[0] - 2)?,
+                    u.int_in_range(lo[2] + 1..=hi[2] - 2)?,
+                ];
+                let hole_hi = [
+                    u.int_in_range(hole_lo[0] + 1..=hi[0] - 1)?,
+                    u.int_in_range(hole_lo[1] + 1..=hi[2] - 1)?,
+                ];
+                frame_triangles(lo, hi, hole_lo, hole_hi)
+            } else if k == 5 {
                 let lo = point(u)?;
                 let size = [
                     coordinate(u, 2, 4)?,
@@ -161,6 +181,87 @@ fn dented_box_triangles(lo: [i64; 3], hi: [i64; 3], apex: [i64; 3]) -> Vec<[[i64
     ];
     for i in 0..4 {
         out.push([corners[i], corners[(i + 1) % 4], apex]);
+    }
+    out
+}
+
+/// The box `lo..hi` with a square hole from `y = lo[1]` to `hi[1]`, over
+/// `x, z` in `hole_lo..hole_hi` (strictly inside the box's): 32
+/// triangles, counter-clockwise seen from outside.
+fn frame_triangles(
+    lo: [i64; 3],
+    hi: [i64; 3],
+    hole_lo: [i64; 2],
+    hole_hi: [i64; 2],
+) -> Vec<[[i64; 3]; 3]> {
+    // The outer and the inner square's corners (x, z), in one turn.
+    let outer = [
+        [lo[0], lo[2]],
+        [hi[0], lo[2]],
+        [hi[0], hi[2]],
+        [lo[0], hi[2]],
+    ];
+    let inner = [
+        [hole_lo[0], hole_lo[1]],
+        [hole_hi[0], hole_lo[1]],
+        [hole_hi[0], hole_hi[1]],
+        [hole_lo[0], hole_hi[1]],
+    ];
+    let at = |c: [i64; 2], y: i64| [c[0], y, c[1]];
+    let middle = [
+        (hole_lo[0] + hole_hi[0]) as f64 / 2.0,
+        (hole_lo[1] + hole_hi[1]) as f64 / 2.0,
+    ];
+    let mut out = Vec::with_capacity(32);
+    // A planar quad as two triangles, turned to face `out` (x, y, z).
+    let mut quad = |q: [[i64; 3]; 4], outward: [f64; 3]| {
+        let (a, b, c) = (q[0], q[1], q[2]);
+        let e = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let f = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let n = [
+            e[1] * f[2] - e[2] * f[1],
+            e[2] * f[0] - e[0] * f[2],
+            e[0] * f[1] - e[1] * f[0],
+        ];
+        let facing: f64 = (0..3).map(|k| n[k] as f64 * outward[k]).sum();
+        let [a, b, c, d] = if facing > 0.0 {
+            q
+        } else {
+            [q[3], q[2], q[1], q[0]]
+        };
+        out.push([a, b, c]);
+        out.push([a, c, d]);
+    };
+    for i in 0..4 {
+        let j = (i + 1) % 4;
+        for (y, up) in [(hi[1], 1.0), (lo[1], -1.0)] {
+            quad(
+                [
+                    at(outer[i], y),
+                    at(outer[j], y),
+                    at(inner[j], y),
+                    at(inner[i], y),
+                ],
+                [0.0, up, 0.0],
+            );
+        }
+        // Walls: the outer ones face away from the hole, the inner ones
+        // into it.
+        for (square, sign) in [(&outer, 1.0), (&inner, -1.0)] {
+            let mid = [
+                (square[i][0] + square[j][0]) as f64 / 2.0 - middle[0],
+                (square[i][1] + square[j][1]) as f64 / 2.0 - middle[1],
+            ];
+            quad(
+                [
+                    at(square[i], lo[1]),
+                    at(square[j], lo[1]),
+                    at(square[j], hi[1]),
+                    at(square[i], hi[1]),
+                ],
+                [sign * mid[0], 0.0, sign * mid[1]],
+            );
+        }
     }
     out
 }
@@ -535,6 +636,37 @@ mod tests {
             let case = DmCase {
                 objects: vec![dented.clone(), box_triangles([1, 3, -2], [3, 5, 2])],
                 light: ([-4, 11, -3], [3, 3], 0),
+                ops: vec![
+                    Op::Move(0, [1, 0, 1]),
+                    Op::Move(0, [1, -1, 0]),
+                    Op::Remove(1),
+                    Op::Move(0, [-2, 1, -1]),
+                    Op::ReAdd(1),
+                ],
+                deletion,
+            };
+            check_dm_update(&case).unwrap();
+        }
+    }
+
+    /// A square frame (no kernel: cores of local kernels stand for it
+    /// and cast umbrae) beside a box, moved under the light and against
+    /// the other box, removed and added back, both ways of deleting.
+    #[test]
+    fn a_frame_moves_beside_a_box() {
+        let frame = frame_triangles([-6, 4, -4], [0, 6, 2], [-4, -2], [-2, 0]);
+        let polygons = triangles(&frame, [0, 0, 0]);
+        let groups = area_shadow::convex_groups(&polygons, &vec![Some(0); polygons.len()]);
+        assert!(groups.len() >= 2, "{} cores", groups.len());
+        assert!(
+            groups
+                .iter()
+                .all(|g| g.pieces.len() == 32 && !g.is_closed_convex())
+        );
+        for deletion in [Deletion::Local, Deletion::Collapse] {
+            let case = DmCase {
+                objects: vec![frame.clone(), box_triangles([1, 3, -2], [3, 5, 2])],
+                light: ([-5, 11, -3], [2, 2], 0),
                 ops: vec![
                     Op::Move(0, [1, 0, 1]),
                     Op::Move(0, [1, -1, 0]),

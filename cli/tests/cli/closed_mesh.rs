@@ -178,7 +178,7 @@ fn a_bumpy_closed_mesh_hides_its_joint_umbra() {
 
 /// Whether a floor face (convex, in the plane y = 0) holds the point
 /// `[x, z]` (or has it on its border).
-fn contains_xz(face: &[[f64; 3]], [x, z]: [f64; 2]) -> bool {
+pub(crate) fn contains_xz(face: &[[f64; 3]], [x, z]: [f64; 2]) -> bool {
     let n = face.len();
     let side = |i: usize| {
         let (a, b) = (face[i], face[(i + 1) % n]);
@@ -188,7 +188,7 @@ fn contains_xz(face: &[[f64; 3]], [x, z]: [f64; 2]) -> bool {
 }
 
 /// The area of a floor face (convex, in the plane y = 0).
-fn area_xz(face: &[[f64; 3]]) -> f64 {
+pub(crate) fn area_xz(face: &[[f64; 3]]) -> f64 {
     let n = face.len();
     let twice: f64 = (0..n)
         .map(|i| {

@@ -20,6 +20,7 @@ mod order;
 mod ply_files;
 mod properties;
 mod render;
+mod ring_mesh;
 mod shadow;
 mod t_junctions;
 mod tilted_light;
