@@ -6,7 +6,8 @@
 //! and proofs that fail both count. Then the floor under a 1,280-triangle
 //! bumpy sphere: finding its body (a core of its kernel), and the proofs
 //! of the floor squares whose corners see none of the light, with the
-//! core's shell among the blockers.
+//! core's shell among the blockers. Last, finding the cores of a
+//! 1,024-triangle torus (local kernels: it has no kernel).
 // criterion_group! generates an undocumented public function.
 #![allow(missing_docs)]
 
@@ -18,6 +19,7 @@ use rand::Rng;
 use std::hint::black_box;
 use umbra_benches::blob::bumpy_sphere;
 use umbra_benches::random::rng;
+use umbra_benches::ring::torus;
 
 fn g(x: i64, y: i64, z: i64) -> GridPoint {
     GridPoint::new(x, y, z).unwrap()
@@ -216,5 +218,15 @@ fn bumpy(c: &mut Criterion) {
     c.bench_function("dark_under_bumpy_sphere", |b| b.iter(|| black_box(prove())));
 }
 
-criterion_group!(benches, dark, bumpy);
+fn ring(c: &mut Criterion) {
+    let faces = torus([0, 9000, 0], (5000.0, 2000.0), (32, 16));
+    let objects = vec![Some(0); faces.len()];
+    let cores = convex_groups(&faces, &objects).len();
+    eprintln!("local_cores_1024_triangles: {cores} cores");
+    c.bench_function("local_cores_1024_triangles", |b| {
+        b.iter(|| black_box(convex_groups(&faces, &objects)))
+    });
+}
+
+criterion_group!(benches, dark, bumpy, ring);
 criterion_main!(benches);

@@ -4,13 +4,15 @@
 //! [`random`] makes deterministic kernel inputs (grid points, planes,
 //! implicit-point queries, quads, triangle soups); [`scene`] and [`tetra`]
 //! build the scenes of the papers; [`output_change`] weighs what a move
-//! must rewrite; [`blob`] makes a dense closed mesh far from convex.
+//! must rewrite; [`blob`] makes a dense closed mesh far from convex, [`ring`]
+//! one with no kernel.
 
 pub mod blob;
 pub mod dm_table;
 pub mod illum_scene;
 pub mod output_change;
 pub mod random;
+pub mod ring;
 pub mod rooms;
 pub mod scene;
 pub mod tetra;
