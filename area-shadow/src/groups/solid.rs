@@ -327,12 +327,11 @@ impl Solid {
     /// The shell of a surface closed over its hole, or of a closed one
     /// the body only stands for ([`crate::dark::Body::shell`]): the body
     /// (its own solid, one moved in, or a core of the kernel: each lies
-    /// behind every face plane of the closed surface; or of a local
-    /// kernel, inside the surface) or the hull of some of its points as
-    /// the core, with
-    /// the surface's hull and caps (none for a closed surface). `None`
-    /// when the body is a closed surface's own solid (it blocks as
-    /// itself, [`Self::blocking_body`]).
+    /// behind every face plane of the closed surface; or a core of a
+    /// local kernel, inside the surface), or the hull of some of its
+    /// points, as the core, with the surface's hull and caps (none for a
+    /// closed surface). `None` when the body is a closed surface's own
+    /// solid (it blocks as itself, [`Self::blocking_body`]).
     pub(super) fn shell(&self) -> Option<crate::dark::Body> {
         if self.exact && !self.capped {
             return None;
