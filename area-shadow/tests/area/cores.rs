@@ -2,10 +2,9 @@
 //! kernels, and the umbrae they cast, against the exact occlusion oracle
 //! of the surface's own triangles.
 
-use crate::kernel::{ceiling_light, floor_umbra};
-use crate::oracle::{Caster, blocked, gp, light_samples, samples};
+use crate::kernel::{ceiling_light, floor_square, floor_umbra, proven_dark};
+use crate::oracle::{Caster, blocked, gp, light_samples};
 use area_shadow::convex_groups;
-use area_shadow::dark::sees_none;
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint};
 use proptest::prelude::*;
@@ -147,28 +146,12 @@ proptest! {
         prop_assert!(shells.len() >= 2);
         let shells: Vec<_> = shells.iter().collect();
         let light = ceiling_light(3500, -1500, 3000, 24_000);
-        let triangles: Vec<&ConvexPolygon> = faces.iter().collect();
-        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-        let targets: Vec<[f64; 3]> =
-            light.vertices().map(GridPoint::to_f64).chain(light_samples(light.polygon())).collect();
-        let square = |x: i64, z: i64, w: i64| {
-            let c = [gp(x, 0, z), gp(x, 0, z + w), gp(x + w, 0, z + w), gp(x + w, 0, z)];
-            ConvexPolygon::from_grid_points(&c, 0).unwrap()
-        };
         // Under the tube, on the side towards +x.
-        let under = square(4700, -300, 600);
-        prop_assert!(sees_none(&under, false, &light, &triangles, &shells));
-        prop_assert!(!sees_none(&under, false, &light, &triangles, &[]));
+        let under = floor_square(4700, -300, 600);
+        prop_assert!(proven_dark(&under, &faces, &shells, &light));
+        prop_assert!(!proven_dark(&under, &faces, &[], &light));
         for (x, z, w) in squares {
-            let region = square(x, z, w);
-            if !sees_none(&region, false, &light, &triangles, &shells) {
-                continue;
-            }
-            for q in samples(&region) {
-                for x in &targets {
-                    prop_assert!(blocked(q, *x, &casters, &region), "{q:?} proven dark sees {x:?}");
-                }
-            }
+            proven_dark(&floor_square(x, z, w), &faces, &shells, &light);
         }
     }
 }

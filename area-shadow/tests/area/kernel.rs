@@ -3,7 +3,7 @@
 //! occlusion oracle of the surface's own triangles.
 
 use crate::oracle::{Caster, blocked, gp, light_samples, samples};
-use area_shadow::dark::sees_none;
+use area_shadow::dark::{Body, sees_none};
 use area_shadow::{
     AreaSource, Class, SceneLight, ShadowGroups, compute_shadows_with_groups, convex_groups,
 };
@@ -245,26 +245,51 @@ proptest! {
         prop_assert_eq!(groups.len(), 1);
         let shell = groups[0].shell().expect("a kernel's core is a shell");
         let light = ceiling_light(-2000, -2000, 4000, 24_000);
-        let triangles: Vec<&ConvexPolygon> = faces.iter().collect();
-        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-        let targets: Vec<[f64; 3]> =
-            light.vertices().map(GridPoint::to_f64).chain(light_samples(light.polygon())).collect();
-        let square = |x: i64, z: i64, w: i64| {
-            let c = [gp(x, 0, z), gp(x, 0, z + w), gp(x + w, 0, z + w), gp(x + w, 0, z)];
-            ConvexPolygon::from_grid_points(&c, 0).unwrap()
-        };
-        let under = square(-300, -300, 600);
-        prop_assert!(sees_none(&under, false, &light, &triangles, &[&shell]));
+        prop_assert!(proven_dark(&floor_square(-300, -300, 600), &faces, &[&shell], &light));
         for (x, z, w) in squares {
-            let region = square(x, z, w);
-            if !sees_none(&region, false, &light, &triangles, &[&shell]) {
-                continue;
-            }
-            for q in samples(&region) {
-                for x in &targets {
-                    prop_assert!(blocked(q, *x, &casters, &region), "{q:?} proven dark sees {x:?}");
-                }
-            }
+            proven_dark(&floor_square(x, z, w), &faces, &[&shell], &light);
         }
     }
+}
+
+/// The floor square (facing up) of side `w` from `x, z`.
+pub fn floor_square(x: i64, z: i64, w: i64) -> ConvexPolygon {
+    let c = [
+        gp(x, 0, z),
+        gp(x, 0, z + w),
+        gp(x + w, 0, z + w),
+        gp(x + w, 0, z),
+    ];
+    ConvexPolygon::from_grid_points(&c, 0).unwrap()
+}
+
+/// Whether a joint-umbra proof with the triangles `faces` and the bodies
+/// `shells` finds the floor `square` dark under `light`; when it does,
+/// the oracle must find that it sees none of the light past the
+/// triangles (else this panics).
+pub fn proven_dark(
+    square: &ConvexPolygon,
+    faces: &[ConvexPolygon],
+    shells: &[&Body],
+    light: &AreaSource,
+) -> bool {
+    let triangles: Vec<&ConvexPolygon> = faces.iter().collect();
+    if !sees_none(square, false, light, &triangles, shells) {
+        return false;
+    }
+    let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+    let targets: Vec<[f64; 3]> = light
+        .vertices()
+        .map(GridPoint::to_f64)
+        .chain(light_samples(light.polygon()))
+        .collect();
+    for q in samples(square) {
+        for x in &targets {
+            assert!(
+                blocked(q, *x, &casters, square),
+                "{q:?} proven dark sees {x:?}"
+            );
+        }
+    }
+    true
 }

@@ -130,33 +130,8 @@ fn a_bumpy_closed_mesh_hides_its_joint_umbra() {
         })
         .collect();
     for command in ["shadow", "dm"] {
-        let out = format!("{command}.ply");
-        let run = umbra(dir.path(), &[command, "scene.toml", "-o", &out]);
-        assert_eq!(run.code, 0, "{command}: {}", run.stderr);
-        let mesh = load_ply(&dir.path().join(&out)).unwrap();
-        let faces: Vec<Vec<[f64; 3]>> = (0..mesh.faces.len())
-            .map(|f| face_points(&mesh, f))
-            .collect();
-        let blob: Vec<&Vec<[f64; 3]>> = (0..mesh.faces.len())
-            .filter(|&f| mesh.faces[f].source != 0)
-            .map(|f| &faces[f])
-            .collect();
-        let mut umbra_area = 0.0;
-        for f in (0..mesh.faces.len()).filter(|&f| mesh.faces[f].source == 0) {
-            if mesh.faces[f].umbra_mask & 1 == 0 {
-                continue;
-            }
-            umbra_area += area_xz(&faces[f]);
-            for p in inner_points(&faces[f]) {
-                for &l in &light {
-                    let hits: Vec<Option<bool>> = blob.iter().map(|q| crosses(p, l, q)).collect();
-                    assert!(
-                        hits.contains(&Some(true)) || hits.contains(&None),
-                        "{command}: umbra floor face {f} sees the light from {p:?} at {l:?}"
-                    );
-                }
-            }
-        }
+        let floor = floor_umbra(dir.path(), command, &light);
+        let umbra_area = floor.umbra_area;
         // The floor right under the mesh sees none of the light past it,
         // and no triangle hides all of it alone. The core of the kernel
         // (radius 0.9 or so) has an umbra of radius about 1.25 on the
@@ -165,20 +140,79 @@ fn a_bumpy_closed_mesh_hides_its_joint_umbra() {
             umbra_area > std::f64::consts::PI,
             "{command}: floor umbra {umbra_area}"
         );
-        let centre = (0..mesh.faces.len())
-            .filter(|&f| mesh.faces[f].source == 0)
-            .find(|&f| contains_xz(&faces[f], [0.0, 0.0]))
-            .expect("a floor face holds the centre");
         assert!(
-            mesh.faces[centre].umbra_mask & 1 != 0,
+            floor.umbra_at([0.0, 0.0]),
             "{command}: the floor under the mesh is not umbra (umbra area {umbra_area})"
         );
     }
 }
 
+/// The floor's faces in a run's output ([`floor_umbra`]).
+pub(crate) struct Floor {
+    /// The area of its faces in umbra.
+    pub(crate) umbra_area: f64,
+    /// Its faces' corners, and whether each is umbra.
+    faces: Vec<(Vec<[f64; 3]>, bool)>,
+}
+
+impl Floor {
+    /// Whether the floor face holding `[x, z]` is umbra.
+    pub(crate) fn umbra_at(&self, point: [f64; 2]) -> bool {
+        self.faces
+            .iter()
+            .find(|(corners, _)| contains_xz(corners, point))
+            .expect("a floor face holds the point")
+            .1
+    }
+}
+
+/// Runs `umbra COMMAND scene.toml` in `dir` on a scene of a floor
+/// (input polygon 0, in the plane y = 0) and one mesh over it, and checks
+/// by a ray oracle that every floor face in umbra sees none of the
+/// points `light` (on the scene's one light): no segment from points
+/// inside it to them misses the mesh.
+pub(crate) fn floor_umbra(dir: &std::path::Path, command: &str, light: &[[f64; 3]]) -> Floor {
+    let out = format!("{command}.ply");
+    let run = umbra(dir, &[command, "scene.toml", "-o", &out]);
+    assert_eq!(run.code, 0, "{command}: {}", run.stderr);
+    let mesh = load_ply(&dir.join(&out)).unwrap();
+    let faces: Vec<Vec<[f64; 3]>> = (0..mesh.faces.len())
+        .map(|f| face_points(&mesh, f))
+        .collect();
+    let sources: Vec<(u32, u32)> = mesh
+        .faces
+        .iter()
+        .map(|f| (f.source, f.umbra_mask))
+        .collect();
+    let occluders: Vec<&Vec<[f64; 3]>> = (0..faces.len())
+        .filter(|&f| sources[f].0 != 0)
+        .map(|f| &faces[f])
+        .collect();
+    let mut umbra_area = 0.0;
+    for f in (0..faces.len()).filter(|&f| sources[f].0 == 0 && sources[f].1 & 1 != 0) {
+        umbra_area += area_xz(&faces[f]);
+        for p in inner_points(&faces[f]) {
+            for &l in light {
+                let hits: Vec<Option<bool>> = occluders.iter().map(|q| crosses(p, l, q)).collect();
+                assert!(
+                    hits.contains(&Some(true)) || hits.contains(&None),
+                    "{command}: umbra floor face {f} sees the light from {p:?} at {l:?}"
+                );
+            }
+        }
+    }
+    let faces = faces
+        .into_iter()
+        .zip(sources)
+        .filter(|(_, (source, _))| *source == 0)
+        .map(|(corners, (_, mask))| (corners, mask & 1 != 0))
+        .collect();
+    Floor { umbra_area, faces }
+}
+
 /// Whether a floor face (convex, in the plane y = 0) holds the point
 /// `[x, z]` (or has it on its border).
-pub(crate) fn contains_xz(face: &[[f64; 3]], [x, z]: [f64; 2]) -> bool {
+fn contains_xz(face: &[[f64; 3]], [x, z]: [f64; 2]) -> bool {
     let n = face.len();
     let side = |i: usize| {
         let (a, b) = (face[i], face[(i + 1) % n]);
@@ -188,7 +222,7 @@ pub(crate) fn contains_xz(face: &[[f64; 3]], [x, z]: [f64; 2]) -> bool {
 }
 
 /// The area of a floor face (convex, in the plane y = 0).
-pub(crate) fn area_xz(face: &[[f64; 3]]) -> f64 {
+fn area_xz(face: &[[f64; 3]]) -> f64 {
     let n = face.len();
     let twice: f64 = (0..n)
         .map(|i| {

@@ -7,12 +7,8 @@
 //! (the triangles alone give none), `umbra dm` those and cells proven
 //! dark past them.
 
-use crate::area::face_points;
-use crate::closed_mesh::{area_xz, contains_xz};
-use crate::open_box::crosses;
-use crate::vectors::inner_points;
-use crate::{folder, umbra};
-use umbra::load_ply;
+use crate::closed_mesh::floor_umbra;
+use crate::folder;
 
 /// The ring's triangles, counter-clockwise seen from outside: 12 x 8
 /// quads of a torus about the vertical axis, its ring of radius 1.5 at
@@ -71,33 +67,8 @@ fn a_ring_hides_its_joint_umbra() {
         .map(|k| [0.9 + 0.3 * (k % 5) as f64, 6.0, -0.6 + 0.3 * (k / 5) as f64])
         .collect();
     for command in ["shadow", "dm"] {
-        let out = format!("{command}.ply");
-        let run = umbra(dir.path(), &[command, "scene.toml", "-o", &out]);
-        assert_eq!(run.code, 0, "{command}: {}", run.stderr);
-        let mesh = load_ply(&dir.path().join(&out)).unwrap();
-        let faces: Vec<Vec<[f64; 3]>> = (0..mesh.faces.len())
-            .map(|f| face_points(&mesh, f))
-            .collect();
-        let ring: Vec<&Vec<[f64; 3]>> = (0..mesh.faces.len())
-            .filter(|&f| mesh.faces[f].source != 0)
-            .map(|f| &faces[f])
-            .collect();
-        let mut umbra_area = 0.0;
-        for f in (0..mesh.faces.len()).filter(|&f| mesh.faces[f].source == 0) {
-            if mesh.faces[f].umbra_mask & 1 == 0 {
-                continue;
-            }
-            umbra_area += area_xz(&faces[f]);
-            for p in inner_points(&faces[f]) {
-                for &l in &light {
-                    let hits: Vec<Option<bool>> = ring.iter().map(|q| crosses(p, l, q)).collect();
-                    assert!(
-                        hits.contains(&Some(true)) || hits.contains(&None),
-                        "{command}: umbra floor face {f} sees the light from {p:?} at {l:?}"
-                    );
-                }
-            }
-        }
+        let floor = floor_umbra(dir.path(), command, &light);
+        let umbra_area = floor.umbra_area;
         // With the cores' umbrae: 7.2 found by `umbra shadow` (none
         // without them), 12.0 by `umbra dm` (8.0 by the proofs alone).
         let least = if command == "shadow" { 5.0 } else { 10.0 };
@@ -106,12 +77,8 @@ fn a_ring_hides_its_joint_umbra() {
             continue;
         }
         // Past the cores, proofs darken the floor right under the tube.
-        let under = (0..mesh.faces.len())
-            .filter(|&f| mesh.faces[f].source == 0)
-            .find(|&f| contains_xz(&faces[f], [1.5, 0.0]))
-            .expect("a floor face holds the point under the tube");
         assert!(
-            mesh.faces[under].umbra_mask & 1 != 0,
+            floor.umbra_at([1.5, 0.0]),
             "the floor under the tube is not umbra (umbra area {umbra_area})"
         );
     }
