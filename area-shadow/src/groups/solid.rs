@@ -77,7 +77,8 @@ pub(super) struct Solid {
     /// The corners of the core a shell is made about ([`Self::shell`])
     /// when it is not the body itself: a core of a local kernel makes its
     /// shell about the hull of fewer of its points (within the body), for
-    /// proofs that test its faces at every step. Empty: the body's.
+    /// proofs that test its faces at every step. Empty (or flat): the
+    /// body's.
     shell_core: Vec<GridPoint>,
 }
 
@@ -154,12 +155,8 @@ impl Solid {
     }
 
     /// The solid with its shell made about the hull of `corners` (points
-    /// of the body) rather than the body ([`Self::shell`]); the body's
-    /// when they span no volume.
+    /// of the body) rather than the body ([`Self::shell`]).
     pub(super) fn with_shell_core(self, corners: Vec<GridPoint>) -> Self {
-        if convex_hull(&corners).is_none() {
-            return self;
-        }
         Self {
             shell_core: corners,
             ..self
@@ -336,12 +333,9 @@ impl Solid {
         if self.exact && !self.capped {
             return None;
         }
-        let core_corners = if self.shell_core.is_empty() {
-            &self.vertices
-        } else {
-            &self.shell_core
-        };
-        let core: Vec<ConvexPolygon> = convex_hull(core_corners)?
+        // The body's hull when the shell's corners span no volume.
+        let hull = convex_hull(&self.shell_core).or_else(|| convex_hull(&self.vertices))?;
+        let core: Vec<ConvexPolygon> = hull
             .iter()
             .map(|(triangle, _)| ConvexPolygon::from_grid_points(triangle, 0).ok())
             .collect::<Option<_>>()?;

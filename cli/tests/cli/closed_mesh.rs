@@ -89,7 +89,24 @@ fn bumpy_sphere() -> Vec<[[f64; 3]; 3]> {
 }
 
 fn scene() -> String {
-    let triangles: Vec<String> = bumpy_sphere()
+    mesh_scene(
+        3,
+        "blob",
+        &bumpy_sphere(),
+        "[[-0.4, 6, -0.4], [0.4, 6, -0.4], [0.4, 6, 0.4], [-0.4, 6, 0.4]]",
+    )
+}
+
+/// A scene of a square floor (input polygon 0: x, z in `[-half, half]`,
+/// facing up), a mesh of `triangles` named `name` over it and one area
+/// light with corners `light` (a TOML array).
+pub(crate) fn mesh_scene(
+    half: i32,
+    name: &str,
+    triangles: &[[[f64; 3]; 3]],
+    light: &str,
+) -> String {
+    let triangles: Vec<String> = triangles
         .iter()
         .map(|t| {
             let corners: Vec<String> = t
@@ -103,15 +120,15 @@ fn scene() -> String {
         r#"
 [[object]]
 name = "floor"
-polygons = [[[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]]]
+polygons = [[[-{half}, 0, -{half}], [-{half}, 0, {half}], [{half}, 0, {half}], [{half}, 0, -{half}]]]
 
 [[object]]
-name = "blob"
+name = "{name}"
 polygons = [{}]
 
 [[light]]
 type = "area"
-vertices = [[-0.4, 6, -0.4], [0.4, 6, -0.4], [0.4, 6, 0.4], [-0.4, 6, 0.4]]
+vertices = {light}
 "#,
         triangles.join(", ")
     )

@@ -7,7 +7,7 @@
 //! (the triangles alone give none), `umbra dm` those and cells proven
 //! dark past them.
 
-use crate::closed_mesh::floor_umbra;
+use crate::closed_mesh::{floor_umbra, mesh_scene};
 use crate::folder;
 
 /// The ring's triangles, counter-clockwise seen from outside: 12 x 8
@@ -32,31 +32,11 @@ fn ring() -> Vec<[[f64; 3]; 3]> {
 }
 
 fn scene() -> String {
-    let triangles: Vec<String> = ring()
-        .iter()
-        .map(|t| {
-            let corners: Vec<String> = t
-                .iter()
-                .map(|c| format!("[{:.6}, {:.6}, {:.6}]", c[0], c[1], c[2]))
-                .collect();
-            format!("[{}]", corners.join(", "))
-        })
-        .collect();
-    format!(
-        r#"
-[[object]]
-name = "floor"
-polygons = [[[-4, 0, -4], [-4, 0, 4], [4, 0, 4], [4, 0, -4]]]
-
-[[object]]
-name = "ring"
-polygons = [{}]
-
-[[light]]
-type = "area"
-vertices = [[0.9, 6, -0.6], [2.1, 6, -0.6], [2.1, 6, 0.6], [0.9, 6, 0.6]]
-"#,
-        triangles.join(", ")
+    mesh_scene(
+        4,
+        "ring",
+        &ring(),
+        "[[0.9, 6, -0.6], [2.1, 6, -0.6], [2.1, 6, 0.6], [0.9, 6, 0.6]]",
     )
 }
 
