@@ -47,7 +47,7 @@
 //! the light comes out empty.
 
 use crate::groups::{
-    ConvexGroup, FlatUnion, convex_groups, convex_unions, flat_joints, flat_unions,
+    ConvexGroup, FlatUnion, convex_groups, convex_unions, flat_joints, flat_unions, section_unions,
 };
 use crate::merge_pieces::merge_same_class;
 use crate::tree::{Partition, VolumeTree};
@@ -173,6 +173,7 @@ impl ShadowGroups {
         joint_bodies.extend(flat_groups);
         let mut unions = flat_unions(pieces, &casting);
         unions.extend(joint_unions);
+        unions.extend(section_unions(pieces, &casting));
         Self {
             bodies,
             flat_unions: unions,

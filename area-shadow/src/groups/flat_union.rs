@@ -44,6 +44,10 @@ pub struct FlatUnion {
     /// Its holes, each clockwise.
     holes: Vec<Vec<GridPoint>>,
     support: Plane,
+    /// For a section through a closed surface (module `section`), its
+    /// axis: it casts only under lights whose plane's normal is nearest
+    /// to that axis.
+    axis: Option<usize>,
 }
 
 impl FlatUnion {
@@ -61,11 +65,45 @@ impl FlatUnion {
         if corners > MAX_OUTLINE || cycles.iter().any(|c| c.len() < 3) {
             return None;
         }
+        let union = Self::of_cycles(pieces, cycles, support, None)?;
+        let n = union.outline.len();
+        let convex = (0..n).all(|i| {
+            let [a, b, c] = [i, (i + 1) % n, (i + 2) % n].map(|k| union.outline[k]);
+            union.turn(a, b, c) != Ordering::Less
+        });
+        ((!convex || !union.holes.is_empty()) && union.is_simple()).then_some(union)
+    }
+
+    /// A section through a closed surface of pieces `pieces` along `axis`
+    /// (module `section`): the region of `cycles` (as for [`Self::new`],
+    /// in plane `support`), convex or not, if simple.
+    pub(super) fn section(
+        pieces: Vec<u32>,
+        cycles: Vec<Vec<GridPoint>>,
+        support: Plane,
+        axis: usize,
+    ) -> Option<Self> {
+        Self::of_cycles(pieces, cycles, support, Some(axis)).filter(Self::is_simple)
+    }
+
+    /// The union of `cycles` sorted into its outline and holes, if one
+    /// runs counter-clockwise and the others clockwise.
+    fn of_cycles(
+        pieces: Vec<u32>,
+        cycles: Vec<Vec<GridPoint>>,
+        support: Plane,
+        axis: Option<usize>,
+    ) -> Option<Self> {
+        let corners: usize = cycles.iter().map(Vec::len).sum();
+        if corners > MAX_OUTLINE || cycles.iter().any(|c| c.len() < 3) {
+            return None;
+        }
         let mut union = Self {
             pieces,
             outline: Vec::new(),
             holes: Vec::new(),
             support,
+            axis,
         };
         for cycle in cycles {
             match union.winding(&cycle) {
@@ -74,15 +112,20 @@ impl FlatUnion {
                 _ => return None,
             }
         }
-        let n = union.outline.len();
-        if n == 0 {
-            return None;
-        }
-        let convex = (0..n).all(|i| {
-            let [a, b, c] = [i, (i + 1) % n, (i + 2) % n].map(|k| union.outline[k]);
-            union.turn(a, b, c) != Ordering::Less
-        });
-        ((!convex || !union.holes.is_empty()) && union.is_simple()).then_some(union)
+        (!union.outline.is_empty()).then_some(union)
+    }
+
+    /// The outline and the holes.
+    #[cfg(test)]
+    pub(super) fn cycles(&self) -> impl Iterator<Item = &[GridPoint]> {
+        std::iter::once(self.outline.as_slice()).chain(self.holes.iter().map(Vec::as_slice))
+    }
+
+    /// A section's axis (module `section`), `None` for a union of
+    /// coplanar pieces.
+    #[cfg(test)]
+    pub(super) fn axis(&self) -> Option<usize> {
+        self.axis
     }
 
     /// The sign of a cycle's area seen from the front: `Greater` when it
@@ -105,8 +148,16 @@ impl FlatUnion {
     /// The convex parts of the union's umbra under `light`, each a list of
     /// planes with the part behind all of them: the points from which the
     /// pieces together hide all of the light. Empty when the union does not
-    /// lie strictly in front of the light, or would need too many parts.
+    /// lie strictly in front of the light, or would need too many parts,
+    /// and for a section under a light whose plane's normal is nearer to
+    /// another axis.
     pub fn umbra_parts(&self, light: &AreaSource) -> Vec<Vec<Plane>> {
+        if self
+            .axis
+            .is_some_and(|axis| light.support().dominant_axis() != axis)
+        {
+            return Vec::new();
+        }
         if self
             .outline
             .iter()
@@ -120,7 +171,7 @@ impl FlatUnion {
         let Some(umbra) = volume_planes(&hull, light).umbra else {
             return Vec::new();
         };
-        let Some(pockets) = self.pocket_triangles() else {
+        let Some(pockets) = self.pockets() else {
             return Vec::new();
         };
         let Some(first) = ConvexPolyhedron::from_planes(&umbra) else {
@@ -130,8 +181,8 @@ impl FlatUnion {
         // rebuilding each candidate from its planes cost the furnished room
         // twice its shadow time.
         let mut parts = vec![first];
-        for triangle in pockets {
-            for taken in volume_planes(&triangle, light).penumbra {
+        for pocket in pockets {
+            for taken in volume_planes(&pocket, light).penumbra {
                 parts = parts
                     .into_iter()
                     .flat_map(|part| without(part, &taken))
@@ -275,10 +326,10 @@ impl FlatUnion {
         (polygon.support() == &self.support).then_some(polygon)
     }
 
-    /// The pockets between the hull and the outline, and the holes, cut
-    /// into triangles facing the union's way; `None` if one cannot be cut
-    /// (not reached for simple cycles).
-    fn pocket_triangles(&self) -> Option<Vec<ConvexPolygon>> {
+    /// The pockets between the hull and the outline, and the holes, each
+    /// whole if convex, else cut into triangles, facing the union's way;
+    /// `None` if one cannot be cut (not reached for simple cycles).
+    fn pockets(&self) -> Option<Vec<ConvexPolygon>> {
         let hull = self.hull()?;
         // Outline vertices on the hull's boundary (its corners, and points
         // of its edges) split the pockets: between two of them the outline
@@ -312,15 +363,39 @@ impl FlatUnion {
             let mut pocket: Vec<GridPoint> =
                 (0..=steps).map(|s| self.outline[(from + s) % n]).collect();
             pocket.reverse();
-            triangles.extend(self.ear_clip(pocket)?);
+            triangles.extend(self.convex_parts(pocket)?);
         }
         // Each hole, clockwise, is a pocket reversed.
         for hole in &self.holes {
             let mut pocket = hole.clone();
             pocket.reverse();
-            triangles.extend(self.ear_clip(pocket)?);
+            triangles.extend(self.convex_parts(pocket)?);
         }
         Some(triangles)
+    }
+
+    /// A simple counter-clockwise polygon itself when it is convex (its
+    /// straight corners dropped: one penumbra volume to take out of the
+    /// umbra rather than one per triangle, and fewer parts), else cut
+    /// into triangles ([`Self::ear_clip`]).
+    fn convex_parts(&self, polygon: Vec<GridPoint>) -> Option<Vec<ConvexPolygon>> {
+        let n = polygon.len();
+        let turns: Vec<Ordering> = (0..n)
+            .map(|i| self.turn(polygon[(i + n - 1) % n], polygon[i], polygon[(i + 1) % n]))
+            .collect();
+        if turns.contains(&Ordering::Less) {
+            return self.ear_clip(polygon);
+        }
+        let corners: Vec<GridPoint> = polygon
+            .iter()
+            .zip(&turns)
+            .filter(|(_, turn)| **turn == Ordering::Greater)
+            .map(|(p, _)| *p)
+            .collect();
+        match ConvexPolygon::from_grid_points(&corners, 0) {
+            Ok(convex) if convex.support() == &self.support => Some(vec![convex]),
+            _ => self.ear_clip(polygon),
+        }
     }
 
     /// A simple counter-clockwise polygon cut into triangles by ear

@@ -82,6 +82,7 @@ mod flat_union;
 pub(crate) mod hull;
 mod joint;
 mod kernel;
+mod section;
 mod solid;
 mod winding;
 
@@ -527,6 +528,36 @@ pub fn flat_unions(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<Fla
                 .collect();
             let cycles = boundary_cycles(&outlines)?;
             FlatUnion::new(members, cycles, support)
+        })
+        .collect()
+}
+
+/// Flat unions inside the closed surfaces of edge-connected pieces of
+/// one object (`objects` as for [`convex_groups`]) that are no convex
+/// body: sections through them along each axis (module `section`), whose
+/// umbrae are parts of the surfaces' (each casts only under lights whose
+/// plane's normal is nearest to its axis). In order of first piece.
+///
+/// # Panics
+///
+/// If `objects` is shorter than `pieces`.
+pub fn section_unions(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<FlatUnion> {
+    let (outlines, groups) = edge_connected(pieces, objects);
+    groups
+        .into_iter()
+        .flat_map(|members| {
+            let outlines: Vec<&[GridPoint]> = members
+                .iter()
+                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
+                .collect();
+            let supports: Vec<Plane> = members
+                .iter()
+                .map(|&k| *pieces[k as usize].support())
+                .collect();
+            match Solid::concave_faces(&outlines, &supports) {
+                Some(faces) => section::sections(&outlines, &faces, &members),
+                None => Vec::new(),
+            }
         })
         .collect()
 }

@@ -107,6 +107,22 @@ impl Solid {
         }
     }
 
+    /// The planes of a closed surface that is no convex body (nor one the
+    /// grid's rounding left a few units from convex), turned to face out:
+    /// what its sections (module `section`) are checked against. `None`
+    /// for any other surface.
+    pub(super) fn concave_faces(
+        outlines: &[&[GridPoint]],
+        supports: &[Plane],
+    ) -> Option<Vec<Plane>> {
+        let closed = ClosedFaces::of(outlines, supports)?;
+        if Self::of_closed(&closed, outlines, supports).is_some() {
+            return None;
+        }
+        let faces_in = signed_volume(outlines) < 0.0;
+        Some(closed.faces_turned(faces_in, supports).into_owned())
+    }
+
     /// [`Self::of_surface`] of a surface already checked closed.
     fn of_closed(
         closed: &ClosedFaces,

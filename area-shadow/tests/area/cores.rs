@@ -1,10 +1,10 @@
 //! Closed surfaces with no kernel (tori): the convex cores of their local
-//! kernels, and the umbrae they cast, against the exact occlusion oracle
-//! of the surface's own triangles.
+//! kernels and their flat sections, and the umbrae they cast, against the
+//! exact occlusion oracle of the surface's own triangles.
 
 use crate::kernel::{ceiling_light, floor_square, floor_umbra, proven_dark};
 use crate::oracle::{Caster, blocked, gp, light_samples};
-use area_shadow::convex_groups;
+use area_shadow::{convex_groups, section_unions};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint};
 use proptest::prelude::*;
@@ -110,6 +110,88 @@ proptest! {
             }
         }
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// Tori of any proportions, wound either way, have a section in the
+    /// ring's plane with an umbra under a light above; no point of any
+    /// section's umbra sees the light past the torus's own triangles.
+    #[test]
+    fn a_torus_hides_the_light_from_its_sections_umbrae(
+        centre in prop::array::uniform3(-2000.0_f64..2000.0),
+        big in 2500.0_f64..6000.0,
+        thickness in 0.15_f64..0.6,
+        rings in 8_u32..24,
+        segments in 6_u32..14,
+        inward in any::<bool>(),
+        light in (-6000_i64..2000, -6000_i64..2000, 500_i64..3000, 20_000_i64..26_000),
+        points in prop::collection::vec(prop::array::uniform3(-12_000_i64..12_000), 80),
+    ) {
+        let centre = [centre[0], centre[1] + 10_000.0, centre[2]];
+        let faces = torus(centre, (big, big * thickness), (rings, segments), inward);
+        let unions = section_unions(&faces, &vec![Some(0); faces.len()]);
+        let light = ceiling_light(light.0, light.1, light.2, light.3);
+        let parts: Vec<_> = unions.iter().flat_map(|u| u.umbra_parts(&light)).collect();
+        prop_assert!(!parts.is_empty(), "{} sections, no umbra", unions.len());
+        let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+        let targets: Vec<[f64; 3]> = light
+            .vertices()
+            .map(GridPoint::to_f64)
+            .chain(light_samples(light.polygon()))
+            .collect();
+        let own = ConvexPolygon::from_grid_points(&[gp(0, -9, 0), gp(1, -9, 0), gp(0, -9, -1)], 0)
+            .unwrap();
+        for c in points {
+            let p = gp(c[0], c[1] + 4_000, c[2]);
+            if faces.iter().any(|f| side_of_point(f.support(), p) == Side::On) {
+                continue;
+            }
+            for planes in &parts {
+                if !planes.iter().all(|q| side_of_point(q, p) == Side::Back) {
+                    continue;
+                }
+                let q = p.to_f64();
+                for x in &targets {
+                    prop_assert!(blocked(q, *x, &casters, &own), "{q:?} in an umbra sees {x:?}");
+                }
+            }
+        }
+    }
+}
+
+/// The floor under a torus, below a light over its ring: the umbra the
+/// pipeline finds (every point of which the oracle finds dark) is most of
+/// the true umbra, which the oracle measures on a grid of floor points
+/// (95 % of it when written).
+#[test]
+fn a_torus_casts_most_of_its_umbra_by_its_section() {
+    let light = ceiling_light(-2000, -2000, 4000, 24_000);
+    let faces = torus([0.0, 9000.0, 0.0], (5000.0, 2000.0), (24, 12), false);
+    let found = floor_umbra(faces.clone(), &light, true);
+    let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
+    let floor = floor_square(-10_000, -10_000, 20_000);
+    let targets: Vec<[f64; 3]> = light
+        .vertices()
+        .map(GridPoint::to_f64)
+        .chain(light_samples(light.polygon()))
+        .collect();
+    let step = 200.0;
+    let mut truth = 0.0;
+    for i in 0..100 {
+        for j in 0..100 {
+            let q = [
+                -10_000.0 + step * (f64::from(i) + 0.5),
+                0.0,
+                -10_000.0 + step * (f64::from(j) + 0.5),
+            ];
+            if targets.iter().all(|x| blocked(q, *x, &casters, &floor)) {
+                truth += step * step;
+            }
+        }
+    }
+    assert!(found > 0.85 * truth, "umbra {found} of {truth}");
 }
 
 /// Under a light about as wide as the tube, a torus casts on the floor

@@ -24,7 +24,8 @@ use crate::order::unit_order;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
 use area_shadow::{
-    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, flat_unions, volume_planes,
+    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, flat_unions, section_unions,
+    volume_planes,
 };
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use illum::VisiblePart;
@@ -181,7 +182,10 @@ impl DmScene {
         sources: &[AreaSource],
     ) -> Vec<PieceId> {
         let unions = if flags.casts_shadows {
-            flat_unions(polygons, &vec![Some(0); polygons.len()])
+            let one = vec![Some(0); polygons.len()];
+            let mut unions = flat_unions(polygons, &one);
+            unions.extend(section_unions(polygons, &one));
+            unions
         } else {
             Vec::new()
         };
