@@ -19,8 +19,9 @@
 //! penumbra volume is one convex volume too
 //! ([`ConvexGroup::penumbra_planes`]). Where pieces
 //! hide the light together in a region that is no convex volume (coplanar
-//! pieces covering a concave polygon, [`FlatUnion`]; a surface one face
-//! short of a convex body, a body holding the light in,
+//! pieces covering a concave polygon, [`FlatUnion`]; a plane region
+//! inside a closed surface that is no convex body, [`section_unions`]; a
+//! surface one face short of a convex body, a body holding the light in,
 //! [`ConvexGroup::umbra_parts`]) that region comes in convex parts.
 //! Closed convex bodies that touch face to face and make one convex body
 //! together, whatever their objects (two boxes side by side, a stack),

@@ -60,6 +60,11 @@
 //!   convex pieces, a frame). Its umbra is its convex hull's with the
 //!   pockets' penumbrae taken out (the holes are pockets too), in convex
 //!   parts.
+//! - **section** ([`section_unions`], module `section`): a closed surface
+//!   that is no convex body also stands for plane regions inside it, the
+//!   widest sections along each axis, inset, rounded to grid points and
+//!   checked exactly inside; each is a flat union of the surface's
+//!   pieces, cast under the lights facing its axis.
 //!
 //! Anything else (closed bodies where no core is found, concave open ones,
 //! twice-open bodies, a face shared by two bodies) forms no group, and

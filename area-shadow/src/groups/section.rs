@@ -14,7 +14,7 @@
 //!
 //! 1. the grid planes `x_axis = c` through no vertex whose sections,
 //!    among [`LEVELS`] levels across the surface's extent, are widest
-//!    ([`PER_AXIS`] of them: a torus's floor umbra grows by a ninth from
+//!    ([`PER_AXIS`] of them: a torus's floor umbra grows by an eighth from
 //!    one to three, by a seventieth more with five);
 //! 2. each face crossing it gives a segment, with the inside of the
 //!    surface on its left seen from the plane's front (decided by the
