@@ -12,7 +12,7 @@
 #![allow(missing_docs)]
 
 use area_shadow::dark::sees_none;
-use area_shadow::{AreaSource, convex_groups};
+use area_shadow::{AreaSource, convex_groups, section_unions};
 use bsp_core::{ConvexPolygon, GridPoint};
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::Rng;
@@ -225,6 +225,11 @@ fn ring(c: &mut Criterion) {
     eprintln!("local_cores_1024_triangles: {cores} cores");
     c.bench_function("local_cores_1024_triangles", |b| {
         b.iter(|| black_box(convex_groups(&faces, &objects)))
+    });
+    let sections = section_unions(&faces, &objects).len();
+    eprintln!("sections_1024_triangles: {sections} sections");
+    c.bench_function("sections_1024_triangles", |b| {
+        b.iter(|| black_box(section_unions(&faces, &objects)))
     });
 }
 
