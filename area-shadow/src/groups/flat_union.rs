@@ -44,10 +44,21 @@ pub struct FlatUnion {
     /// Its holes, each clockwise.
     holes: Vec<Vec<GridPoint>>,
     support: Plane,
-    /// For a section through a closed surface (module `section`), its
-    /// axis: it casts only under lights whose plane's normal is nearest
-    /// to that axis.
-    axis: Option<usize>,
+    /// For a section through a closed surface (module `section`): what
+    /// it casts under.
+    section: Option<Section>,
+}
+
+/// What a section through a closed surface casts under: a light whose
+/// plane's normal is nearest to its axis (the others see it nearly edge
+/// on), with all of the surface in front. (A segment from a point of the
+/// section, inside the surface, to the light must cross the surface only
+/// when the light is outside; the light's plane then separates them.)
+#[derive(Debug, Clone, PartialEq)]
+struct Section {
+    axis: usize,
+    /// The surface's corners.
+    surface: Vec<GridPoint>,
 }
 
 impl FlatUnion {
@@ -61,10 +72,6 @@ impl FlatUnion {
         cycles: Vec<Vec<GridPoint>>,
         support: Plane,
     ) -> Option<Self> {
-        let corners: usize = cycles.iter().map(Vec::len).sum();
-        if corners > MAX_OUTLINE || cycles.iter().any(|c| c.len() < 3) {
-            return None;
-        }
         let union = Self::of_cycles(pieces, cycles, support, None)?;
         let n = union.outline.len();
         let convex = (0..n).all(|i| {
@@ -74,16 +81,19 @@ impl FlatUnion {
         ((!convex || !union.holes.is_empty()) && union.is_simple()).then_some(union)
     }
 
-    /// A section through a closed surface of pieces `pieces` along `axis`
-    /// (module `section`): the region of `cycles` (as for [`Self::new`],
-    /// in plane `support`), convex or not, if simple.
+    /// A section along `axis` through the closed surface of pieces
+    /// `pieces` with corners `surface` (module `section`): the region of
+    /// `cycles` (as for [`Self::new`], in plane `support`), convex or not,
+    /// if simple.
     pub(super) fn section(
         pieces: Vec<u32>,
         cycles: Vec<Vec<GridPoint>>,
         support: Plane,
         axis: usize,
+        surface: Vec<GridPoint>,
     ) -> Option<Self> {
-        Self::of_cycles(pieces, cycles, support, Some(axis)).filter(Self::is_simple)
+        let section = Section { axis, surface };
+        Self::of_cycles(pieces, cycles, support, Some(section)).filter(Self::is_simple)
     }
 
     /// The union of `cycles` sorted into its outline and holes, if one
@@ -92,7 +102,7 @@ impl FlatUnion {
         pieces: Vec<u32>,
         cycles: Vec<Vec<GridPoint>>,
         support: Plane,
-        axis: Option<usize>,
+        section: Option<Section>,
     ) -> Option<Self> {
         let corners: usize = cycles.iter().map(Vec::len).sum();
         if corners > MAX_OUTLINE || cycles.iter().any(|c| c.len() < 3) {
@@ -103,7 +113,7 @@ impl FlatUnion {
             outline: Vec::new(),
             holes: Vec::new(),
             support,
-            axis,
+            section,
         };
         for cycle in cycles {
             match union.winding(&cycle) {
@@ -125,7 +135,7 @@ impl FlatUnion {
     /// coplanar pieces.
     #[cfg(test)]
     pub(super) fn axis(&self) -> Option<usize> {
-        self.axis
+        self.section.as_ref().map(|s| s.axis)
     }
 
     /// The sign of a cycle's area seen from the front: `Greater` when it
@@ -149,14 +159,19 @@ impl FlatUnion {
     /// planes with the part behind all of them: the points from which the
     /// pieces together hide all of the light. Empty when the union does not
     /// lie strictly in front of the light, or would need too many parts,
-    /// and for a section under a light whose plane's normal is nearer to
-    /// another axis.
+    /// and for a section but under the lights it casts under
+    /// ([`Section`]).
     pub fn umbra_parts(&self, light: &AreaSource) -> Vec<Vec<Plane>> {
-        if self
-            .axis
-            .is_some_and(|axis| light.support().dominant_axis() != axis)
-        {
-            return Vec::new();
+        if let Some(section) = &self.section {
+            let facing = light.support().dominant_axis() == section.axis;
+            if !facing
+                || section
+                    .surface
+                    .iter()
+                    .any(|&p| light.side_of_point(p) != Side::Front)
+            {
+                return Vec::new();
+            }
         }
         if self
             .outline

@@ -31,12 +31,15 @@
 //!    inset is tried.
 //!
 //! A section's union casts only under lights whose plane's normal is
-//! nearest to its axis ([`FlatUnion::umbra_parts`]): the others see it
-//! nearly edge on, and another axis's section serves them.
+//! nearest to its axis, with all of the surface in front
+//! ([`FlatUnion::umbra_parts`]): the others see it nearly edge on, and
+//! another axis's section serves them; and a segment from a point of the
+//! section to the light crosses the surface only when the light is
+//! outside it, as the light's plane then makes sure.
 
 use super::flat_union::FlatUnion;
 use super::winding::winding_number;
-use bsp_core::predicates::orient3d_f64;
+use bsp_core::predicates::{Side, orient3d_f64, side_of_point};
 use bsp_core::{GridPoint, Plane};
 use std::collections::HashMap;
 
@@ -85,6 +88,8 @@ struct Surface<'a> {
     counter_clockwise: Vec<bool>,
     /// Per face, its box (grid units).
     boxes: Vec<([f64; 3], [f64; 3])>,
+    /// The surface's corners, ascending.
+    corners: Vec<GridPoint>,
 }
 
 /// A point where an edge of the surface crosses a section's plane: the
@@ -124,11 +129,15 @@ impl<'a> Surface<'a> {
                 (lo, hi)
             })
             .collect();
+        let mut corners: Vec<GridPoint> = outlines.iter().flat_map(|o| o.iter().copied()).collect();
+        corners.sort_unstable();
+        corners.dedup();
         Self {
             outlines,
             faces,
             counter_clockwise,
             boxes,
+            corners,
         }
     }
 
@@ -156,7 +165,13 @@ impl<'a> Surface<'a> {
                 if !self.holds(&cycles, axis, level, &crossings) {
                     return None;
                 }
-                FlatUnion::section(pieces.to_vec(), cycles, *support.as_ref()?, axis)
+                FlatUnion::section(
+                    pieces.to_vec(),
+                    cycles,
+                    *support.as_ref()?,
+                    axis,
+                    self.corners.clone(),
+                )
             });
             unions.extend(union);
         }
@@ -167,11 +182,7 @@ impl<'a> Surface<'a> {
     /// among [`LEVELS`] across the surface whose section is widest.
     fn widest_levels(&self, axis: usize) -> Vec<i64> {
         let coordinate = |p: &GridPoint| i64::from(p.to_array()[axis]);
-        let mut taken: Vec<i64> = self
-            .outlines
-            .iter()
-            .flat_map(|o| o.iter().map(coordinate))
-            .collect();
+        let mut taken: Vec<i64> = self.corners.iter().map(coordinate).collect();
         taken.sort_unstable();
         taken.dedup();
         let (Some(&lo), Some(&hi)) = (taken.first(), taken.last()) else {
@@ -296,25 +307,22 @@ impl<'a> Surface<'a> {
                 return false;
             }
             let face = &self.faces[f];
-            let (sp, sq) = (
-                bsp_core::predicates::side_of_point(face, p),
-                bsp_core::predicates::side_of_point(face, q),
-            );
-            if sp == sq && sp != bsp_core::predicates::Side::On {
+            let (sp, sq) = (side_of_point(face, p), side_of_point(face, q));
+            if sp == sq && sp != Side::On {
                 return false;
             }
-            if sp == bsp_core::predicates::Side::On && sq == bsp_core::predicates::Side::On {
+            if sp == Side::On && sq == Side::On {
                 // In the face's plane: taken to meet it.
                 return true;
             }
             // The line crosses the plane at one point, inside the closed
             // outline when it turns no way against any edge.
             let n = outline.len();
-            let turns: Vec<bsp_core::predicates::Side> = (0..n)
+            let turns: Vec<Side> = (0..n)
                 .map(|i| orient3d_f64(a, b, outline[i].to_f64(), outline[(i + 1) % n].to_f64()))
                 .collect();
-            let positive = turns.contains(&bsp_core::predicates::Side::Front);
-            let negative = turns.contains(&bsp_core::predicates::Side::Back);
+            let positive = turns.contains(&Side::Front);
+            let negative = turns.contains(&Side::Back);
             !(positive && negative)
         })
     }
@@ -661,6 +669,53 @@ mod tests {
             }
         }
         assert!(tried > 100, "{tried} points in the section");
+    }
+
+    /// A section casts under a light above the torus facing its axis; not
+    /// under one whose plane cuts the torus (in its hole: a section's
+    /// point sees it without crossing the surface), nor one facing
+    /// another axis.
+    #[test]
+    fn a_section_casts_under_a_light_clear_of_the_surface() {
+        let (triangles, planes) = torus(4000.0, 1500.0, 12, 8);
+        let outlines: Vec<&[GridPoint]> = triangles.iter().map(|t| &t[..]).collect();
+        let pieces: Vec<u32> = (0..outlines.len() as u32).collect();
+        let unions = sections(&outlines, &planes, &pieces);
+        let g = |x: i64, y: i64, z: i64| GridPoint::new(x, y, z).expect("a grid point");
+        let square = |y: i64| {
+            let corners = [
+                g(-500, y, -500),
+                g(500, y, -500),
+                g(500, y, 500),
+                g(-500, y, 500),
+            ];
+            crate::AreaSource::from_grid_points(&corners).expect("a light")
+        };
+        let casting = |light: &crate::AreaSource| {
+            unions
+                .iter()
+                .filter(|u| !u.umbra_parts(light).is_empty())
+                .count()
+        };
+        let above = square(9000);
+        assert!(casting(&above) >= 1);
+        assert_eq!(casting(&square(300)), 0);
+        // Facing -x, beside the torus.
+        let wall = [
+            g(9000, -500, -500),
+            g(9000, -500, 500),
+            g(9000, 500, 500),
+            g(9000, 500, -500),
+        ];
+        let side = crate::AreaSource::from_grid_points(&wall).expect("a light");
+        for (light, axis) in [(&above, 1), (&side, 0)] {
+            assert!(
+                unions
+                    .iter()
+                    .filter(|u| !u.umbra_parts(light).is_empty())
+                    .all(|u| u.axis() == Some(axis))
+            );
+        }
     }
 
     /// A convex body has no section: its own umbra is exact.
