@@ -312,14 +312,7 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
     let mut out: Vec<ConvexGroup> = groups
         .into_iter()
         .flat_map(|members| {
-            let outlines: Vec<&[GridPoint]> = members
-                .iter()
-                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
-                .collect();
-            let supports: Vec<Plane> = members
-                .iter()
-                .map(|&k| *pieces[k as usize].support())
-                .collect();
+            let (outlines, supports) = members_of(&members, &outlines, pieces);
             // A closed surface with no kernel may stand for several
             // cores, a group each.
             let shapes: Vec<Shape> = if supports.iter().all(|s| *s == supports[0]) {
@@ -551,20 +544,29 @@ pub fn section_unions(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<
     groups
         .into_iter()
         .flat_map(|members| {
-            let outlines: Vec<&[GridPoint]> = members
-                .iter()
-                .map(|&k| outlines[k as usize].as_deref().expect("grid outline"))
-                .collect();
-            let supports: Vec<Plane> = members
-                .iter()
-                .map(|&k| *pieces[k as usize].support())
-                .collect();
+            let (outlines, supports) = members_of(&members, &outlines, pieces);
             match Solid::concave_faces(&outlines, &supports) {
                 Some(faces) => section::sections(&outlines, &faces, &members),
                 None => Vec::new(),
             }
         })
         .collect()
+}
+
+/// The grid outlines and the planes of the pieces `members` of an
+/// edge-connected set (`outlines` by piece, each set's pieces' present).
+fn members_of<'a>(
+    members: &[u32],
+    outlines: &'a [Option<Vec<GridPoint>>],
+    pieces: &[ConvexPolygon],
+) -> (Vec<&'a [GridPoint]>, Vec<Plane>) {
+    members
+        .iter()
+        .map(|&k| {
+            let outline = outlines[k as usize].as_deref().expect("grid outline");
+            (outline, *pieces[k as usize].support())
+        })
+        .unzip()
 }
 
 /// The grid outlines of the pieces (of those that join groups), and the

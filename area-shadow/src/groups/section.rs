@@ -101,6 +101,9 @@ struct Crossing {
     at: [f64; 2],
 }
 
+/// A loop of points in a section's plane (in-plane coordinates).
+type Loop = Vec<[f64; 2]>;
+
 /// The in-plane coordinates of an axis's planes: `(u, v, axis)` is
 /// right-handed, so counter-clockwise in `(u, v)` is so seen from `+axis`.
 fn plane_axes(axis: usize) -> [usize; 2] {
@@ -151,12 +154,12 @@ impl<'a> Surface<'a> {
         // Outer loops (counter-clockwise) with the holes (clockwise) in
         // them: a union each.
         let points = |l: &Vec<Crossing>| l.iter().map(|c| c.at).collect::<Vec<_>>();
-        let (outer, holes): (Vec<Vec<[f64; 2]>>, Vec<Vec<[f64; 2]>>) =
+        let (outer, holes): (Vec<Loop>, Vec<Loop>) =
             loops.iter().map(points).partition(|l| area(l) > 0.0);
         let mut unions = Vec::new();
         for o in &outer {
-            let inside: Vec<&Vec<[f64; 2]>> = holes.iter().filter(|h| contains(o, h[0])).collect();
-            let region: Vec<&Vec<[f64; 2]>> = std::iter::once(o).chain(inside).collect();
+            let inside: Vec<&Loop> = holes.iter().filter(|h| contains(o, h[0])).collect();
+            let region: Vec<&Loop> = std::iter::once(o).chain(inside).collect();
             let union = INSETS.iter().find_map(|&inset| {
                 let cycles: Vec<Vec<GridPoint>> = region
                     .iter()

@@ -2,7 +2,7 @@
 //! core of their kernel, and the umbra it casts, against the exact
 //! occlusion oracle of the surface's own triangles.
 
-use crate::oracle::{Caster, blocked, gp, light_samples, samples};
+use crate::oracle::{Caster, blocked, gp, light_samples, light_targets, samples};
 use area_shadow::dark::{Body, sees_none};
 use area_shadow::{
     AreaSource, Class, SceneLight, ShadowGroups, compute_shadows_with_groups, convex_groups,
@@ -181,11 +181,7 @@ pub fn floor_umbra(faces: Vec<ConvexPolygon>, light: &AreaSource, groups: bool) 
         compute_shadows_with_groups(&pieces, &flags, &groups, &lights, &BuildOptions::default())
             .unwrap();
     let casters: Vec<Caster> = pieces[1..].iter().map(Caster::new).collect();
-    let targets: Vec<[f64; 3]> = light
-        .vertices()
-        .map(GridPoint::to_f64)
-        .chain(light_samples(light.polygon()))
-        .collect();
+    let targets: Vec<[f64; 3]> = light_targets(light);
     let mut umbra = 0.0;
     for f in out.fragments.iter().filter(|f| f.polygon.source() == 0) {
         let class = Class::of(f, 0);
@@ -278,11 +274,7 @@ pub fn proven_dark(
         return false;
     }
     let casters: Vec<Caster> = faces.iter().map(Caster::new).collect();
-    let targets: Vec<[f64; 3]> = light
-        .vertices()
-        .map(GridPoint::to_f64)
-        .chain(light_samples(light.polygon()))
-        .collect();
+    let targets: Vec<[f64; 3]> = light_targets(light);
     for q in samples(square) {
         for x in &targets {
             assert!(

@@ -92,6 +92,16 @@ pub fn light_samples(light: &ConvexPolygon) -> Vec<[f64; 3]> {
     out
 }
 
+/// The points of a light the oracle looks at: its corners and
+/// [`light_samples`].
+pub fn light_targets(light: &area_shadow::AreaSource) -> Vec<[f64; 3]> {
+    light
+        .vertices()
+        .map(GridPoint::to_f64)
+        .chain(light_samples(light.polygon()))
+        .collect()
+}
+
 /// Interior sample points of a fragment: its centroid and each vertex
 /// moved a fifth of the way to it.
 pub fn samples(polygon: &ConvexPolygon) -> Vec<[f64; 3]> {
