@@ -159,8 +159,9 @@ impl FlatUnion {
     /// planes with the part behind all of them: the points from which the
     /// pieces together hide all of the light. Empty when the union does not
     /// lie strictly in front of the light, or would need too many parts,
-    /// and for a section but under the lights it casts under
-    /// ([`Section`]).
+    /// and for a section through a closed surface ([`crate::section_unions`])
+    /// but under a light whose plane's normal is nearest to its axis, with
+    /// all of the surface in front.
     pub fn umbra_parts(&self, light: &AreaSource) -> Vec<Vec<Plane>> {
         if let Some(section) = &self.section {
             let facing = light.support().dominant_axis() == section.axis;
