@@ -8,9 +8,8 @@
 //! cores and flat sections inside the ring (the triangles alone give
 //! none), `umbra dm` those and cells proven dark past them.
 
-use crate::closed_mesh::{floor_umbra, mesh_scene};
+use crate::closed_mesh::{floor_umbra, mesh_scene, true_floor_umbra};
 use crate::folder;
-use crate::open_box::crosses;
 
 /// The ring's triangles, counter-clockwise seen from outside: 12 x 8
 /// quads of a torus about the vertical axis, its ring of radius 1.5 at
@@ -48,7 +47,9 @@ fn a_ring_hides_its_joint_umbra() {
     let light: Vec<[f64; 3]> = (0..5 * 5)
         .map(|k| [0.9 + 0.3 * (k % 5) as f64, 6.0, -0.6 + 0.3 * (k / 5) as f64])
         .collect();
-    let truth = true_floor_umbra(&light);
+    // The light's middle at x = 1.5, 6 high; the ring up to 3.1 high
+    // and 2.1 out: its shadow from x = -6 to 3.6, |z| < 4.4.
+    let truth = true_floor_umbra(&ring(), &light, [-6.5, 4.5], [-5.0, 5.0]);
     for command in ["shadow", "dm"] {
         let floor = floor_umbra(dir.path(), command, &light);
         let umbra_area = floor.umbra_area;
@@ -68,32 +69,4 @@ fn a_ring_hides_its_joint_umbra() {
             "the floor under the tube is not umbra (umbra area {umbra_area})"
         );
     }
-}
-
-/// The area of the floor that sees none of the points `light` past the
-/// ring, by the ray oracle on a grid of points 0.1 apart over all the
-/// ring's shadow (the light's middle at x = 1.5, 6 high; the ring up to
-/// 3.1 high and 2.1 out: the shadow from x = -6 to 3.6, |z| < 4.4).
-fn true_floor_umbra(light: &[[f64; 3]]) -> f64 {
-    let triangles = ring();
-    let step = 0.1;
-    let mut dark = 0;
-    for i in 0..110 {
-        for j in 0..100 {
-            let p = [
-                -6.5 + step * (f64::from(i) + 0.5),
-                0.0,
-                -5.0 + step * (f64::from(j) + 0.5),
-            ];
-            let hidden = |l: &[f64; 3]| {
-                triangles
-                    .iter()
-                    .any(|t| crosses(p, *l, &t[..]) != Some(false))
-            };
-            if light.iter().all(hidden) {
-                dark += 1;
-            }
-        }
-    }
-    f64::from(dark) * step * step
 }
