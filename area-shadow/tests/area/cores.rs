@@ -103,10 +103,13 @@ fn umbrae_are_dark(
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(16))]
 
-    /// Tori of any proportions, wound either way: no point of any core's
-    /// umbra sees the light past the torus's own triangles.
+    /// Tori of any proportions, wound either way, under a light above:
+    /// no point of any core's umbra, nor of any section's, sees the light
+    /// past the torus's own triangles. Both have umbrae under a light
+    /// narrower than 3,000 (one as wide as the ring leaves a section's
+    /// none).
     #[test]
-    fn a_torus_hides_the_light_from_its_cores_umbrae(
+    fn a_torus_hides_the_light_from_its_cores_and_sections_umbrae(
         centre in prop::array::uniform3(-2000.0_f64..2000.0),
         big in 2500.0_f64..6000.0,
         thickness in 0.15_f64..0.6,
@@ -120,34 +123,14 @@ proptest! {
         let faces = torus(centre, (big, big * thickness), (rings, segments), inward);
         let groups = convex_groups(&faces, &vec![Some(0); faces.len()]);
         prop_assert!(!groups.is_empty());
+        let narrow = light.2 < 3000;
         let light = ceiling_light(light.0, light.1, light.2, light.3);
         let umbrae: Vec<_> = groups.iter().filter_map(|g| g.umbra_planes(&light)).collect();
         prop_assert!(!umbrae.is_empty(), "the torus is below the light");
         umbrae_are_dark(&faces, &light, &umbrae, &points)?;
-    }
-
-    /// Tori of any proportions, wound either way, have a section in the
-    /// ring's plane with an umbra under a light above (narrower than the
-    /// cores': one as wide as the ring leaves a section's none); no point
-    /// of any section's umbra sees the light past the torus's own
-    /// triangles.
-    #[test]
-    fn a_torus_hides_the_light_from_its_sections_umbrae(
-        centre in prop::array::uniform3(-2000.0_f64..2000.0),
-        big in 2500.0_f64..6000.0,
-        thickness in 0.15_f64..0.6,
-        rings in 8_u32..24,
-        segments in 6_u32..14,
-        inward in any::<bool>(),
-        light in (-6000_i64..2000, -6000_i64..2000, 500_i64..3000, 20_000_i64..26_000),
-        points in prop::collection::vec(prop::array::uniform3(-12_000_i64..12_000), 80),
-    ) {
-        let centre = [centre[0], centre[1] + 10_000.0, centre[2]];
-        let faces = torus(centre, (big, big * thickness), (rings, segments), inward);
         let unions = section_unions(&faces, &vec![Some(0); faces.len()]);
-        let light = ceiling_light(light.0, light.1, light.2, light.3);
         let parts: Vec<_> = unions.iter().flat_map(|u| u.umbra_parts(&light)).collect();
-        prop_assert!(!parts.is_empty(), "{} sections, no umbra", unions.len());
+        prop_assert!(!narrow || !parts.is_empty(), "{} sections, no umbra", unions.len());
         umbrae_are_dark(&faces, &light, &parts, &points)?;
     }
 }
