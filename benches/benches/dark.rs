@@ -17,9 +17,8 @@ use bsp_core::{ConvexPolygon, GridPoint};
 use criterion::{Criterion, criterion_group, criterion_main};
 use rand::Rng;
 use std::hint::black_box;
-use umbra_benches::blob::bumpy_sphere;
+use umbra_benches::closed_meshes::{bumpy_sphere, torus};
 use umbra_benches::random::rng;
-use umbra_benches::ring::torus;
 
 fn g(x: i64, y: i64, z: i64) -> GridPoint {
     GridPoint::new(x, y, z).unwrap()

@@ -246,7 +246,7 @@ pub struct CsgArgs {
 /// Options of `umbra demo`.
 #[derive(Debug, Args)]
 pub struct DemoArgs {
-    /// The scene: `room`, `room1`, `tetra`, `window`, `office` or `cubes`.
+    /// The scene: `room`, `room1`, `tetra`, `window`, `office`, `cubes` or `meshes`.
     #[arg(default_value = "room")]
     pub name: String,
     /// Folder to write into [default: a folder named after the scene].

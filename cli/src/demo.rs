@@ -7,7 +7,9 @@
 //! - `window`: the same room with a window, two boxes, a point light under
 //!   the ceiling and sunlight coming through the window;
 //! - `office` and `cubes`: the discontinuity-mesh scenes (`umbra dm`), see
-//!   `demo_dm`.
+//!   `demo_dm`;
+//! - `meshes`: a torus and a bumpy sphere (dense closed meshes) over a
+//!   floor, their umbra a joint one of many triangles, see `demo_meshes`.
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
@@ -18,7 +20,9 @@ use crate::error::{Error, Result};
 use crate::vec3::{cross, dot, sub};
 
 /// The names of the built-in scenes.
-pub const DEMOS: &[&str] = &["room", "room1", "tetra", "window", "office", "cubes"];
+pub const DEMOS: &[&str] = &[
+    "room", "room1", "tetra", "window", "office", "cubes", "meshes",
+];
 
 /// Recursion depth of the `tetra` demo: 4 gives 256 triangles.
 pub const TETRA_DEPTH: u32 = 4;
@@ -108,6 +112,7 @@ impl DemoFiles {
                 })
             }
             "window" => Ok(window_files()),
+            "meshes" => Ok(crate::demo_meshes::meshes_files()),
             "room" | "room1" => {
                 let lights = if name == "room" { 2 } else { 1 };
                 let window = window_files();

@@ -18,75 +18,7 @@ use umbra::load_ply;
 /// icosahedron split twice, its corners on radii 0.94 to 1.06 about (0,
 /// 2.5, 0).
 fn bumpy_sphere() -> Vec<[[f64; 3]; 3]> {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let unit = |v: [f64; 3]| {
-        let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-        v.map(|c| c / l)
-    };
-    let mut corners: Vec<[f64; 3]> = [
-        [-1.0, t, 0.0],
-        [1.0, t, 0.0],
-        [-1.0, -t, 0.0],
-        [1.0, -t, 0.0],
-        [0.0, -1.0, t],
-        [0.0, 1.0, t],
-        [0.0, -1.0, -t],
-        [0.0, 1.0, -t],
-        [t, 0.0, -1.0],
-        [t, 0.0, 1.0],
-        [-t, 0.0, -1.0],
-        [-t, 0.0, 1.0],
-    ]
-    .map(unit)
-    .to_vec();
-    let mut faces: Vec<[usize; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
-    for _ in 0..2 {
-        let mut middles = std::collections::HashMap::new();
-        let mut split = Vec::new();
-        for [a, b, c] in faces {
-            let mut middle = |i: usize, j: usize| {
-                *middles.entry((i.min(j), i.max(j))).or_insert_with(|| {
-                    let m = unit(std::array::from_fn(|k| corners[i][k] + corners[j][k]));
-                    corners.push(m);
-                    corners.len() - 1
-                })
-            };
-            let (ab, bc, ca) = (middle(a, b), middle(b, c), middle(c, a));
-            split.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
-        }
-        faces = split;
-    }
-    // Radii from a fixed sequence: the same mesh every run.
-    let placed: Vec<[f64; 3]> = corners
-        .iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let radius = 1.0 + 0.06 * ((i * 37 % 19) as f64 / 9.0 - 1.0);
-            [radius * c[0], 2.5 + radius * c[1], radius * c[2]]
-        })
-        .collect();
-    faces.iter().map(|f| f.map(|i| placed[i])).collect()
+    umbra::shapes::bumpy_sphere([0.0, 2.5, 0.0], 1.0, 0.06, 2)
 }
 
 fn scene() -> String {

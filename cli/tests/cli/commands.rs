@@ -27,7 +27,7 @@ fn demo_writes_the_scene_and_prints_its_path() {
     let run = umbra(dir.path(), &["demo", "nowhere"]);
     assert_eq!(run.code, 2);
     assert!(run.stderr.contains(
-        "unknown demo scene `nowhere` (known: room, room1, tetra, window, office, cubes)"
+        "unknown demo scene `nowhere` (known: room, room1, tetra, window, office, cubes, meshes)"
     ));
 }
 

@@ -138,3 +138,47 @@ fn dm_demos_have_their_sizes_and_run_with_umbra_dm() {
     let json = std::fs::read_to_string(dir.path().join("o/office.json")).unwrap();
     assert!(json.contains("\"dm\""), "{json}");
 }
+
+#[test]
+fn the_meshes_demo_finds_most_of_the_joint_umbra_under_both_meshes() {
+    use crate::closed_mesh::{floor_umbra, true_floor_umbra};
+    let dir = folder(&[]);
+    let run = crate::umbra(dir.path(), &["demo", "meshes", "-o", "m"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let m = dir.path().join("m");
+    let scene = Scene::load(m.join("meshes.toml")).unwrap();
+    assert_eq!(scene.polygon_count(), 1 + 1024 + 320);
+    let LightKind::Area { vertices } = &scene.lights[0].kind else {
+        panic!("meshes has an area light");
+    };
+    // Points over the light (a square 0.8 wide, 5 high): its corners, edge
+    // middles and centre.
+    let (lo, hi) = (vertices[0], vertices[2]);
+    let light: Vec<[f64; 3]> = (0..9)
+        .map(|k| {
+            let (s, t) = (f64::from(k % 3) / 2.0, f64::from(k / 3) / 2.0);
+            [
+                lo[0] + s * (hi[0] - lo[0]),
+                lo[1],
+                lo[2] + t * (hi[2] - lo[2]),
+            ]
+        })
+        .collect();
+    // `floor_umbra` runs `umbra shadow scene.toml` and checks every umbra
+    // floor face by the ray oracle.
+    std::fs::copy(m.join("meshes.toml"), m.join("scene.toml")).unwrap();
+    let floor = floor_umbra(&m, "shadow", &light);
+    let torus = umbra::shapes::torus([-1.5, 1.4, -0.3], (1.2, 0.45), (32, 16));
+    let blob = umbra::shapes::bumpy_sphere([1.9, 1.3, 0.4], 0.9, 0.06, 2);
+    // The torus's shadow lies at x < 0.5, the blob's at x > 0.5.
+    let truth = true_floor_umbra(&torus, &light, [-5.0, 0.5], [-4.0, 3.5])
+        + true_floor_umbra(&blob, &light, [0.5, 5.0], [-2.5, 3.5]);
+    // 13.9 in truth; `umbra shadow` finds 13.1 (`umbra dm` 13.4).
+    assert!(
+        floor.umbra_area > 0.85 * truth,
+        "floor umbra {} of {truth}",
+        floor.umbra_area
+    );
+    // Under the torus's tube and the blob's middle, seen from the light's.
+    assert!(floor.umbra_at([-3.75, -0.42]) && floor.umbra_at([2.64, 0.56]));
+}

@@ -15,21 +15,7 @@ use crate::folder;
 /// quads of a torus about the vertical axis, its ring of radius 1.5 at
 /// height 2.5, its tube of radius 0.6.
 fn ring() -> Vec<[[f64; 3]; 3]> {
-    let (rings, segments) = (12, 8);
-    let at = |i: usize, j: usize| {
-        let u = std::f64::consts::TAU * (i % rings) as f64 / rings as f64;
-        let v = std::f64::consts::TAU * (j % segments) as f64 / segments as f64;
-        let r = 1.5 + 0.6 * v.cos();
-        [r * u.cos(), 2.5 + 0.6 * v.sin(), r * u.sin()]
-    };
-    let mut out = Vec::new();
-    for i in 0..rings {
-        for j in 0..segments {
-            let (a, b, c, d) = (at(i, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j));
-            out.extend([[a, b, c], [a, c, d]]);
-        }
-    }
-    out
+    umbra::shapes::torus([0.0, 2.5, 0.0], (1.5, 0.6), (12, 8))
 }
 
 fn scene() -> String {
