@@ -31,7 +31,9 @@
 //! [`dark::sees_none`] proves a region inside it dark, exactly, for the
 //! callers to mark umbra.
 //! [`compute_shadows`] runs point, directional and area lights together,
-//! one mask bit each.
+//! one mask bit each. [`closed_parts`] finds the closed parts of objects'
+//! surfaces, whose faces turned away from a light clear of them cast
+//! nothing.
 //!
 //! Every plane is a plane through three grid points and every side
 //! decision is an exact predicate, so fragments partition their polygons
@@ -61,6 +63,7 @@
 //! assert!((area(Class::Lit) - (80.0 * 80.0 - 18.0 * 18.0)).abs() < 1e-9);
 //! ```
 
+mod closed_parts;
 mod conform;
 pub mod dark;
 mod error;
@@ -76,6 +79,7 @@ mod tree;
 mod volumes;
 
 pub use bsp_core;
+pub use closed_parts::{ClosedPart, closed_parts};
 pub use conform::{ConformingMesh, MeshPoint, conform, conform_fragments};
 pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};

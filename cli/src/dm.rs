@@ -194,7 +194,8 @@ fn area_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<DmLight>> {
 }
 
 /// The pieces of each scene object (piece `k` of object `objects[k]`),
-/// with the object's flags.
+/// with the object's flags: a closed surface when every piece is part of
+/// one (the DM finds an object's closed parts itself when not all are).
 fn grouped(scene: &Scene, objects: &[u32], flags: &[PieceFlags]) -> Vec<(Vec<usize>, PieceFlags)> {
     let mut out: Vec<(Vec<usize>, PieceFlags)> = scene
         .objects
@@ -209,9 +210,13 @@ fn grouped(scene: &Scene, objects: &[u32], flags: &[PieceFlags]) -> Vec<(Vec<usi
         })
         .collect();
     for (k, &o) in objects.iter().enumerate() {
-        let o = o as usize;
-        out[o].0.push(k);
-        out[o].1 = flags[k];
+        let (pieces, object_flags) = &mut out[o as usize];
+        let closed = pieces.is_empty() || object_flags.closed_surface;
+        pieces.push(k);
+        *object_flags = PieceFlags {
+            closed_surface: closed && flags[k].closed_surface,
+            ..flags[k]
+        };
     }
     out
 }
@@ -238,7 +243,7 @@ pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Re
     let Surfaces {
         flags,
         facing_inside,
-    } = surfaces(scene, &pieces, &objects);
+    } = surfaces(&pieces, &objects);
     let groups = grouped(scene, &objects, &flags);
     let objects: Vec<(Vec<ConvexPolygon>, PieceFlags)> = groups
         .iter()

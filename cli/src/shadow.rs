@@ -83,7 +83,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     let Surfaces {
         flags,
         facing_inside,
-    } = surfaces(scene, &pieces, &objects);
+    } = surfaces(&pieces, &objects);
     let groups = ShadowGroups::of_objects(&pieces.polygons, &flags, &objects);
     let out = area_shadow::compute_shadows_with_groups(
         &pieces.polygons,

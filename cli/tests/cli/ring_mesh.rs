@@ -9,7 +9,7 @@
 //! none), `umbra dm` those and cells proven dark past them.
 
 use crate::closed_mesh::{floor_umbra, mesh_scene, true_floor_umbra};
-use crate::folder;
+use crate::{folder, umbra};
 
 /// The ring's triangles, counter-clockwise seen from outside: 12 x 8
 /// quads of a torus about the vertical axis, its ring of radius 1.5 at
@@ -54,5 +54,27 @@ fn a_ring_hides_its_joint_umbra() {
             floor.umbra_at([1.5, 0.0]),
             "the floor under the tube is not umbra (umbra area {umbra_area})"
         );
+    }
+}
+
+/// The ring and the floor in one object: the ring is a closed part of it,
+/// whose faces turned away from the light cast nothing, as when it is an
+/// object of its own; both commands write the same output.
+#[test]
+fn a_ring_in_one_object_with_its_floor_casts_as_an_object_of_its_own() {
+    let apart = scene();
+    let joined = apart.replace("]]]\n\n[[object]]\nname = \"ring\"\npolygons = [", "]], ");
+    assert_ne!(apart, joined);
+    let dir = folder(&[("apart.toml", &apart), ("joined.toml", &joined)]);
+    for command in ["shadow", "dm"] {
+        let mut outputs = Vec::new();
+        for scene in ["apart", "joined"] {
+            let (out, stats) = (format!("{scene}.ply"), format!("{scene}.json"));
+            let args = [command, &format!("{scene}.toml"), "-o", &out, "--stats", &stats];
+            let run = umbra(dir.path(), &args);
+            assert_eq!(run.code, 0, "{command} {scene}: {}", run.stderr);
+            outputs.push(std::fs::read(dir.path().join(out)).unwrap());
+        }
+        assert!(outputs[0] == outputs[1], "{command}: the outputs differ");
     }
 }

@@ -24,8 +24,8 @@ use crate::order::unit_order;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
 use area_shadow::{
-    AreaSource, ConvexGroup, SourceSide, VolumePlanes, convex_groups, flat_unions, section_unions,
-    volume_planes,
+    AreaSource, ConvexGroup, SourceSide, VolumePlanes, closed_parts, convex_groups, flat_unions,
+    section_unions, volume_planes,
 };
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use illum::VisiblePart;
@@ -91,15 +91,33 @@ impl DmScene {
                     .collect()
             })
             .collect();
-        // The lights clear of the object (none on its surface or inside
-        // it): only under those may a closed surface's faces turned away
-        // from the light cast nothing. Decided as the object is added, so
-        // a move into a light decides again.
-        let points: Vec<GridPoint> = polygons
-            .iter()
-            .flat_map(|p| (0..p.len()).filter_map(|i| p.vertex_grid_point(i)))
-            .collect();
-        let clear = light_mask(sources.iter().map(|light| light.clear_of(&points)));
+        // Per polygon, the lights clear of its closed surface facing out
+        // (none on the surface or inside it): only under those may the
+        // surface's faces turned away from the light cast nothing. The
+        // whole object when it is one (`flags.closed_surface`), else each
+        // closed part of it found (a mesh and a floor in one object).
+        // Decided as the object is added, so a move into a light decides
+        // again.
+        let clear_of = |polygons: &mut dyn Iterator<Item = &ConvexPolygon>| {
+            let points: Vec<GridPoint> = polygons
+                .flat_map(|p| (0..p.len()).filter_map(|i| p.vertex_grid_point(i)))
+                .collect();
+            light_mask(sources.iter().map(|light| light.clear_of(&points)))
+        };
+        let mut clear = vec![0_u32; polygons.len()];
+        if flags.closed_surface {
+            clear.fill(clear_of(&mut polygons.iter()));
+        } else if flags.casts_shadows {
+            let objects = vec![0; polygons.len()];
+            for part in closed_parts(&polygons, &objects) {
+                if part.six_volume > 0 {
+                    let lights = clear_of(&mut part.pieces.iter().map(|&k| &polygons[k as usize]));
+                    for &k in &part.pieces {
+                        clear[k as usize] = lights;
+                    }
+                }
+            }
+        }
         let mut in_body = vec![0_u32; polygons.len()];
         for (body, volumes) in bodies.iter().zip(&volumes) {
             let whole = light_mask(volumes.iter().map(|(penumbra, _)| penumbra.is_some()));
@@ -109,7 +127,7 @@ impl DmScene {
         }
         for (i, polygon) in polygons.iter().enumerate() {
             let volumes = if flags.casts_shadows {
-                self.polygon_units(polygon, flags, clear, in_body[i], surface.get(i), &sources)
+                self.polygon_units(polygon, clear[i], in_body[i], surface.get(i), &sources)
             } else {
                 vec![UnitPlanes::default(); sources.len()]
             };
@@ -233,14 +251,14 @@ impl DmScene {
     }
 
     /// What a polygon of a shadow-casting object casts under each light:
-    /// nothing under a light it is turned away from (on a closed surface,
-    /// the light one of those `clear` of it sets) or whose bit `in_body`
-    /// sets (its body casts in its place), else its own volumes and
-    /// internal discontinuities (given its surroundings).
+    /// nothing under a light it is turned away from among those `clear`
+    /// sets (the lights clear of the closed surface facing out it is part
+    /// of) or whose bit `in_body` sets (its body casts in its place), else
+    /// its own volumes and internal discontinuities (given its
+    /// surroundings).
     fn polygon_units(
         &self,
         polygon: &ConvexPolygon,
-        flags: PieceFlags,
         clear: u32,
         in_body: u32,
         around: Option<&Surroundings>,
@@ -250,8 +268,7 @@ impl DmScene {
             .iter()
             .enumerate()
             .map(|(l, light)| {
-                let turned_away = flags.closed_surface
-                    && clear & (1 << l) != 0
+                let turned_away = clear & (1 << l) != 0
                     && matches!(
                         light.side_of(polygon.support()),
                         SourceSide::Back | SourceSide::In

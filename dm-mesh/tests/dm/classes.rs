@@ -242,6 +242,51 @@ proptest! {
         check_against_oracle(&t, true)?;
         check_against_area_shadow(&t)?;
     }
+
+    /// A box and the floor in one object: the box is a closed part of the
+    /// object, whose faces turned away from the light cast nothing, as
+    /// when it is an object of its own; the cells are the same, and agree
+    /// with the oracle.
+    #[test]
+    fn a_closed_part_of_an_object_casts_as_a_closed_object(
+        lo in prop::array::uniform3(-80_i64..40),
+        size in prop::array::uniform3(6_i64..70),
+        cuts in any::<u32>(),
+        light in (-120_i64..60, -120_i64..60, 20_i64..100, 20_i64..100, 180_i64..260, -40_i64..40),
+    ) {
+        let lo = [lo[0], 40 + lo[1].rem_euclid(60), lo[2]];
+        let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
+        let (x0, z0, w, d, h, tilt) = light;
+        let light = crate::common::light(x0, z0, w, d, h, tilt);
+        let boxed = triangulated_cuboid(lo, hi, cuts);
+        let mut together = vec![floor(500)];
+        together.extend(boxed.iter().cloned());
+        let one = TestScene {
+            objects: vec![(together, PieceFlags::default())],
+            light: light.clone(),
+        };
+        let two = TestScene {
+            objects: vec![
+                (vec![floor(500)], PieceFlags::default()),
+                (boxed, closed_surface_flags()),
+            ],
+            light,
+        };
+        let ((a, a_ids), (b, b_ids)) = (one.build(), two.build());
+        let a_pieces = a.object_pieces(a_ids[0]).unwrap();
+        let b_pieces: Vec<_> = b_ids.iter().flat_map(|&id| b.object_pieces(id).unwrap().iter().copied()).collect();
+        prop_assert_eq!(a_pieces.len(), b_pieces.len());
+        for (&pa, &pb) in a_pieces.iter().zip(&b_pieces) {
+            let (ra, rb) = (a.receiver(pa).unwrap(), b.receiver(pb).unwrap());
+            prop_assert_eq!(ra.cell_count(), rb.cell_count());
+            prop_assert_eq!(ra.node_count(), rb.node_count());
+            let (ca, cb) = (class_areas(&a, pa), class_areas(&b, pb));
+            for (x, y) in ca.iter().zip(&cb) {
+                prop_assert!((x - y).abs() <= 1e-9 * (1.0 + x.abs()), "{:?} {:?}", ca, cb);
+            }
+        }
+        check_against_oracle(&one, false)?;
+    }
 }
 
 proptest! {
