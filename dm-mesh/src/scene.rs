@@ -437,6 +437,12 @@ impl DmScene {
     /// Adds an object of convex polygons with grid-point vertices (their
     /// `source` is kept as a tag) and casts its shadows; every receiver
     /// it reaches gets its discontinuities.
+    ///
+    /// `flags.closed_surface` says the whole object is a closed surface
+    /// facing out; when it does not, the object's closed parts facing out
+    /// are found ([`area_shadow::closed_parts`]). Either way the faces of
+    /// such a surface turned away from a light clear of it cast nothing
+    /// under that light.
     pub fn add_object(
         &mut self,
         polygons: Vec<ConvexPolygon>,
