@@ -194,8 +194,8 @@ fn area_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<DmLight>> {
 }
 
 /// The pieces of each scene object (piece `k` of object `objects[k]`),
-/// with the object's flags: a closed surface when every piece is part of
-/// one (the DM finds an object's closed parts itself when not all are).
+/// with the object's flags: closed surfaces in it when any piece is part
+/// of one (the DM finds which are).
 fn grouped(scene: &Scene, objects: &[u32], flags: &[PieceFlags]) -> Vec<(Vec<usize>, PieceFlags)> {
     let mut out: Vec<(Vec<usize>, PieceFlags)> = scene
         .objects
@@ -211,10 +211,10 @@ fn grouped(scene: &Scene, objects: &[u32], flags: &[PieceFlags]) -> Vec<(Vec<usi
         .collect();
     for (k, &o) in objects.iter().enumerate() {
         let (pieces, object_flags) = &mut out[o as usize];
-        let closed = pieces.is_empty() || object_flags.closed_surface;
+        let closed = !pieces.is_empty() && object_flags.closed_surface;
         pieces.push(k);
         *object_flags = PieceFlags {
-            closed_surface: closed && flags[k].closed_surface,
+            closed_surface: closed || flags[k].closed_surface,
             ..flags[k]
         };
     }

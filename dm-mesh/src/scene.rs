@@ -438,11 +438,13 @@ impl DmScene {
     /// `source` is kept as a tag) and casts its shadows; every receiver
     /// it reaches gets its discontinuities.
     ///
-    /// `flags.closed_surface` says the whole object is a closed surface
-    /// facing out; when it does not, the object's closed parts facing out
-    /// are found ([`area_shadow::closed_parts`]). Either way the faces of
-    /// such a surface turned away from a light clear of it cast nothing
-    /// under that light.
+    /// `flags.closed_surface` says the object has closed parts facing out
+    /// (all of it, or a closed mesh among other polygons): they are found
+    /// ([`area_shadow::closed_parts`]), and the faces of each turned away
+    /// from a light clear of it cast nothing under that light (its faces
+    /// towards the light cast its whole shadow; only a joint umbra of
+    /// faces turned away, no single face's, is left to the bodies and
+    /// proofs that find it).
     pub fn add_object(
         &mut self,
         polygons: Vec<ConvexPolygon>,

@@ -70,7 +70,14 @@ fn a_ring_in_one_object_with_its_floor_casts_as_an_object_of_its_own() {
         let mut outputs = Vec::new();
         for scene in ["apart", "joined"] {
             let (out, stats) = (format!("{scene}.ply"), format!("{scene}.json"));
-            let args = [command, &format!("{scene}.toml"), "-o", &out, "--stats", &stats];
+            let args = [
+                command,
+                &format!("{scene}.toml"),
+                "-o",
+                &out,
+                "--stats",
+                &stats,
+            ];
             let run = umbra(dir.path(), &args);
             assert_eq!(run.code, 0, "{command} {scene}: {}", run.stderr);
             outputs.push(std::fs::read(dir.path().join(out)).unwrap());

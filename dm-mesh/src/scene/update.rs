@@ -91,30 +91,29 @@ impl DmScene {
                     .collect()
             })
             .collect();
-        // Per polygon, the lights clear of its closed surface facing out
-        // (none on the surface or inside it): only under those may the
-        // surface's faces turned away from the light cast nothing. The
-        // whole object when it is one (`flags.closed_surface`), else each
-        // closed part of it found (a mesh and a floor in one object).
-        // Decided as the object is added, so a move into a light decides
-        // again.
-        let clear_of = |polygons: &mut dyn Iterator<Item = &ConvexPolygon>| {
-            let points: Vec<GridPoint> = polygons
-                .flat_map(|p| (0..p.len()).filter_map(|i| p.vertex_grid_point(i)))
-                .collect();
-            light_mask(sources.iter().map(|light| light.clear_of(&points)))
-        };
+        // Per polygon, the lights clear of the closed surface facing out
+        // it is part of (none on the surface or inside it): only under
+        // those may the surface's faces turned away from the light cast
+        // nothing. The object's closed parts, when its flags say it has
+        // some (the whole object, or a mesh and a floor in one). Decided
+        // as the object is added, so a move into a light decides again.
         let mut clear = vec![0_u32; polygons.len()];
-        if flags.closed_surface {
-            clear.fill(clear_of(&mut polygons.iter()));
-        } else if flags.casts_shadows {
-            let objects = vec![0; polygons.len()];
-            for part in closed_parts(&polygons, &objects) {
-                if part.six_volume > 0 {
-                    let lights = clear_of(&mut part.pieces.iter().map(|&k| &polygons[k as usize]));
-                    for &k in &part.pieces {
-                        clear[k as usize] = lights;
-                    }
+        if flags.closed_surface && flags.casts_shadows {
+            for part in closed_parts(&polygons, &vec![0; polygons.len()]) {
+                if part.six_volume <= 0 {
+                    continue;
+                }
+                let points: Vec<GridPoint> = part
+                    .pieces
+                    .iter()
+                    .flat_map(|&k| {
+                        let p = &polygons[k as usize];
+                        (0..p.len()).filter_map(|i| p.vertex_grid_point(i))
+                    })
+                    .collect();
+                let lights = light_mask(sources.iter().map(|light| light.clear_of(&points)));
+                for &k in &part.pieces {
+                    clear[k as usize] = lights;
                 }
             }
         }

@@ -243,8 +243,8 @@ proptest! {
         check_against_area_shadow(&t)?;
     }
 
-    /// A box and the floor in one object: the box is a closed part of the
-    /// object, whose faces turned away from the light cast nothing, as
+    /// A box and the floor in one object said to have closed parts: the
+    /// box is one, whose faces turned away from the light cast nothing, as
     /// when it is an object of its own; the cells are the same, and agree
     /// with the oracle.
     #[test]
@@ -262,7 +262,7 @@ proptest! {
         let mut together = vec![floor(500)];
         together.extend(boxed.iter().cloned());
         let one = TestScene {
-            objects: vec![(together, PieceFlags::default())],
+            objects: vec![(together, closed_surface_flags())],
             light: light.clone(),
         };
         let two = TestScene {
