@@ -319,11 +319,51 @@ fn triangles(ts: &[[[i64; 3]; 3]], offset: [i64; 3]) -> Vec<ConvexPolygon> {
         .collect()
 }
 
-fn two_sided() -> PieceFlags {
+/// Flags of the case's object `k` (from 0): two-sided, and every other
+/// one said to have closed parts (the DM finds which, and skips their
+/// faces turned away from a light clear of them).
+fn object_flags(k: usize) -> PieceFlags {
     PieceFlags {
         two_sided: true,
+        closed_surface: k % 2 == 1,
         ..PieceFlags::default()
     }
+}
+
+/// Per polygon of `objects`, its flags for area-shadow: the object's, a
+/// closed surface only where the polygon is part of a closed part facing
+/// out (of an object said to have some) that `light` lies clear of, as
+/// the DM decides it.
+fn piece_flags(
+    objects: &[(Vec<ConvexPolygon>, PieceFlags)],
+    light: &AreaSource,
+) -> Vec<PieceFlags> {
+    let mut flags = Vec::new();
+    for (polygons, object) in objects {
+        let mut closed = vec![false; polygons.len()];
+        if object.closed_surface && object.casts_shadows {
+            for part in area_shadow::closed_parts(polygons, &vec![0; polygons.len()]) {
+                let points: Vec<GridPoint> = part
+                    .pieces
+                    .iter()
+                    .flat_map(|&k| {
+                        let p = &polygons[k as usize];
+                        (0..p.len()).filter_map(|i| p.vertex_grid_point(i))
+                    })
+                    .collect();
+                if part.six_volume > 0 && light.clear_of(&points) {
+                    for &k in &part.pieces {
+                        closed[k as usize] = true;
+                    }
+                }
+            }
+        }
+        flags.extend(closed.into_iter().map(|closed_surface| PieceFlags {
+            closed_surface,
+            ..*object
+        }));
+    }
+    flags
 }
 
 /// Area per class (lit, penumbra, umbra) of each receiver, objects in
@@ -425,7 +465,8 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
     objects.extend(
         case.objects
             .iter()
-            .map(|ts| (triangles(ts, [0; 3]), two_sided())),
+            .enumerate()
+            .map(|(k, ts)| (triangles(ts, [0; 3]), object_flags(k))),
     );
     let options = DmOptions {
         deletion: case.deletion,
@@ -470,7 +511,7 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
                     let polygons = triangles(&case.objects[k - 1], state[k].1);
                     state[k].0 = Some(
                         scene
-                            .add_object(polygons, two_sided())
+                            .add_object(polygons, object_flags(k - 1))
                             .map_err(|e| e.to_string())?,
                     );
                 }
@@ -489,7 +530,10 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
         live.push(if k == 0 {
             objects[0].clone()
         } else {
-            (triangles(&case.objects[k - 1], *offset), two_sided())
+            (
+                triangles(&case.objects[k - 1], *offset),
+                object_flags(k - 1),
+            )
         });
     }
     let (mut fresh, fresh_ids) =
@@ -504,10 +548,7 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
         .enumerate()
         .map(|(k, p)| p.with_source(k as u32))
         .collect();
-    let flags: Vec<PieceFlags> = live
-        .iter()
-        .flat_map(|(ps, f)| std::iter::repeat_n(*f, ps.len()))
-        .collect();
+    let flags = piece_flags(&live, &source);
     // Bodies (pieces hiding the light together) form within objects, as
     // in dm-mesh.
     let objects_of: Vec<u32> = live
