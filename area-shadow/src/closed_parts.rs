@@ -49,6 +49,21 @@ pub struct ClosedPart {
     pub six_volume: i128,
 }
 
+impl ClosedPart {
+    /// The corners of its polygons (`polygons` being those it was found
+    /// in), with repeats: what a light must lie clear of
+    /// ([`AreaSource::clear_of`](crate::AreaSource::clear_of)).
+    pub fn corners(&self, polygons: &[ConvexPolygon]) -> Vec<GridPoint> {
+        self.pieces
+            .iter()
+            .flat_map(|&k| {
+                let polygon = &polygons[k as usize];
+                (0..polygon.len()).filter_map(|i| polygon.vertex_grid_point(i))
+            })
+            .collect()
+    }
+}
+
 /// The closed parts of the surfaces of `polygons`, `objects[k]` being
 /// polygon `k`'s object, ordered by their first polygon. A part is a set of
 /// polygons joined across shared edges (an edge joins two polygons of one

@@ -51,18 +51,11 @@ pub(crate) fn surfaces(pieces: &Pieces, objects: &[u32]) -> Surfaces {
     // towards the light do not).
     let mut volume_sign = vec![0_i8; count];
     for part in closed_parts(&pieces.polygons, objects) {
-        let points: Vec<GridPoint> = part
-            .pieces
-            .iter()
-            .flat_map(|&k| {
-                let piece = &pieces.polygons[k as usize];
-                (0..piece.len()).filter_map(|i| piece.vertex_grid_point(i))
-            })
-            .collect();
+        let corners = part.corners(&pieces.polygons);
         if !pieces
             .lights
             .iter()
-            .all(|light| light_clear_of(light, &points))
+            .all(|light| light_clear_of(light, &corners))
         {
             continue;
         }

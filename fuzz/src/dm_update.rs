@@ -343,15 +343,7 @@ fn piece_flags(
         let mut closed = vec![false; polygons.len()];
         if object.closed_surface && object.casts_shadows {
             for part in area_shadow::closed_parts(polygons, &vec![0; polygons.len()]) {
-                let points: Vec<GridPoint> = part
-                    .pieces
-                    .iter()
-                    .flat_map(|&k| {
-                        let p = &polygons[k as usize];
-                        (0..p.len()).filter_map(|i| p.vertex_grid_point(i))
-                    })
-                    .collect();
-                if part.six_volume > 0 && light.clear_of(&points) {
+                if part.six_volume > 0 && light.clear_of(&part.corners(polygons)) {
                     for &k in &part.pieces {
                         closed[k as usize] = true;
                     }

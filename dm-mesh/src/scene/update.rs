@@ -27,7 +27,7 @@ use area_shadow::{
     AreaSource, ConvexGroup, SourceSide, VolumePlanes, closed_parts, convex_groups, flat_unions,
     section_unions, volume_planes,
 };
-use bsp_core::{ConvexPolygon, GridPoint, Plane};
+use bsp_core::{ConvexPolygon, Plane};
 use illum::VisiblePart;
 use rayon::prelude::*;
 use slotmap::SlotMap;
@@ -103,15 +103,8 @@ impl DmScene {
                 if part.six_volume <= 0 {
                     continue;
                 }
-                let points: Vec<GridPoint> = part
-                    .pieces
-                    .iter()
-                    .flat_map(|&k| {
-                        let p = &polygons[k as usize];
-                        (0..p.len()).filter_map(|i| p.vertex_grid_point(i))
-                    })
-                    .collect();
-                let lights = light_mask(sources.iter().map(|light| light.clear_of(&points)));
+                let corners = part.corners(&polygons);
+                let lights = light_mask(sources.iter().map(|light| light.clear_of(&corners)));
                 for &k in &part.pieces {
                     clear[k as usize] = lights;
                 }
