@@ -168,8 +168,16 @@ fn the_meshes_demo_finds_most_of_the_joint_umbra_under_both_meshes() {
     // floor face by the ray oracle.
     std::fs::copy(m.join("meshes.toml"), m.join("scene.toml")).unwrap();
     let floor = floor_umbra(&m, "shadow", &light);
-    let torus = umbra::shapes::torus([-1.5, 1.4, -0.3], (1.2, 0.45), (32, 16));
-    let blob = umbra::shapes::bumpy_sphere([1.9, 1.3, 0.4], 0.9, 0.06, 2);
+    let triangles = |name: &str| -> Vec<[[f64; 3]; 3]> {
+        let object = scene.objects.iter().find(|o| o.name == name).unwrap();
+        object
+            .polygons
+            .iter()
+            .map(|p| [p.vertices[0], p.vertices[1], p.vertices[2]])
+            .collect()
+    };
+    let (torus, blob) = (triangles("torus"), triangles("blob"));
+    assert_eq!((torus.len(), blob.len()), (1024, 320));
     // The torus's shadow lies at x < 0.5, the blob's at x > 0.5.
     let truth = true_floor_umbra(&torus, &light, [-5.0, 0.5], [-4.0, 3.5])
         + true_floor_umbra(&blob, &light, [0.5, 5.0], [-2.5, 3.5]);
