@@ -440,11 +440,13 @@ impl DmScene {
     ///
     /// `flags.closed_surface` says the object has closed parts facing out
     /// (all of it, or a closed mesh among other polygons): they are found
-    /// ([`area_shadow::closed_parts`]), and the faces of each turned away
-    /// from a light clear of it cast nothing under that light (its faces
-    /// towards the light cast its whole shadow; only a joint umbra of
-    /// faces turned away, no single face's, is left to the bodies and
-    /// proofs that find it).
+    /// ([`area_shadow::closed_parts`]), and the faces of each that every
+    /// light is clear of ([`AreaSource::clear_of`]) cast nothing under a
+    /// light they are turned away from (its faces towards the light cast
+    /// its whole shadow; only a joint umbra of faces turned away, no
+    /// single face's, is left to the bodies and proofs that find it).
+    ///
+    /// [`AreaSource::clear_of`]: area_shadow::AreaSource::clear_of
     pub fn add_object(
         &mut self,
         polygons: Vec<ConvexPolygon>,

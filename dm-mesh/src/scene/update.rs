@@ -91,22 +91,24 @@ impl DmScene {
                     .collect()
             })
             .collect();
-        // Per polygon, the lights clear of the closed surface facing out
-        // it is part of (none on the surface or inside it): only under
-        // those may the surface's faces turned away from the light cast
-        // nothing. The object's closed parts, when its flags say it has
-        // some (the whole object, or a mesh and a floor in one). Decided
-        // as the object is added, so a move into a light decides again.
+        // Per polygon, the lights under which it is a face of a closed
+        // surface facing out that no light lies on or in: there the faces
+        // turned away from a light cast nothing. The object's closed parts,
+        // when its flags say it has some (the whole object, or a mesh and a
+        // floor in one); a part some light is not clear of casts every
+        // face under every light, as the flag's meaning asks ("no light
+        // lies in it"), so that an object of several parts casts as its
+        // parts would as objects of their own. Decided as the object is
+        // added, so a move into a light decides again.
+        let every_light = light_mask(sources.iter().map(|_| true));
         let mut clear = vec![0_u32; polygons.len()];
         if flags.closed_surface && flags.casts_shadows {
             for part in closed_parts(&polygons, &vec![0; polygons.len()]) {
-                if part.six_volume <= 0 {
-                    continue;
-                }
                 let corners = part.corners(&polygons);
-                let lights = light_mask(sources.iter().map(|light| light.clear_of(&corners)));
-                for &k in &part.pieces {
-                    clear[k as usize] = lights;
+                if part.six_volume > 0 && sources.iter().all(|light| light.clear_of(&corners)) {
+                    for &k in &part.pieces {
+                        clear[k as usize] = every_light;
+                    }
                 }
             }
         }
@@ -244,8 +246,8 @@ impl DmScene {
 
     /// What a polygon of a shadow-casting object casts under each light:
     /// nothing under a light it is turned away from among those `clear`
-    /// sets (the lights clear of the closed surface facing out it is part
-    /// of) or whose bit `in_body` sets (its body casts in its place), else
+    /// sets (every light, for a face of a closed surface facing out that
+    /// no light lies in) or whose bit `in_body` sets (its body casts in its place), else
     /// its own volumes and internal discontinuities (given its
     /// surroundings).
     fn polygon_units(
