@@ -2,6 +2,7 @@
 
 mod area;
 mod closed_mesh;
+mod closed_parts;
 mod commands;
 mod csg;
 mod cup_and_panel;
