@@ -35,6 +35,7 @@
 //! assert_eq!(parts[0].six_volume, 9 * 9 * 9);
 //! ```
 
+use crate::disjoint_sets::DisjointSets;
 use bsp_core::{ConvexPolygon, GridPoint};
 use smallvec::SmallVec;
 use std::collections::HashMap;
@@ -80,13 +81,13 @@ pub fn closed_parts(polygons: &[ConvexPolygon], objects: &[u32]) -> Vec<ClosedPa
             edges.entry((objects[k], a, b)).or_default().push(k);
         }
     }
-    let mut parts = Parts::new(polygons.len());
+    let mut parts = DisjointSets::new(polygons.len());
     for (&(object, a, b), owners) in &edges {
         if let ([k], Some([j])) = (
             owners.as_slice(),
             edges.get(&(object, b, a)).map(|o| o.as_slice()),
         ) {
-            parts.join(*k, *j);
+            parts.union(*k as u32, *j as u32);
         }
     }
     // A part is open where a polygon has a corner off the grid, or an edge
@@ -94,20 +95,20 @@ pub fn closed_parts(polygons: &[ConvexPolygon], objects: &[u32]) -> Vec<ClosedPa
     let mut open = vec![false; polygons.len()];
     for (k, corners) in corners.iter().enumerate() {
         if corners.is_none() {
-            open[parts.root(k)] = true;
+            open[parts.find(k as u32) as usize] = true;
         }
     }
     for (&(object, a, b), owners) in &edges {
         let back = edges.get(&(object, b, a)).map_or(0, |o| o.len());
         if owners.len() != 1 || back != 1 {
             for &k in owners {
-                open[parts.root(k)] = true;
+                open[parts.find(k as u32) as usize] = true;
             }
         }
     }
     let mut found: HashMap<usize, ClosedPart> = HashMap::new();
     for (k, corners) in corners.iter().enumerate() {
-        let root = parts.root(k);
+        let root = parts.find(k as u32) as usize;
         if open[root] {
             continue;
         }
@@ -154,36 +155,6 @@ fn six_volume_under(corners: &[GridPoint]) -> i128 {
                 + a[2] * (b[0] * c[1] - b[1] * c[0])
         })
         .sum()
-}
-
-/// Connected parts of a surface: polygons joined across shared edges
-/// (union-find with path halving).
-struct Parts {
-    parent: Vec<usize>,
-}
-
-impl Parts {
-    fn new(count: usize) -> Self {
-        Self {
-            parent: (0..count).collect(),
-        }
-    }
-
-    fn root(&mut self, mut k: usize) -> usize {
-        while self.parent[k] != k {
-            self.parent[k] = self.parent[self.parent[k]];
-            k = self.parent[k];
-        }
-        k
-    }
-
-    fn join(&mut self, a: usize, b: usize) {
-        let (a, b) = (self.root(a), self.root(b));
-        // The smaller index becomes the root: the same parts whatever the
-        // order the edges come in.
-        let (low, high) = (a.min(b), a.max(b));
-        self.parent[high] = low;
-    }
 }
 
 #[cfg(test)]

@@ -66,6 +66,7 @@
 mod closed_parts;
 mod conform;
 pub mod dark;
+mod disjoint_sets;
 mod error;
 mod gridding;
 mod groups;

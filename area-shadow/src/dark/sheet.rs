@@ -13,6 +13,7 @@ use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 
 use super::Body;
+use crate::disjoint_sets::DisjointSets;
 use crate::groups::hull::convex_hull;
 
 /// The most pieces a sheet may have (its hull costs more than it saves
@@ -84,14 +85,7 @@ fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> (Vec<Vec<u32>
         }
         outlines.push(outline);
     }
-    let mut parent: Vec<u32> = (0..pieces.len() as u32).collect();
-    fn root(parent: &mut [u32], mut k: u32) -> u32 {
-        while parent[k as usize] != k {
-            parent[k as usize] = parent[parent[k as usize] as usize];
-            k = parent[k as usize];
-        }
-        k
-    }
+    let mut sets = DisjointSets::new(pieces.len());
     let mut open = vec![false; pieces.len()];
     for (k, outline) in outlines.iter().enumerate() {
         let Some(c) = outline else { continue };
@@ -103,16 +97,14 @@ fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> (Vec<Vec<u32>
             if owners[other as usize] != owners[k] {
                 open[k] = true;
             } else {
-                let (a, b) = (root(&mut parent, k as u32), root(&mut parent, other));
-                parent[a.max(b) as usize] = a.min(b);
+                sets.union(k as u32, other);
             }
         }
     }
     let mut by_root: HashMap<u32, Vec<u32>> = HashMap::new();
     for k in 0..pieces.len() as u32 {
         if outlines[k as usize].is_some() {
-            let r = root(&mut parent, k);
-            by_root.entry(r).or_default().push(k);
+            by_root.entry(sets.find(k)).or_default().push(k);
         }
     }
     let mut sheets: Vec<Vec<u32>> = by_root.into_values().collect();

@@ -35,7 +35,8 @@
 //! ([`flat_joints`]).
 
 use super::solid::Solid;
-use super::{ConvexGroup, DisjointSets, FlatUnion, Shape};
+use super::{ConvexGroup, FlatUnion, Shape};
+use crate::disjoint_sets::DisjointSets;
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};

@@ -76,6 +76,7 @@
 //! together behind quadric (EEE) boundaries in general, and get nothing.
 
 use crate::AreaSource;
+use crate::disjoint_sets::DisjointSets;
 use crate::volumes::volume_planes;
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use solid::Solid;
@@ -772,36 +773,4 @@ fn boundary_cycles(outlines: &[&[GridPoint]]) -> Option<Vec<Vec<GridPoint>>> {
         cycles.push(cycle);
     }
     (!cycles.is_empty()).then_some(cycles)
-}
-
-/// Union-find over piece indices.
-pub(super) struct DisjointSets {
-    parent: Vec<u32>,
-}
-
-impl DisjointSets {
-    pub(super) fn new(n: usize) -> Self {
-        Self {
-            parent: (0..n as u32).collect(),
-        }
-    }
-
-    pub(super) fn find(&mut self, mut k: u32) -> u32 {
-        while self.parent[k as usize] != k {
-            let up = self.parent[self.parent[k as usize] as usize];
-            self.parent[k as usize] = up;
-            k = up;
-        }
-        k
-    }
-
-    pub(super) fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        // The smaller root stays, so that the sets do not depend on the
-        // order of the unions.
-        if ra != rb {
-            let (lo, hi) = (ra.min(rb), ra.max(rb));
-            self.parent[hi as usize] = lo;
-        }
-    }
 }
