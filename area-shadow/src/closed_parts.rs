@@ -73,7 +73,8 @@ impl ClosedPart {
 /// by its polygons and no other of the object's. Polygons of no closed
 /// part are left out.
 pub fn closed_parts(polygons: &[ConvexPolygon], objects: &[u32]) -> Vec<ClosedPart> {
-    let corners: Vec<Option<Vec<GridPoint>>> = polygons.iter().map(grid_corners).collect();
+    let corners: Vec<Option<Vec<GridPoint>>> =
+        polygons.iter().map(ConvexPolygon::grid_corners).collect();
     // Each directed edge of an object with the polygons that walk it.
     let mut edges: HashMap<(u32, GridPoint, GridPoint), SmallVec<[usize; 2]>> = HashMap::new();
     for (k, corners) in corners.iter().enumerate() {
@@ -122,14 +123,6 @@ pub fn closed_parts(polygons: &[ConvexPolygon], objects: &[u32]) -> Vec<ClosedPa
     let mut out: Vec<ClosedPart> = found.into_values().collect();
     out.sort_unstable_by_key(|part| part.pieces[0]);
     out
-}
-
-/// The polygon's corners, counter-clockwise seen from its front, when all
-/// are grid points.
-fn grid_corners(polygon: &ConvexPolygon) -> Option<Vec<GridPoint>> {
-    (0..polygon.len())
-        .map(|i| polygon.vertex_grid_point(i))
-        .collect()
 }
 
 fn cyclic_pairs(corners: &[GridPoint]) -> impl Iterator<Item = (GridPoint, GridPoint)> + '_ {

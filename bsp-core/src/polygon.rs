@@ -255,6 +255,11 @@ impl ConvexPolygon {
         }
     }
 
+    /// The vertices in order, when every one is an input grid point.
+    pub fn grid_corners(&self) -> Option<Vec<GridPoint>> {
+        (0..self.len()).map(|i| self.vertex_grid_point(i)).collect()
+    }
+
     /// Side of vertex `i` with respect to `plane`, exact.
     #[inline(always)]
     pub fn vertex_side(&self, i: usize, plane: &Plane) -> Side {

@@ -71,13 +71,10 @@ pub fn sheet_bodies(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<(Ve
 /// edge joined to none. Pieces whose corners are not all grid points join
 /// nothing.
 fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> (Vec<Vec<u32>>, Vec<bool>) {
-    let corners = |p: &ConvexPolygon| -> Option<Vec<GridPoint>> {
-        (0..p.len()).map(|i| p.vertex_grid_point(i)).collect()
-    };
     let mut edges: HashMap<(GridPoint, GridPoint), u32> = HashMap::new();
     let mut outlines: Vec<Option<Vec<GridPoint>>> = Vec::with_capacity(pieces.len());
     for (k, piece) in pieces.iter().enumerate() {
-        let outline = owners.get(k).copied().flatten().and(corners(piece));
+        let outline = owners.get(k).copied().flatten().and(piece.grid_corners());
         if let Some(c) = &outline {
             for i in 0..c.len() {
                 edges.insert((c[i], c[(i + 1) % c.len()]), k as u32);
@@ -162,11 +159,7 @@ fn sheet_body(pieces: &[&ConvexPolygon], closed: bool) -> Option<Body> {
 /// plane.) `None` for a polygon whose corners are not all grid points.
 fn tiles<'a>(face: &[i128; 3], pieces: impl Iterator<Item = &'a ConvexPolygon>) -> Option<bool> {
     let pieces: Vec<(&ConvexPolygon, Vec<GridPoint>)> = pieces
-        .map(|p| {
-            let corners: Option<Vec<GridPoint>> =
-                (0..p.len()).map(|i| p.vertex_grid_point(i)).collect();
-            corners.map(|c| (p, c))
-        })
+        .map(|p| p.grid_corners().map(|c| (p, c)))
         .collect::<Option<_>>()?;
     // The areas are all along the face's normal: one component of the
     // largest tells their sizes.

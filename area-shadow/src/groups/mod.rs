@@ -588,9 +588,7 @@ fn grid_outlines(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<Optio
     (0..pieces.len())
         .map(|k| {
             objects[k]?;
-            (0..pieces[k].len())
-                .map(|i| pieces[k].vertex_grid_point(i))
-                .collect()
+            pieces[k].grid_corners()
         })
         .collect()
 }

@@ -214,10 +214,9 @@ impl BergeronVolumes {
             for polygon in &model.polygons {
                 let mut of_polygon = Vec::with_capacity(polygon.pieces.len());
                 for piece in &polygon.pieces {
-                    let grid: Option<Vec<GridPoint>> = (0..piece.len())
-                        .map(|i| piece.vertex_grid_point(i))
-                        .collect();
-                    let grid = grid.ok_or(Error::ImplicitInput(piece_index))?;
+                    let grid = piece
+                        .grid_corners()
+                        .ok_or(Error::ImplicitInput(piece_index))?;
                     piece_index += 1;
                     of_polygon.push(grid.into_iter().map(f).collect());
                 }
