@@ -91,23 +91,22 @@ impl DmScene {
                     .collect()
             })
             .collect();
-        // Per polygon, the lights under which it is a face of a closed
-        // surface facing out that no light lies on or in: there the faces
-        // turned away from a light cast nothing. The object's closed parts,
+        // Per polygon, whether it is a face of a closed surface facing out
+        // that no light lies on or in: such faces turned away from a light
+        // cast nothing. The object's closed parts,
         // when its flags say it has some (the whole object, or a mesh and a
         // floor in one); a part some light is not clear of casts every
         // face under every light, as the flag's meaning asks ("no light
         // lies in it"), so that an object of several parts casts as its
         // parts would as objects of their own. Decided as the object is
         // added, so a move into a light decides again.
-        let every_light = light_mask(sources.iter().map(|_| true));
-        let mut clear = vec![0_u32; polygons.len()];
+        let mut closed = vec![false; polygons.len()];
         if flags.closed_surface && flags.casts_shadows {
             for part in closed_parts(&polygons, &vec![0; polygons.len()]) {
                 let corners = part.corners(&polygons);
                 if part.six_volume > 0 && sources.iter().all(|light| light.clear_of(&corners)) {
                     for &k in &part.pieces {
-                        clear[k as usize] = every_light;
+                        closed[k as usize] = true;
                     }
                 }
             }
@@ -121,7 +120,7 @@ impl DmScene {
         }
         for (i, polygon) in polygons.iter().enumerate() {
             let volumes = if flags.casts_shadows {
-                self.polygon_units(polygon, clear[i], in_body[i], surface.get(i), &sources)
+                self.polygon_units(polygon, closed[i], in_body[i], surface.get(i), &sources)
             } else {
                 vec![UnitPlanes::default(); sources.len()]
             };
@@ -245,15 +244,15 @@ impl DmScene {
     }
 
     /// What a polygon of a shadow-casting object casts under each light:
-    /// nothing under a light it is turned away from among those `clear`
-    /// sets (every light, for a face of a closed surface facing out that
-    /// no light lies in) or whose bit `in_body` sets (its body casts in its place), else
+    /// nothing under a light it is turned away from when `closed` (a face
+    /// of a closed surface facing out that no light lies in), nor under a
+    /// light whose bit `in_body` sets (its body casts in its place), else
     /// its own volumes and internal discontinuities (given its
     /// surroundings).
     fn polygon_units(
         &self,
         polygon: &ConvexPolygon,
-        clear: u32,
+        closed: bool,
         in_body: u32,
         around: Option<&Surroundings>,
         sources: &[AreaSource],
@@ -262,7 +261,7 @@ impl DmScene {
             .iter()
             .enumerate()
             .map(|(l, light)| {
-                let turned_away = clear & (1 << l) != 0
+                let turned_away = closed
                     && matches!(
                         light.side_of(polygon.support()),
                         SourceSide::Back | SourceSide::In
