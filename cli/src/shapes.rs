@@ -15,6 +15,8 @@
 
 use std::collections::HashMap;
 
+use crate::vec3::normalize;
+
 /// A triangle's corners.
 pub type Triangle = [[f64; 3]; 3];
 
@@ -64,7 +66,7 @@ fn icosahedron() -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
         [-t, 0.0, -1.0],
         [-t, 0.0, 1.0],
     ]
-    .map(unit)
+    .map(normalize)
     .to_vec();
     let faces = vec![
         [0, 11, 5],
@@ -91,11 +93,6 @@ fn icosahedron() -> (Vec<[f64; 3]>, Vec<[usize; 3]>) {
     (corners, faces)
 }
 
-fn unit(v: [f64; 3]) -> [f64; 3] {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    v.map(|c| c / l)
-}
-
 /// A sphere about `centre` of `20 * 4^subdivisions` triangles (an
 /// icosahedron's faces split in four `subdivisions` times), each corner
 /// at a radius off `radius` by up to `bump` of it, from a fixed sequence:
@@ -109,7 +106,9 @@ pub fn bumpy_sphere(centre: [f64; 3], radius: f64, bump: f64, subdivisions: u32)
         for [a, b, c] in faces {
             let mut middle = |i: usize, j: usize| {
                 *middles.entry((i.min(j), i.max(j))).or_insert_with(|| {
-                    corners.push(unit(std::array::from_fn(|k| corners[i][k] + corners[j][k])));
+                    corners.push(normalize(std::array::from_fn(|k| {
+                        corners[i][k] + corners[j][k]
+                    })));
                     corners.len() - 1
                 })
             };
@@ -132,7 +131,7 @@ pub fn bumpy_sphere(centre: [f64; 3], radius: f64, bump: f64, subdivisions: u32)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::vec3::{cross, dot, sub};
+    use crate::vec3::{cross, dot, norm, sub};
 
     /// Each directed edge once, and its reverse too: a closed surface
     /// with its triangles wound the same way.
@@ -188,7 +187,7 @@ mod tests {
         let radii: Vec<f64> = blob
             .iter()
             .flatten()
-            .map(|p| dot(sub(*p, [1.0, 2.0, 3.0]), sub(*p, [1.0, 2.0, 3.0])).sqrt())
+            .map(|p| norm(sub(*p, [1.0, 2.0, 3.0])))
             .collect();
         assert!(
             radii
