@@ -201,40 +201,48 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         node: u32,
         piece: ConvexPolygon,
     ) -> impl Iterator<Item = (u32, ConvexPolygon)> + use<K> {
-        self.descend_with(node, piece, (), |(), _, _| ((), ()))
+        self.descend_with(node, piece, (), |(), _, _| ((), ()), |_, _| false)
             .into_iter()
             .map(|(leaf, part, ())| (leaf, part))
     }
 
     /// [`Self::descend`], with what the piece carries divided between the
-    /// back and front parts (by `divide`) at every cut.
+    /// back and front parts (by `divide`) at every cut. A part that comes
+    /// out of a cut and is `settled` stops at the node it reaches, which
+    /// is then returned in place of the leaves under it (in the order the
+    /// walk would have reached them: back first).
     pub(super) fn descend_with<C>(
         &self,
         node: u32,
         piece: ConvexPolygon,
         carried: C,
         mut divide: impl FnMut(C, &ConvexPolygon, &ConvexPolygon) -> (C, C),
+        settled: impl Fn(&ConvexPolygon, &C) -> bool,
     ) -> Vec<(u32, ConvexPolygon, C)> {
         let mut out = Vec::new();
         // A piece walks down in place; only the front part of a cut waits
         // on the stack (back parts first: the order of a plain recursion).
-        let mut stack = vec![(node, piece, carried)];
-        while let Some((mut n, mut piece, mut carried)) = stack.pop() {
+        let mut stack = vec![(node, piece, carried, false)];
+        while let Some((mut n, mut piece, mut carried, mut cut)) = stack.pop() {
             loop {
                 match &self.nodes[n as usize] {
                     Node::Leaf(_) => {
                         out.push((n, piece, carried));
                         break;
                     }
+                    Node::Split { .. } if cut && settled(&piece, &carried) => {
+                        out.push((n, piece, carried));
+                        break;
+                    }
                     Node::Split {
                         line, back, front, ..
                     } => match piece.split(line) {
-                        Split::Back => n = *back,
-                        Split::Front => n = *front,
+                        Split::Back => (n, cut) = (*back, false),
+                        Split::Front => (n, cut) = (*front, false),
                         Split::Both(b, f) => {
                             let (to_back, to_front) = divide(carried, &b, &f);
-                            stack.push((*front, f, to_front));
-                            (n, piece, carried) = (*back, b, to_back);
+                            stack.push((*front, f, to_front, true));
+                            (n, piece, carried, cut) = (*back, b, to_back, true);
                         }
                         Split::Coplanar(_) => break,
                     },

@@ -3,9 +3,10 @@
 use super::{Reach, ReceiverDm, clip};
 use crate::cell::{Entry, Sides};
 use crate::critical::{Critical, UnitPlanes};
-use bsp_core::{ConvexPolygon, FaceKey, Plane, Side, Split};
+use bsp_core::{ConvexPolygon, FaceKey, Plane, PolygonSide, Side, Split};
 use smallvec::SmallVec;
 use std::borrow::Cow;
+use std::ops::Range;
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Appends a unit (occluder `key` under light `light`, with its volume
@@ -92,20 +93,48 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             other => other.map(Cow::Borrowed),
         };
         let whole = 0..crossing.len() as u32;
-        let leaves = self.descend_with(node, region, whole, |range, back, front| {
-            let mut share = |part: &ConvexPolygon| {
-                let start = crossing.len() as u32;
-                for k in range.clone() {
-                    let critical = crossing[k as usize];
-                    if crosses(part, critical) {
-                        crossing.push(critical);
+        // A piece that is all of its node's cell (no edge on the region's
+        // planes), crossed by no internal discontinuity and wholly in or
+        // out of the umbra grows every leaf under the node alike: the
+        // leaves are listed, not reached by cutting the piece further
+        // (most of a region's leaves lie in such subtrees).
+        let settled = |piece: &ConvexPolygon, range: &Range<u32>| {
+            exact
+                && range.is_empty()
+                && !piece.edges().any(|e| part.contains(e))
+                && umbra
+                    .as_deref()
+                    .is_none_or(|u| umbra_cover(piece, u).is_some())
+        };
+        let reached = self.descend_with(
+            node,
+            region,
+            whole,
+            |range, back, front| {
+                let mut share = |part: &ConvexPolygon| {
+                    let start = crossing.len() as u32;
+                    for k in range.clone() {
+                        let critical = crossing[k as usize];
+                        if crosses(part, critical) {
+                            crossing.push(critical);
+                        }
                     }
-                }
-                start..crossing.len() as u32
-            };
-            (share(back), share(front))
-        });
-        for (leaf, piece, range) in leaves {
+                    start..crossing.len() as u32
+                };
+                (share(back), share(front))
+            },
+            settled,
+        );
+        for (n, piece, range) in reached {
+            if !self.is_leaf(n) {
+                let sides = match umbra.as_deref().and_then(|u| umbra_cover(&piece, u)) {
+                    Some(UmbraCover::Whole) => planes.umbra_sides,
+                    _ => Sides::NONE,
+                };
+                self.grow_settled(n, sides, unit, light, planes);
+                continue;
+            }
+            let leaf = n;
             let umbra = umbra.as_deref().map(|u| (u, planes.umbra_sides));
             let grown = self.grow_leaf(leaf, &piece, exact, part, umbra, unit, light);
             if planes.internal.is_empty() {
@@ -125,12 +154,57 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                         Grown::Parts => self.grow_internal(leaf, crossing, unit),
                     }
                 }
-                _ => {
-                    let all: SmallVec<[&Critical; 32]> = planes.internal.iter().collect();
-                    self.grow_internal(leaf, &all, unit);
-                }
+                _ => self.grow_all_internal(leaf, planes, unit),
             }
         }
+    }
+
+    /// Grows the unit's single tree in a settled subtree at `node` (its
+    /// cell inside the unit's penumbra region, crossed by none of its
+    /// internal discontinuities, in its umbra on `sides` or out of it):
+    /// each leaf lists the unit as [`Self::grow_leaf`] would have it, with
+    /// no cut.
+    fn grow_settled(&mut self, node: u32, sides: Sides, unit: u32, light: u8, planes: &UnitPlanes) {
+        for leaf in self.leaves(node) {
+            if self.claim(leaf, unit, light) {
+                self.cell_mut(leaf).add(Entry {
+                    unit,
+                    light,
+                    umbra: sides,
+                });
+                self.seeds[unit as usize] = self.face_of(leaf);
+            } else {
+                self.grow_all_internal(leaf, planes, unit);
+            }
+        }
+    }
+
+    /// Splits the cells of the subtree at `node` that list `unit` outside
+    /// its umbra by all of its internal discontinuities.
+    fn grow_all_internal(&mut self, node: u32, planes: &UnitPlanes, unit: u32) {
+        if !planes.internal.is_empty() {
+            let all: SmallVec<[&Critical; 32]> = planes.internal.iter().collect();
+            self.grow_internal(node, &all, unit);
+        }
+    }
+
+    /// Whether a leaf whose cell the unit's penumbra region meets is to
+    /// grow: not if it lists the unit already, or culled it, or the light
+    /// does not reach it; not either if it is in umbra already (the
+    /// occluder changes nothing there unless the occluder making the umbra
+    /// goes: it is remembered for then, as culled).
+    fn claim(&mut self, leaf: u32, unit: u32, light: u8) -> bool {
+        let cell = self.cell(leaf);
+        if cell.has_unit(unit) || cell.culled.contains(&unit) || cell.unreached(usize::from(light))
+        {
+            return false;
+        }
+        if cell.in_umbra(usize::from(light)) {
+            self.cell_mut(leaf).culled.push(unit);
+            self.seeds[unit as usize] = self.face_of(leaf);
+            return false;
+        }
+        true
     }
 
     /// Grows the unit's single tree at one leaf whose cell meets the
@@ -149,16 +223,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         unit: u32,
         light: u8,
     ) -> Option<Grown> {
-        let cell = self.cell(leaf);
-        if cell.has_unit(unit) || cell.culled.contains(&unit) || cell.unreached(usize::from(light))
-        {
-            return None;
-        }
-        if cell.in_umbra(usize::from(light)) {
-            // Umbra already: the occluder changes nothing here, unless the
-            // occluder making the umbra goes; remember it for then.
-            self.cell_mut(leaf).culled.push(unit);
-            self.seeds[unit as usize] = self.face_of(leaf);
+        if !self.claim(leaf, unit, light) {
             return None;
         }
         // Only the planes that bound the cell's part of the region cut the
@@ -303,6 +368,35 @@ enum Grown {
     Whole(u32),
     /// Its part is in cells of the leaf's subtree, to be looked up.
     Parts,
+}
+
+/// How a piece of a unit's penumbra region lies in its umbra.
+enum UmbraCover {
+    /// All of it in.
+    Whole,
+    /// None of it (with area).
+    Clear,
+}
+
+/// How `piece` lies in the umbra bounded by `umbra`; `None` when partly.
+fn umbra_cover(piece: &ConvexPolygon, umbra: &[Plane]) -> Option<UmbraCover> {
+    // As `clip(piece, umbra)` would find: none of it where a plane leaves
+    // the piece in front (or holds it), all of it where none cuts it.
+    let mut cut = false;
+    for plane in umbra {
+        match piece.classify(plane) {
+            PolygonSide::Back => {}
+            PolygonSide::Both => cut = true,
+            PolygonSide::Front | PolygonSide::Coplanar(_) => return Some(UmbraCover::Clear),
+        }
+    }
+    if !cut {
+        Some(UmbraCover::Whole)
+    } else if clip(piece, umbra).is_none() {
+        Some(UmbraCover::Clear)
+    } else {
+        None
+    }
 }
 
 /// Whether an internal discontinuity crosses `polygon`: its plane cuts
