@@ -109,7 +109,12 @@ pub(super) fn fan_pairs<'h>(
                 };
                 all = Some(match all {
                     None => crossed,
-                    Some(all) => all.iter().zip(&crossed).map(|(&x, &y)| x && y).collect(),
+                    Some(mut all) => {
+                        for (x, &y) in all.iter_mut().zip(&crossed) {
+                            *x &= y;
+                        }
+                        all
+                    }
                 });
             }
             out.extend(all);

@@ -32,7 +32,6 @@ use super::{Occluder, Pairs};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use smallvec::SmallVec;
-use std::collections::HashMap;
 
 /// Two occluders (indices into the prover's) that share an edge.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,31 +53,29 @@ type OnEdge = (u32, usize);
 /// first occluder, then their second.
 pub(super) fn hinges(occluders: &[Occluder]) -> Vec<Hinge> {
     // Each edge by its ends in increasing order, with its occluder and
-    // its index there.
-    let mut edges: HashMap<(GridPoint, GridPoint), SmallVec<[OnEdge; 2]>> = HashMap::new();
+    // its index there; sorted, so that the occluders sharing an edge
+    // follow each other (a hash map of them was a fiftieth of a dense
+    // mesh's proofs).
+    let mut edges: Vec<((GridPoint, GridPoint), OnEdge)> = Vec::new();
     for (k, o) in occluders.iter().enumerate() {
         let m = o.corners.len();
         for e in 0..m {
             let (p, q) = (o.corners[e], o.corners[(e + 1) % m]);
-            edges
-                .entry(if p < q { (p, q) } else { (q, p) })
-                .or_default()
-                .push((k as u32, e));
+            edges.push((if p < q { (p, q) } else { (q, p) }, (k as u32, e)));
         }
     }
-    let mut out: Vec<Hinge> = edges
-        .into_iter()
-        .flat_map(|((p, q), sharing)| {
-            let pairs: Vec<Hinge> = sharing
-                .iter()
-                .enumerate()
-                .flat_map(|(i, &a)| sharing[i + 1..].iter().map(move |&b| [a, b]))
-                .filter(|[a, b]| a.0 != b.0)
-                .filter_map(|ends| Hinge::of(occluders, ends, [p, q]))
-                .collect();
-            pairs
-        })
-        .collect();
+    edges.sort_unstable();
+    let mut out: Vec<Hinge> = Vec::new();
+    for sharing in edges.chunk_by(|a, b| a.0 == b.0) {
+        let (p, q) = sharing[0].0;
+        for (i, &(_, a)) in sharing.iter().enumerate() {
+            for &(_, b) in &sharing[i + 1..] {
+                if a.0 != b.0 {
+                    out.extend(Hinge::of(occluders, [a, b], [p, q]));
+                }
+            }
+        }
+    }
     out.sort_unstable_by_key(|h| h.occluders.map(|(k, e)| (k, e)));
     out
 }

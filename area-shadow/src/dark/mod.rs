@@ -238,12 +238,12 @@ impl Occluder {
             return None;
         }
         let all: SmallVec<[bool; 8]> = smallvec::smallvec![true; region.len()];
-        Some(
-            light
-                .iter()
-                .flat_map(|&l| self.crossings_past(region, l, &all, open))
-                .collect(),
-        )
+        // (Slices appended, not an iterator flattened: a proof's hot path.)
+        let mut pairs = Pairs::new();
+        for &l in light {
+            pairs.extend_from_slice(&self.crossings_past(region, l, &all, open));
+        }
+        Some(pairs)
     }
 
     /// For each corner pair (light corner `j`, region corner `i`, at
@@ -253,21 +253,24 @@ impl Occluder {
     /// segment from `region` to `light` does (see the module's docs).
     fn pair_crossings(&self, region: &ConvexPolygon, light: &[GridPoint], known: &Pairs) -> Pairs {
         let nk = region.len();
-        let region_sides: SmallVec<[Side; 8]> = (0..nk)
-            .map(|i| region.vertex_side(i, &self.support))
-            .collect();
+        let mut region_sides: SmallVec<[Side; 8]> = SmallVec::from_elem(Side::On, nk);
+        for (i, side) in region_sides.iter_mut().enumerate() {
+            *side = region.vertex_side(i, &self.support);
+        }
         let mut pairs = Pairs::new();
         for (j, &l) in light.iter().enumerate() {
             let known = &known[j * nk..(j + 1) * nk];
             let l_side = side_of_point(&self.support, l);
-            let test: SmallVec<[bool; 8]> = region_sides
-                .iter()
-                .zip(known)
-                .map(|(&k, &known)| !known && l_side != Side::On && k == l_side.flipped())
-                .collect();
+            let mut test: SmallVec<[bool; 8]> = SmallVec::from_elem(false, nk);
+            for ((t, &k), &known) in test.iter_mut().zip(&region_sides).zip(known) {
+                *t = !known && l_side != Side::On && k == l_side.flipped();
+            }
             if test.contains(&true) {
-                let crossed = self.crossings(region, l, &test);
-                pairs.extend(crossed.iter().zip(known).map(|(&c, &k)| c || k));
+                let mut crossed = self.crossings(region, l, &test);
+                for (c, &k) in crossed.iter_mut().zip(known) {
+                    *c |= k;
+                }
+                pairs.extend_from_slice(&crossed);
             } else {
                 pairs.extend_from_slice(known);
             }
@@ -304,7 +307,7 @@ impl Occluder {
         // on (the sign of the triple product (b - a) x (inside - a) . (l -
         // a)), the same for every edge.
         let outer = side_of_point(&self.support, l);
-        let mut inside: SmallVec<[bool; 8]> = test.iter().copied().collect();
+        let mut inside: SmallVec<[bool; 8]> = SmallVec::from_slice(test);
         if outer == Side::On {
             inside.fill(false);
             return inside;
