@@ -411,3 +411,53 @@ fn crosses(polygon: &ConvexPolygon, critical: &Critical) -> bool {
 fn bounding<'a>(planes: &'a [Plane], part: &'a ConvexPolygon) -> impl Iterator<Item = &'a Plane> {
     planes.iter().filter(|p| part.edges().any(|e| e == *p))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::{UmbraCover, clip, umbra_cover};
+    use bsp_core::{ConvexPolygon, GridPoint, Plane};
+    use proptest::prelude::*;
+
+    fn g(x: i32, z: i32) -> GridPoint {
+        GridPoint { x, y: 0, z }
+    }
+
+    /// A square of the floor (y = 0), and the vertical planes through
+    /// two floor points (some through its corners, along its edges, or
+    /// beside it), as a unit's umbra planes would cut it.
+    fn square() -> impl Strategy<Value = ConvexPolygon> {
+        (-8_i32..8, -8_i32..8, 1_i32..8).prop_map(|(x, z, s)| {
+            ConvexPolygon::from_grid_points(
+                &[g(x, z), g(x, z + s), g(x + s, z + s), g(x + s, z)],
+                0,
+            )
+            .expect("a square")
+        })
+    }
+
+    fn vertical_plane() -> impl Strategy<Value = Option<Plane>> {
+        (-12_i32..12, -12_i32..12, -12_i32..12, -12_i32..12).prop_map(|(a, b, c, d)| {
+            Plane::through(g(a, b), g(c, d), GridPoint { x: a, y: 1, z: b })
+        })
+    }
+
+    proptest! {
+        /// `umbra_cover` answers what clipping the piece by the planes
+        /// finds: all of it kept (Whole), nothing (Clear), or a part
+        /// (`None`), by area.
+        #[test]
+        fn umbra_cover_agrees_with_clipping(
+            piece in square(),
+            planes in prop::collection::vec(vertical_plane(), 1..5),
+        ) {
+            let planes: Vec<Plane> = planes.into_iter().flatten().collect();
+            prop_assume!(!planes.is_empty());
+            let kept = clip(&piece, &planes).map_or(0.0, |p| p.area());
+            match umbra_cover(&piece, &planes) {
+                Some(UmbraCover::Whole) => prop_assert!((kept - piece.area()).abs() <= 1e-9),
+                Some(UmbraCover::Clear) => prop_assert_eq!(kept, 0.0),
+                None => prop_assert!(kept > 0.0 && kept < piece.area() - 1e-9),
+            }
+        }
+    }
+}
