@@ -35,6 +35,7 @@
 //! the other units that reached them merged in again.
 
 use crate::cell::{Cell, CellClass};
+use crate::hash::KeySet;
 use area_shadow::{AreaSource, SourceSide};
 use bsp_core::predicates::Side;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, Split, WingedMesh};
@@ -213,9 +214,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// there), and forgets them.
     pub(crate) fn take_touched(&mut self) -> Vec<FaceKey> {
         let mut out = std::mem::take(&mut self.touched);
-        out.sort_unstable();
-        out.dedup();
-        out.retain(|f| self.mesh.face(*f).is_some());
+        // (A hash set keeps the first of each: sorting the repeats, two
+        // or three per face, cost more.)
+        let mut seen: KeySet<FaceKey> = KeySet::default();
+        seen.reserve(out.len());
+        out.retain(|f| seen.insert(*f) && self.mesh.face(*f).is_some());
         out
     }
 
