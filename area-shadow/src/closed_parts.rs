@@ -153,6 +153,7 @@ fn six_volume_under(corners: &[GridPoint]) -> i128 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_shapes::cuboid;
 
     fn g(x: i32, y: i32, z: i32) -> GridPoint {
         GridPoint::new(x.into(), y.into(), z.into()).unwrap()
@@ -160,32 +161,12 @@ mod tests {
 
     /// The six faces of the box `[lo, hi]`, wound outward (or inward).
     fn cube(lo: [i32; 3], hi: [i32; 3], outward: bool) -> Vec<ConvexPolygon> {
-        let p = |i: usize| {
-            g(
-                if i & 1 == 0 { lo[0] } else { hi[0] },
-                if i & 2 == 0 { lo[1] } else { hi[1] },
-                if i & 4 == 0 { lo[2] } else { hi[2] },
-            )
-        };
-        // Corner indices of each face, counter-clockwise seen from outside.
-        let faces = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        faces
-            .iter()
-            .map(|f| {
-                let mut c: Vec<GridPoint> = f.iter().map(|&i| p(i)).collect();
-                if !outward {
-                    c.reverse();
-                }
-                ConvexPolygon::from_grid_points(&c, 0).unwrap()
-            })
-            .collect()
+        let faces = cuboid(lo, hi);
+        if outward {
+            faces
+        } else {
+            faces.iter().map(ConvexPolygon::flipped).collect()
+        }
     }
 
     #[test]
