@@ -302,24 +302,23 @@ impl VisiblePart {
                 };
                 next += 1;
                 let planes = &sc.planes[run.start as usize..run.end as usize];
-                // Bit k: the piece straddles planes[k] (at most 9).
-                let mut straddled = 0u32;
-                for (k, h) in planes.iter().enumerate() {
+                // The planes the piece straddles (as many as the occluder
+                // has edges: a polygon may have dozens).
+                let mut straddled: SmallVec<[&HalfSpace; 12]> = SmallVec::new();
+                for h in planes {
                     match classify(piece, h) {
                         (false, _) => continue 'occluders,
                         (true, false) => {}
-                        (true, true) => straddled |= 1 << k,
+                        (true, true) => straddled.push(h),
                     }
                 }
-                if straddled != 0 && in_stack {
+                if !straddled.is_empty() && in_stack {
                     sc.cur.clear();
                     sc.cur.extend_from_slice(&sc.stack_verts[r.clone()]);
                     sc.stack_verts.truncate(r.start);
                     in_stack = false;
                 }
-                while straddled != 0 {
-                    let h = &planes[straddled.trailing_zeros() as usize];
-                    straddled &= straddled - 1;
+                for h in straddled {
                     match split(&sc.cur, h, &mut sc.dist, &mut sc.inside, &mut sc.outside) {
                         // Once cut, what is left may be outside a later plane.
                         Split::Outside => continue 'occluders,
@@ -541,5 +540,73 @@ mod tests {
         assert_eq!(vp.len(), 4);
         // The hole is the occluder scaled by 2 (twice as far): 0.4 x 0.4.
         assert!((vp.area() - (4.0 - 0.16)).abs() < 1e-12, "{}", vp.area());
+    }
+
+    /// A regular `n`-gon of radius `r` around the z axis at height `z`,
+    /// counter-clockwise seen from above.
+    fn regular(n: usize, r: f64, z: f64) -> Vec<Vec3> {
+        (0..n)
+            .map(|i| {
+                let t = std::f64::consts::TAU * i as f64 / n as f64;
+                [r * t.cos(), r * t.sin(), z]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn occluder_of_many_edges_across_the_light() {
+        // Its image on the light (twice as far from the origin) is a
+        // 100-gon of radius 1.1 whose edges near the light's corners cut
+        // the light, about 60 of them; it hides that image clipped to the
+        // light.
+        let n = 100;
+        let occ = regular(n, 0.55, 1.0);
+        let image: Vec<[f64; 2]> = occ.iter().map(|v| [2.0 * v[0], 2.0 * v[1]]).collect();
+        let inside = clip_square(&image);
+        let mut vp = VisiblePart::new();
+        vp.compute(&light(), &[occ], [0.0; 3]);
+        let hidden = polygon_area(&inside);
+        assert!(hidden > 3.5 && hidden < 3.8, "{hidden}");
+        assert!(
+            (vp.area() - (4.0 - hidden)).abs() < 1e-12,
+            "{} {}",
+            vp.area(),
+            hidden
+        );
+    }
+
+    /// The part of a convex polygon of the plane inside the square
+    /// [-1, 1]^2 (Sutherland-Hodgman).
+    fn clip_square(poly: &[[f64; 2]]) -> Vec<[f64; 2]> {
+        let mut out = poly.to_vec();
+        for (axis, sign) in [(0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)] {
+            let inside = |p: &[f64; 2]| sign * p[axis] <= 1.0;
+            let input = std::mem::take(&mut out);
+            for (i, cur) in input.iter().enumerate() {
+                let prev = input[(i + input.len() - 1) % input.len()];
+                if inside(cur) != inside(&prev) {
+                    let t = (sign - prev[axis]) / (cur[axis] - prev[axis]);
+                    out.push([
+                        prev[0] + t * (cur[0] - prev[0]),
+                        prev[1] + t * (cur[1] - prev[1]),
+                    ]);
+                }
+                if inside(cur) {
+                    out.push(*cur);
+                }
+            }
+        }
+        out
+    }
+
+    fn polygon_area(poly: &[[f64; 2]]) -> f64 {
+        let n = poly.len();
+        (0..n)
+            .map(|i| {
+                let (a, b) = (poly[i], poly[(i + 1) % n]);
+                a[0] * b[1] - b[0] * a[1]
+            })
+            .sum::<f64>()
+            / 2.0
     }
 }
