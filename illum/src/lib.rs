@@ -4,7 +4,8 @@
 //!   the irradiance from a convex polygonal Lambertian light, clipped by the
 //!   receiver's horizon; [`AreaLight`] is a validated light polygon.
 //! - [`VisiblePart`]: the part of an area light visible from a point past
-//!   convex occluders, as convex pieces whose contour integrals add up to the
+//!   convex occluders (polygons, or convex solids by their silhouettes:
+//!   [`Occluder`]), as convex pieces whose contour integrals add up to the
 //!   irradiance (plain floating-point clipping: it never decides topology);
 //!   past many occluders [`visible_irradiance`] takes the outlines of that
 //!   part instead, one polygon boolean (`i_overlay`) in the light's plane.
@@ -65,7 +66,7 @@ pub use occluder_index::OccluderIndex;
 pub use point_light::{DirectionalLight, Falloff, PointLight, Sidedness};
 pub use sharing::{FragmentClass, VertexPlan, VertexValue, vertex_plan};
 pub use vec3::Vec3;
-pub use visibility::{VisiblePart, visible_irradiance};
+pub use visibility::{AsOccluder, Occluder, VisiblePart, visible_irradiance};
 
 /// The rayon the batch functions run on: call them inside
 /// `rayon::ThreadPool::install` to choose the number of threads.

@@ -7,7 +7,11 @@
 //! occluder. That region is convex, the intersection of `k + 1` half-spaces
 //! for an occluder of `k` edges, so subtracting it from a convex piece leaves
 //! at most `k + 1` convex pieces. Occluders block whichever of their sides
-//! faces the light.
+//! faces the light. A convex solid wholly on the lit side of the light's
+//! plane hides what its cone from `p` holds: given by its silhouette from
+//! `p` ([`Occluder::Silhouette`]) it makes one region of one half-space
+//! per silhouette edge, where its faces seen from `p` would make one
+//! each, cutting the light along their shared edges as well.
 //!
 //! Everything here is plain `f64` clipping: a vertex is sent to a side by the
 //! sign of a computed distance, and a piece is split only when it has
@@ -21,10 +25,12 @@ use crate::area_light::AreaLight;
 use crate::contour_integral::integrate_front;
 use crate::point_light::Sidedness;
 use crate::vec3::{Vec3, area_normal, cross, dot, lerp, scale, sub};
+pub use occluder::{AsOccluder, Occluder};
 use outline::Outline;
 use smallvec::SmallVec;
 use std::ops::Range;
 
+mod occluder;
 mod outline;
 
 /// Occluders cutting the light from which on [`visible_irradiance`] takes
@@ -158,57 +164,21 @@ fn split(
     }
 }
 
-/// The half-spaces whose intersection is the part of space an occluder hides
-/// from `p`: beyond its plane first, then one per edge. `None` when it hides
-/// nothing of positive area (fewer than 3 vertices, no area, or `p` in its
-/// plane).
-fn blocked_region(occ: &[Vec3], p: Vec3, out: &mut SmallVec<[HalfSpace; 9]>) -> bool {
-    out.clear();
-    if occ.len() < 3 {
-        return false;
-    }
-    let nrm = area_normal(occ);
-    let side = dot(nrm, sub(p, occ[0]));
-    if side == 0.0 || !side.is_finite() {
-        return false;
-    }
-    // sigma = +1 when p is on the occluder's counter-clockwise side.
-    let sigma = if side > 0.0 { 1.0 } else { -1.0 };
-    out.push(HalfSpace {
-        m: scale(nrm, -sigma),
-        q: occ[0],
-    });
-    let mut prev = occ[occ.len() - 1];
-    for &v in occ {
-        let a = sub(prev, p);
-        // (v_i - p) x (v_{i+1} - p) = a x e; the pyramid's inside is where
-        // sigma * m . (x - p) < 0.
-        let m = cross(a, sub(v, prev));
-        if m != [0.0; 3] {
-            out.push(HalfSpace {
-                m: scale(m, -sigma),
-                q: p,
-            });
-        }
-        prev = v;
-    }
-    true
-}
-
 impl VisiblePart {
     /// An empty set of pieces.
     pub fn new() -> Self {
         Self::default()
     }
 
-    /// Replaces the pieces by the part of `light` visible from `p` past the
-    /// convex planar `occluders`.
+    /// Replaces the pieces by the part of `light` visible from `p` past
+    /// `occluders` (convex polygons, or convex solids by their
+    /// silhouettes: [`Occluder`]).
     ///
     /// The occluders that cut the light are found first (an occluder
     /// outside the pyramid from `p` to the light, or whose blocked region
     /// misses the light, is skipped); then each piece goes down the list
     /// depth first, and is split only by an occluder it straddles.
-    pub fn compute<O: AsRef<[Vec3]>>(&mut self, light: &AreaLight, occluders: &[O], p: Vec3) {
+    pub fn compute<O: AsOccluder>(&mut self, light: &AreaLight, occluders: &[O], p: Vec3) {
         if self.find_cutting(light, occluders, p) {
             self.cut_pieces(light);
         }
@@ -217,12 +187,7 @@ impl VisiblePart {
     /// Clears the pieces and finds the occluders whose blocked regions cut
     /// the light (their planes that do in `scratch.runs`, their indices in
     /// `scratch.cutting`); `false` when one hides all of it.
-    fn find_cutting<O: AsRef<[Vec3]>>(
-        &mut self,
-        light: &AreaLight,
-        occluders: &[O],
-        p: Vec3,
-    ) -> bool {
+    fn find_cutting<O: AsOccluder>(&mut self, light: &AreaLight, occluders: &[O], p: Vec3) -> bool {
         self.verts.clear();
         self.pieces.clear();
         let sc = &mut self.scratch;
@@ -232,15 +197,16 @@ impl VisiblePart {
         let cone = light_pyramid(light, p);
         let mut planes = SmallVec::<[HalfSpace; 9]>::new();
         for (index, occ) in occluders.iter().enumerate() {
-            let occ = occ.as_ref();
+            let occ = occ.occluder();
             // Outside the pyramid from p to the light: hides none of it.
+            let corners = occ.corners();
             if cone
                 .iter()
-                .any(|h| occ.iter().all(|v| dot(h.m, sub(*v, h.q)) <= 0.0))
+                .any(|h| corners.iter().all(|v| dot(h.m, sub(*v, h.q)) <= 0.0))
             {
                 continue;
             }
-            if !blocked_region(occ, p, &mut planes) {
+            if !occ.blocked_region(p, &mut planes) {
                 continue;
             }
             // The pieces lie in the light: an occluder whose blocked region
@@ -410,7 +376,8 @@ fn light_pyramid(light: &AreaLight, p: Vec3) -> SmallVec<[HalfSpace; 9]> {
 }
 
 /// Irradiance at `p` (unit normal `n`) from the part of `light` visible past
-/// `occluders`, using `scratch` for the pieces (no allocation once warm).
+/// `occluders` (convex polygons' corners, or [`Occluder`]s), using
+/// `scratch` for the pieces (no allocation once warm).
 ///
 /// Skips the visibility computation when `p` is behind the light or the
 /// light is wholly below the receiver's horizon. Past many occluders that
@@ -418,7 +385,7 @@ fn light_pyramid(light: &AreaLight, p: Vec3) -> SmallVec<[HalfSpace; 9]> {
 /// outlines of the visible part instead, the light minus the union of the
 /// occluders' images on its plane (module `outline`): the pieces would
 /// multiply along the occluders' edges. `scratch` then holds no pieces.
-pub fn visible_irradiance<O: AsRef<[Vec3]>>(
+pub fn visible_irradiance<O: AsOccluder>(
     light: &AreaLight,
     occluders: &[O],
     p: Vec3,
@@ -439,7 +406,9 @@ pub fn visible_irradiance<O: AsRef<[Vec3]>>(
     }
     if scratch.scratch.cutting.len() >= OUTLINE_FROM {
         let cutting = &scratch.scratch.cutting;
-        let cut = cutting.iter().map(|&i| occluders[i as usize].as_ref());
+        let cut = cutting
+            .iter()
+            .map(|&i| occluders[i as usize].occluder().corners());
         // (`find_cutting` left no pieces.)
         if let Some(e) = scratch.outline.irradiance(light, cut, p, n, sidedness) {
             return e;

@@ -7,6 +7,7 @@ mod errors;
 mod monte_carlo;
 mod occluder_index;
 mod outline;
+mod silhouette;
 mod symmetry;
 
 use illum::{AreaLight, Vec3};
