@@ -31,11 +31,11 @@
 use crate::cell::{Cell, Sides};
 use crate::error::Error;
 use crate::hash::KeySet;
-use crate::scene::{DmLight, DmScene, Piece, PieceId};
+use crate::scene::{DmLight, DmScene, Hider, Piece, PieceId};
 use crate::tree::ReceiverDm;
 use area_shadow::dark::DARK_FRACTION;
 use bsp_core::{Side, VertexKey, VertexPosition};
-use illum::{Sidedness, VisiblePart, visible_irradiance};
+use illum::{Occluder, Sidedness, VisiblePart, visible_irradiance};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use slotmap::SlotMap;
@@ -93,8 +93,9 @@ pub struct IllumStats {
     /// Vertex-light pairs whose visible part was computed (case 3).
     pub visibility: usize,
     /// Light/occluder comparisons made by those visibility computations
-    /// (occluder polygons clipped against the light, a convex body's
-    /// that can hide it from the vertex each), summed.
+    /// (occluders clipped against the light: a polygon, a convex solid's
+    /// silhouette, or each polygon of another body that can hide it from
+    /// the vertex), summed.
     pub comparisons: usize,
 }
 
@@ -505,12 +506,15 @@ fn evaluate(
             Cover::Dark => 0.0,
             Cover::Free => light.illum.irradiance(p, normal, sided),
             Cover::Occluders(units) => {
-                let mut outlines: SmallVec<[&[[f64; 3]]; 8]> = SmallVec::new();
+                let mut hiders: SmallVec<[Hider; 8]> = SmallVec::new();
+                let mut loops = SmallVec::new();
                 for (o, _) in units.iter().filter_map(|u| dm.unit(*u)) {
-                    pieces[o].occluder_outlines(pieces, i, position, &mut outlines);
+                    pieces[o].hiders(pieces, i, position, &mut hiders, &mut loops);
                 }
-                comparisons += outlines.len();
-                visible_irradiance(&light.illum, &outlines, p, normal, sided, scratch)
+                comparisons += hiders.len();
+                let occluders: SmallVec<[Occluder; 8]> =
+                    hiders.iter().map(|h| h.occluder(&loops)).collect();
+                visible_irradiance(&light.illum, &occluders, p, normal, sided, scratch)
             }
         };
         // Rounding leaves a vertex that sees nothing a trace of light

@@ -10,6 +10,7 @@ use crate::tree::{Deletion, ReceiverDm};
 use area_shadow::{AreaSource, ConvexGroup};
 use bsp_core::{ConvexPolygon, GridPoint, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
+use silhouette::SolidCorners;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use smallvec::SmallVec;
 use std::collections::{BTreeSet, HashMap};
@@ -17,6 +18,7 @@ use svbsp::PieceFlags;
 
 mod contact;
 mod joint;
+mod silhouette;
 mod update;
 
 new_key_type! {
@@ -127,25 +129,50 @@ pub(crate) struct Piece {
     /// Of a body: whether its polygons are the whole boundary of a convex
     /// polyhedron ([`ConvexGroup::is_closed_convex`]).
     pub(crate) solid: bool,
+    /// Of such a solid: its members' corners, numbered, to find its
+    /// silhouette from a vertex (`None` for others, and past 256 corners).
+    pub(crate) corners: Option<SolidCorners>,
+}
+
+/// What hides light from a vertex, as [`Piece::hiders`] gives it.
+#[derive(Debug, Clone)]
+pub(crate) enum Hider<'p> {
+    /// A convex polygon's corners.
+    Polygon(&'p [[f64; 3]]),
+    /// A convex solid's silhouette: the corners at these positions of the
+    /// silhouettes' list.
+    Silhouette(std::ops::Range<usize>),
+}
+
+impl Hider<'_> {
+    /// The occluder `illum` takes, the silhouettes' corners in `loops`.
+    pub(crate) fn occluder<'a>(&'a self, loops: &'a [[f64; 3]]) -> illum::Occluder<'a> {
+        match self {
+            Self::Polygon(corners) => illum::Occluder::Polygon(corners),
+            Self::Silhouette(range) => illum::Occluder::Silhouette(&loops[range.clone()]),
+        }
+    }
 }
 
 impl Piece {
-    /// Appends the polygons that hide what this occluder hides of light
-    /// `light` from a vertex at `position`: a polygon's own outline (none
-    /// from its plane), or
-    /// some of a body's polygons. From outside the body, those with the
-    /// vertex strictly on their outer side (a segment from the light
-    /// through the body leaves it through one of them: at most three of a
-    /// box); from its boundary (a two-sided receiver of the body's own
-    /// sees light from behind, through the body), those with some of the
-    /// light in front that do not hold the vertex (the segment enters
-    /// through one of them).
-    pub(crate) fn occluder_outlines<'p>(
+    /// Appends what hides what this occluder hides of light `light` from a
+    /// vertex at `position`: a polygon's own outline (none from its
+    /// plane), or some of a body's polygons. From outside the body, those
+    /// with the vertex strictly on their outer side (a segment from the
+    /// light through the body leaves it through one of them: at most three
+    /// of a box); of a convex solid wholly in front of the light, rather
+    /// the loop they make, its silhouette from the vertex (one occluder,
+    /// its corners appended to `loops`). From its boundary (a two-sided
+    /// receiver of the body's own sees light from behind, through the
+    /// body), those with some of the light in front that do not hold the
+    /// vertex (the segment enters through one of them).
+    pub(crate) fn hiders<'p>(
         &'p self,
         pieces: &'p SlotMap<PieceId, Piece>,
         light: usize,
         position: &VertexPosition,
-        out: &mut impl Extend<&'p [[f64; 3]]>,
+        out: &mut SmallVec<[Hider<'p>; 8]>,
+        loops: &mut SmallVec<[[f64; 3]; 24]>,
     ) {
         if self.kind == PieceKind::Polygon {
             // From its own plane (a receiver it touches along an edge: a
@@ -155,7 +182,7 @@ impl Piece {
             // region from a point on the polygon's edge came out as the
             // whole light.
             if position.side(self.polygon.support()) != Side::On {
-                out.extend([self.outline.as_slice()]);
+                out.push(Hider::Polygon(&self.outline));
             }
             return;
         }
@@ -165,19 +192,24 @@ impl Piece {
             .map(|m| position.side(&m.outward))
             .collect();
         let outside = sides.contains(&Side::Front);
-        out.extend(
-            self.members
-                .iter()
-                .zip(sides)
-                .filter(|(m, side)| {
-                    if outside {
-                        *side == Side::Front
-                    } else {
-                        *side != Side::On && m.facing & (1 << light) != 0
-                    }
-                })
-                .map(|(m, _)| pieces[m.piece].outline.as_slice()),
-        );
+        if outside
+            && self.whole & (1 << light) != 0
+            && let Some(solid) = &self.corners
+        {
+            let start = loops.len();
+            if solid.silhouette(|i| sides[i] == Side::Front, loops) {
+                out.push(Hider::Silhouette(start..loops.len()));
+                return;
+            }
+        }
+        let hiding = self.members.iter().zip(sides).filter(|(m, side)| {
+            if outside {
+                *side == Side::Front
+            } else {
+                *side != Side::On && m.facing & (1 << light) != 0
+            }
+        });
+        out.extend(hiding.map(|(m, _)| Hider::Polygon(&pieces[m.piece].outline)));
     }
 
     /// The members of a body whose planes hold a point on its boundary

@@ -12,6 +12,7 @@
 //! instead of two passes each waiting for the big receiver.
 
 use super::contact::ContactPlanes;
+use super::silhouette::SolidCorners;
 use super::{
     DmScene, MAX_TILE_DEPTH, Member, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS,
     bounds_of,
@@ -137,6 +138,7 @@ impl DmScene {
                 members: Vec::new(),
                 whole: 0,
                 solid: false,
+                corners: None,
             });
             self.receivers.insert(key, receiver);
             self.illum.insert(key, ReceiverIllum::default());
@@ -336,10 +338,30 @@ impl DmScene {
                 (_, None) => UnitPlanes::default(),
             })
             .collect();
-        let outline: Vec<[f64; 3]> = members
+        let faces: Vec<Vec<[f64; 3]>> = members
             .iter()
-            .flat_map(|(polygon, _)| polygon.vertices_f64())
+            .map(|(polygon, _)| polygon.vertices_f64())
             .collect();
+        // A solid's faces counter-clockwise seen from outside: reversed
+        // where the outward plane is the polygon's turned.
+        let corners = if solid {
+            let outside: Vec<Vec<[f64; 3]>> = faces
+                .iter()
+                .zip(members)
+                .zip(&outward)
+                .map(|((corners, (polygon, _)), outward)| {
+                    let mut corners = corners.clone();
+                    if polygon.support() != outward {
+                        corners.reverse();
+                    }
+                    corners
+                })
+                .collect();
+            SolidCorners::new(outside.iter().map(Vec::as_slice))
+        } else {
+            None
+        };
+        let outline: Vec<[f64; 3]> = faces.into_iter().flatten().collect();
         let piece = Piece {
             polygon: members[0].0.clone(),
             kind: PieceKind::Body,
@@ -360,6 +382,7 @@ impl DmScene {
                 .collect(),
             whole,
             solid,
+            corners,
         };
         let key = self.pieces.insert(piece);
         self.overlap.insert(key, &self.pieces[key], false);
