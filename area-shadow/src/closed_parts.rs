@@ -36,9 +36,9 @@
 //! ```
 
 use crate::disjoint_sets::DisjointSets;
+use crate::hash::HashMap;
 use bsp_core::{ConvexPolygon, GridPoint};
 use smallvec::SmallVec;
-use std::collections::HashMap;
 
 /// A closed part of an object's surface.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -76,7 +76,7 @@ pub fn closed_parts(polygons: &[ConvexPolygon], objects: &[u32]) -> Vec<ClosedPa
     let corners: Vec<Option<Vec<GridPoint>>> =
         polygons.iter().map(ConvexPolygon::grid_corners).collect();
     // Each directed edge of an object with the polygons that walk it.
-    let mut edges: HashMap<(u32, GridPoint, GridPoint), SmallVec<[usize; 2]>> = HashMap::new();
+    let mut edges: HashMap<(u32, GridPoint, GridPoint), SmallVec<[usize; 2]>> = HashMap::default();
     for (k, corners) in corners.iter().enumerate() {
         for (a, b) in corners.iter().flat_map(|c| cyclic_pairs(c)) {
             edges.entry((objects[k], a, b)).or_default().push(k);
@@ -107,7 +107,7 @@ pub fn closed_parts(polygons: &[ConvexPolygon], objects: &[u32]) -> Vec<ClosedPa
             }
         }
     }
-    let mut found: HashMap<usize, ClosedPart> = HashMap::new();
+    let mut found: HashMap<usize, ClosedPart> = HashMap::default();
     for (k, corners) in corners.iter().enumerate() {
         let root = parts.find(k as u32) as usize;
         if open[root] {

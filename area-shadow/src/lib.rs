@@ -70,6 +70,7 @@ mod disjoint_sets;
 mod error;
 mod gridding;
 mod groups;
+mod hash;
 mod merge_pieces;
 mod pass;
 mod pipeline;

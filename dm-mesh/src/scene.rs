@@ -13,7 +13,7 @@ use contact::ContactPlanes;
 use silhouette::SolidCorners;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use smallvec::SmallVec;
-use std::collections::{BTreeSet, HashMap};
+use std::collections::BTreeSet;
 use svbsp::PieceFlags;
 
 mod contact;
@@ -368,15 +368,15 @@ pub struct DmScene {
     /// The objects with a convex body that has a face in each plane
     /// (facing out), with the body's bounding box, for finding the bodies
     /// that touch.
-    pub(crate) solid_faces: HashMap<Plane, Vec<(ObjectId, joint::Bounds)>>,
+    pub(crate) solid_faces: KeyMap<Plane, Vec<(ObjectId, joint::Bounds)>>,
     /// The objects with a body that has a surface corner at each grid
     /// point ([`ConvexGroup::joining_corners`]), for finding the bodies the
     /// grid bent that touch others.
-    pub(crate) solid_corners: HashMap<GridPoint, Vec<ObjectId>>,
+    pub(crate) solid_corners: KeyMap<GridPoint, Vec<ObjectId>>,
     /// The shadow-casting polygons in each plane (either way facing, under
     /// [`area_shadow::one_way`]), with their bounding boxes, for finding
     /// coplanar polygons of several objects side by side.
-    pub(crate) flat_planes: HashMap<Plane, Vec<(PieceId, joint::Bounds)>>,
+    pub(crate) flat_planes: KeyMap<Plane, Vec<(PieceId, joint::Bounds)>>,
     /// Each joint body's polygons' pieces, ascending.
     pub(crate) joints: KeyMap<PieceId, Vec<PieceId>>,
     pub(crate) options: DmOptions,
@@ -416,9 +416,9 @@ impl DmScene {
             illum: SecondaryMap::new(),
             contacts: SecondaryMap::new(),
             overlap,
-            solid_faces: HashMap::new(),
-            solid_corners: HashMap::new(),
-            flat_planes: HashMap::new(),
+            solid_faces: KeyMap::default(),
+            solid_corners: KeyMap::default(),
+            flat_planes: KeyMap::default(),
             joints: KeyMap::default(),
             options,
             lit: false,

@@ -7,7 +7,8 @@
 //! parts of the light join with no overlap, and no proof that takes them
 //! one by one gets across the seam; as one body it needs none.
 
-use std::collections::{BTreeMap, HashMap};
+use crate::hash::HashMap;
+use std::collections::BTreeMap;
 
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
@@ -71,7 +72,7 @@ pub fn sheet_bodies(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> Vec<(Ve
 /// edge joined to none. Pieces whose corners are not all grid points join
 /// nothing.
 fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> (Vec<Vec<u32>>, Vec<bool>) {
-    let mut edges: HashMap<(GridPoint, GridPoint), u32> = HashMap::new();
+    let mut edges: HashMap<(GridPoint, GridPoint), u32> = HashMap::default();
     let mut outlines: Vec<Option<Vec<GridPoint>>> = Vec::with_capacity(pieces.len());
     for (k, piece) in pieces.iter().enumerate() {
         let outline = owners.get(k).copied().flatten().and(piece.grid_corners());
@@ -98,7 +99,7 @@ fn components(pieces: &[ConvexPolygon], owners: &[Option<u32>]) -> (Vec<Vec<u32>
             }
         }
     }
-    let mut by_root: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut by_root: HashMap<u32, Vec<u32>> = HashMap::default();
     for k in 0..pieces.len() as u32 {
         if outlines[k as usize].is_some() {
             by_root.entry(sets.find(k)).or_default().push(k);

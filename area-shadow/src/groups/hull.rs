@@ -1,9 +1,9 @@
 //! The convex hull of grid points, exactly (incremental, with the
 //! kernel's exact side of a grid point against a plane through three).
 
+use crate::hash::HashSet;
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{GridPoint, Plane};
-use std::collections::HashSet;
 
 /// The hull's faces: triangles counter-clockwise seen from outside, each
 /// with its plane (the hull behind it). A point on a face (not strictly

@@ -37,9 +37,10 @@
 use super::solid::Solid;
 use super::{ConvexGroup, FlatUnion, Shape};
 use crate::disjoint_sets::DisjointSets;
+use crate::hash::{HashMap, HashSet};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
-use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet};
 
 /// The most unions (single bodies included) tried among one connected set
 /// of touching bodies: a wall of many bricks finds some of its unions, not
@@ -116,7 +117,7 @@ pub fn flat_joints(
     pieces: &[ConvexPolygon],
     objects: &[Option<u32>],
 ) -> (Vec<ConvexGroup>, Vec<FlatUnion>) {
-    let mut by_plane: HashMap<Plane, Vec<usize>> = HashMap::new();
+    let mut by_plane: HashMap<Plane, Vec<usize>> = HashMap::default();
     for (k, piece) in pieces.iter().enumerate() {
         if objects[k].is_some() {
             by_plane
@@ -238,7 +239,7 @@ fn touching_boxes(pieces: &[ConvexPolygon], ks: Vec<usize>) -> Vec<Vec<usize>> {
 /// boxes meeting: bodies at one height far apart share face planes), each
 /// ascending, in order of first solid.
 fn touching_sets(solids: &[Option<&Solid>]) -> Vec<Vec<usize>> {
-    let mut by_face: HashMap<Plane, Vec<usize>> = HashMap::new();
+    let mut by_face: HashMap<Plane, Vec<usize>> = HashMap::default();
     for (i, solid) in solids.iter().enumerate() {
         let Some(solid) = solid else { continue };
         let faces: HashSet<Plane> = solid.faces().iter().copied().collect();

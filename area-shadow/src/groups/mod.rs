@@ -77,10 +77,10 @@
 
 use crate::AreaSource;
 use crate::disjoint_sets::DisjointSets;
+use crate::hash::{HashMap, HashSet};
 use crate::volumes::volume_planes;
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
 use solid::Solid;
-use std::collections::HashMap;
 
 mod closed;
 mod cores;
@@ -289,7 +289,7 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
     // A flat convex polygon whose pieces meet in T-junctions takes the
     // place of the groups its pieces make by whole edges (its umbra holds
     // theirs), unless one of those reaches beyond it.
-    let mut taken: HashMap<u32, usize> = HashMap::new();
+    let mut taken: HashMap<u32, usize> = HashMap::default();
     for (f, flat) in flats.iter().enumerate() {
         for &k in &flat.pieces {
             taken.insert(k, f);
@@ -301,7 +301,7 @@ pub fn convex_groups(pieces: &[ConvexPolygon], objects: &[Option<u32>]) -> Vec<C
             .filter_map(|k| taken.get(k))
             .any(|&f| members.iter().any(|k| taken.get(k) != Some(&f)))
     };
-    let blocked: std::collections::HashSet<usize> = groups
+    let blocked: HashSet<usize> = groups
         .iter()
         .filter(|members| spill(members))
         .flat_map(|members| members.iter().filter_map(|k| taken.get(k).copied()))
@@ -443,11 +443,7 @@ enum Closing {
 
 /// Whether an edge-connected group stays: its pieces are in no T-junction
 /// flat, or only in flats that give way to it (`blocked`).
-fn blocked_or_free(
-    members: &[u32],
-    taken: &HashMap<u32, usize>,
-    blocked: &std::collections::HashSet<usize>,
-) -> bool {
+fn blocked_or_free(members: &[u32], taken: &HashMap<u32, usize>, blocked: &HashSet<usize>) -> bool {
     members
         .iter()
         .filter_map(|k| taken.get(k))
@@ -606,7 +602,7 @@ fn with_t_junctions(
     objects: &[Option<u32>],
     mut outlines: Vec<Option<Vec<GridPoint>>>,
 ) -> Vec<Option<Vec<GridPoint>>> {
-    let mut by_plane: HashMap<(u32, Plane), Vec<usize>> = HashMap::new();
+    let mut by_plane: HashMap<(u32, Plane), Vec<usize>> = HashMap::default();
     for (k, outline) in outlines.iter().enumerate() {
         if let (Some(_), Some(object)) = (outline, objects[k]) {
             by_plane
@@ -672,7 +668,7 @@ pub(super) fn cross(u: [i128; 3], v: [i128; 3]) -> [i128; 3] {
 /// edges of `outlines` matched by their reverses, each ascending, in
 /// order of first piece.
 fn connected_sets(outlines: &[Option<Vec<GridPoint>>], objects: &[Option<u32>]) -> Vec<Vec<u32>> {
-    let mut by_edge: HashMap<(u32, GridPoint, GridPoint), Vec<u32>> = HashMap::new();
+    let mut by_edge: HashMap<(u32, GridPoint, GridPoint), Vec<u32>> = HashMap::default();
     for (k, outline) in outlines.iter().enumerate() {
         let (Some(outline), Some(object)) = (outline, objects[k]) else {
             continue;
@@ -689,7 +685,7 @@ fn connected_sets(outlines: &[Option<Vec<GridPoint>>], objects: &[Option<u32>]) 
             }
         }
     }
-    let mut members: HashMap<u32, Vec<u32>> = HashMap::new();
+    let mut members: HashMap<u32, Vec<u32>> = HashMap::default();
     for (k, outline) in outlines.iter().enumerate() {
         if outline.is_some() {
             members
@@ -712,7 +708,7 @@ pub(super) fn directed_edges(
 
 /// Directed edges of the pieces with their counts; `None` if one repeats.
 pub(super) fn edge_set(outlines: &[&[GridPoint]]) -> Option<HashMap<(GridPoint, GridPoint), u32>> {
-    let mut edges = HashMap::new();
+    let mut edges = HashMap::default();
     for (f, outline) in outlines.iter().enumerate() {
         for edge in directed_edges(outline) {
             if edges.insert(edge, f as u32).is_some() {
@@ -744,7 +740,7 @@ pub(super) fn boundary_cycle(outlines: &[&[GridPoint]]) -> Option<Vec<GridPoint>
 /// those; `None` if a directed edge repeats or a vertex is left twice.
 fn boundary_cycles(outlines: &[&[GridPoint]]) -> Option<Vec<Vec<GridPoint>>> {
     let edges = edge_set(outlines)?;
-    let mut next: HashMap<GridPoint, GridPoint> = HashMap::new();
+    let mut next: HashMap<GridPoint, GridPoint> = HashMap::default();
     for &(a, b) in edges.keys() {
         if !edges.contains_key(&(b, a)) && next.insert(a, b).is_some() {
             return None;
@@ -752,7 +748,7 @@ fn boundary_cycles(outlines: &[&[GridPoint]]) -> Option<Vec<Vec<GridPoint>>> {
     }
     let mut starts: Vec<GridPoint> = next.keys().copied().collect();
     starts.sort_unstable();
-    let mut seen: std::collections::HashSet<GridPoint> = std::collections::HashSet::new();
+    let mut seen: HashSet<GridPoint> = HashSet::default();
     let mut cycles = Vec::new();
     for start in starts {
         if seen.contains(&start) {

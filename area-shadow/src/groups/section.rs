@@ -39,9 +39,9 @@
 
 use super::flat_union::FlatUnion;
 use super::winding::winding_number;
+use crate::hash::HashMap;
 use bsp_core::predicates::{Side, orient3d_f64, side_of_point};
 use bsp_core::{GridPoint, Plane};
-use std::collections::HashMap;
 
 /// Levels tried across the surface's extent along an axis.
 const LEVELS: i64 = 7;
@@ -223,7 +223,7 @@ impl<'a> Surface<'a> {
     /// surface).
     fn loops(&self, axis: usize, level: i64) -> Option<Vec<Vec<Crossing>>> {
         // Each crossing face's segment, from its start to its end.
-        let mut next: HashMap<(GridPoint, GridPoint), Crossing> = HashMap::new();
+        let mut next: HashMap<(GridPoint, GridPoint), Crossing> = HashMap::default();
         for (f, outline) in self.outlines.iter().enumerate() {
             let (lo, hi) = self.boxes[f];
             let l = level as f64;

@@ -25,10 +25,10 @@ use super::cores::local_cores;
 use super::edge_set;
 use super::hull::convex_hull;
 use super::kernel::{bounding_planes, kernel_points};
+use crate::hash::HashSet;
 use crate::{AreaSource, SourceSide};
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint, Plane};
-use std::collections::HashSet;
 
 /// The farthest a vertex is moved towards the centre, in grid units.
 const MAX_NUDGE: f64 = 64.0;
@@ -629,7 +629,7 @@ impl Solid {
             .flat_map(|f| lights.iter().map(move |&v| side_of_point(f, v)))
             .collect();
         let mut planes: Vec<Plane> = Vec::new();
-        let mut seen: HashSet<Plane> = HashSet::new();
+        let mut seen: HashSet<Plane> = HashSet::default();
         // The faces some light vertex sees: the ray from it enters there.
         for (f, face) in self.faces.iter().enumerate() {
             if sides[f * n..(f + 1) * n].contains(&Side::Front) && seen.insert(*face) {
