@@ -130,7 +130,8 @@ pub(crate) struct Piece {
     /// polyhedron ([`ConvexGroup::is_closed_convex`]).
     pub(crate) solid: bool,
     /// Of such a solid: its members' corners, numbered, to find its
-    /// silhouette from a vertex (`None` for others, and past 256 corners).
+    /// silhouette from a vertex (`None` for others, past 255 corners, and
+    /// where its members' edges do not pair up exactly).
     pub(crate) corners: Option<SolidCorners>,
 }
 
