@@ -10,10 +10,17 @@
 //! it, a prefix or a suffix (its side is affine along the line), so the
 //! answer is a few exact sides of the chord's ends and of the points where
 //! the `W_i` cross `L`: no polygon is made.
+//!
+//! Where the polygon is then cut again and again (a region filtered down a
+//! tree, each part asking again), the chord itself can be kept
+//! ([`ConvexPolygon::chord_inside`]): a part of the polygon is crossed
+//! exactly where a part of the open chord lies in it, two sides of the
+//! chord's ends per cut ([`Chord::split`]).
 
 use crate::plane::Plane;
 use crate::polygon::{ConvexPolygon, PolygonSide};
-use crate::predicates::{PointFilter, Side, side_of_implicit};
+use crate::predicates::{ImplicitPoint, PointFilter, Side, side_of_implicit};
+use crate::winged_edge::VertexPosition;
 
 /// One end of a chord: a polygon vertex on the plane, or where the plane
 /// crosses an edge.
@@ -102,6 +109,51 @@ impl ConvexPolygon {
         true
     }
 
+    /// The open chord along which `plane` crosses the polygon's part behind
+    /// every plane of `bounds`, if it does (as [`Self::crosses_inside`]
+    /// says): the chord through the polygon clipped by the bounds, exact.
+    pub fn chord_inside(&self, plane: &Plane, bounds: &[Plane]) -> Option<Chord> {
+        if self.classify(plane) != PolygonSide::Both {
+            return None;
+        }
+        let mut cutting: smallvec::SmallVec<[&Plane; 4]> = smallvec::SmallVec::new();
+        for bound in bounds {
+            match self.classify(bound) {
+                PolygonSide::Back => {}
+                PolygonSide::Both => cutting.push(bound),
+                PolygonSide::Front | PolygonSide::Coplanar(_) => return None,
+            }
+        }
+        let [first, second] = self.chord_ends(plane)?;
+        let position = |end: End| match end {
+            End::Vertex(i) => self.vertex_position(i),
+            End::Crossing { filter, planes } => {
+                VertexPosition::Implicit(ImplicitPoint::from_parts(planes.map(|p| *p), filter))
+            }
+        };
+        let mut chord = Chord {
+            plane: *plane,
+            ends: [position(first), position(second)],
+        };
+        // Clipped by each bound in turn: an end strictly in front of it
+        // moves to where it crosses the line (the other end, strictly
+        // behind, keeps the open segment between them of positive length).
+        for bound in cutting {
+            let (a, b) = (chord.ends[0].side(bound), chord.ends[1].side(bound));
+            match (a, b) {
+                (Side::Back, Side::Back) | (Side::Back, Side::On) | (Side::On, Side::Back) => {}
+                (Side::Back, Side::Front) => {
+                    chord.ends[1] = chord.crossing(self.support(), bound)?
+                }
+                (Side::Front, Side::Back) => {
+                    chord.ends[0] = chord.crossing(self.support(), bound)?
+                }
+                _ => return None,
+            }
+        }
+        Some(chord)
+    }
+
     /// The two ends of the chord of a plane that cuts the polygon (vertices
     /// strictly on both sides), in the polygon's vertex order.
     fn chord_ends<'a>(&'a self, plane: &'a Plane) -> Option<[End<'a>; 2]> {
@@ -127,5 +179,57 @@ impl ConvexPolygon {
             // the line in exactly two boundary points.
             _ => None,
         }
+    }
+}
+
+/// The open segment along which a plane crosses the part of a convex
+/// polygon behind some bounding planes ([`ConvexPolygon::chord_inside`]),
+/// between its two ends, exact points.
+#[derive(Debug, Clone)]
+pub struct Chord {
+    plane: Plane,
+    ends: [VertexPosition; 2],
+}
+
+impl Chord {
+    /// The plane whose chord it is.
+    pub fn plane(&self) -> &Plane {
+        &self.plane
+    }
+
+    /// The chord's parts strictly behind and strictly in front of `cut`,
+    /// a plane that cuts the polygon (whose support is `support`): the
+    /// chords through the polygon's back and front parts (within the same
+    /// bounds), none where the part of the chord on that side is empty.
+    /// Two exact sides, and where the chord crosses `cut`, its crossing
+    /// point.
+    pub fn split(&self, support: &Plane, cut: &Plane) -> (Option<Chord>, Option<Chord>) {
+        let (a, b) = (self.ends[0].side(cut), self.ends[1].side(cut));
+        let behind = a == Side::Back || b == Side::Back;
+        let ahead = a == Side::Front || b == Side::Front;
+        if !(behind && ahead) {
+            let keep = || Some(self.clone());
+            return (behind.then(keep).flatten(), ahead.then(keep).flatten());
+        }
+        // Ends strictly on either side: the cut crosses the line at one
+        // point, inside the chord.
+        let Some(crossing) = self.crossing(support, cut) else {
+            // Not reached (the three planes meet in one point); both
+            // parts keep all of it, a superset of the truth.
+            return (Some(self.clone()), Some(self.clone()));
+        };
+        let mut back = self.clone();
+        let mut front = self.clone();
+        let ahead_end = usize::from(a == Side::Back);
+        back.ends[ahead_end] = crossing;
+        front.ends[1 - ahead_end] = crossing;
+        (Some(back), Some(front))
+    }
+
+    /// Where `plane` crosses the chord's line (on `support`).
+    fn crossing(&self, support: &Plane, plane: &Plane) -> Option<VertexPosition> {
+        ImplicitPoint::new(*support, self.plane, *plane)
+            .ok()
+            .map(VertexPosition::Implicit)
     }
 }

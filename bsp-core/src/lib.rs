@@ -10,7 +10,9 @@
 //! crack, overlap or lose area, and results do not depend on the order of
 //! floating-point operations.
 //!
-//! On top of the predicates: [`ConvexPolygon`] splitting, the scene BSP
+//! On top of the predicates: [`ConvexPolygon`] splitting (and, without
+//! splitting, whether a plane crosses a polygon's part inside other planes,
+//! with that plane's [`Chord`] kept as the polygon is cut), the scene BSP
 //! ([`SceneBsp`], an autopartition with front-to-back traversal from a point
 //! or a direction), BSP solids ([`BspSolid`], Thibault-Naylor in / out
 //! trees), winged-edge meshes with exact vertices ([`WingedMesh`]) and lines
@@ -56,6 +58,7 @@ mod solid;
 mod winged_edge;
 
 pub use autopartition::BuildOptions;
+pub use chord::Chord;
 pub use error::Error;
 pub use grid::{GRID_BITS, GRID_LIMIT, Grid, GridPoint};
 pub use lattice::PlaneLattice;

@@ -123,3 +123,79 @@ fn a_cut_outside_the_bounds_does_not_cross() {
     assert!(!square.crosses_inside(&cut, &[left]));
     assert!(square.crosses_inside(&cut, &[left.flipped()]));
 }
+
+/// Follows `polygon` down the cuts `splits` (to the back part where the
+/// bool says, else the front), its chord of `cut` within `bounds` divided
+/// at each: each part's chord exists exactly where the part, clipped by
+/// the bounds, has points strictly on both sides of `cut`.
+fn check_kept_chord(
+    polygon: &ConvexPolygon,
+    cut: &Plane,
+    bounds: &[Plane],
+    splits: &[(Plane, bool)],
+) -> Result<(), TestCaseError> {
+    let mut part = polygon.clone();
+    let mut chord = polygon.chord_inside(cut, bounds);
+    prop_assert_eq!(chord.is_some(), by_clipping(&part, cut, bounds));
+    for (line, to_back) in splits {
+        let (back, front) = match part.split(line) {
+            Split::Both(back, front) => (back, front),
+            // Wholly on one side: the part and its chord stay as they are.
+            _ => continue,
+        };
+        let (chord_back, chord_front) = match &chord {
+            Some(chord) => chord.split(part.support(), line),
+            None => (None, None),
+        };
+        prop_assert_eq!(
+            chord_back.is_some(),
+            by_clipping(&back, cut, bounds),
+            "back of {:?}",
+            line
+        );
+        prop_assert_eq!(
+            chord_front.is_some(),
+            by_clipping(&front, cut, bounds),
+            "front of {:?}",
+            line
+        );
+        (part, chord) = if *to_back {
+            (back, chord_back)
+        } else {
+            (front, chord_front)
+        };
+    }
+    Ok(())
+}
+
+proptest! {
+    // (Most random chords miss the polygon or its bounds: many cases.)
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    #[test]
+    fn a_kept_chord_crosses_the_parts_it_is_split_into(
+        polygon in cut_polygon(4000),
+        cut in plane(1200),
+        bounds in prop::collection::vec(plane(1200), 0..3),
+        splits in prop::collection::vec((plane(1200), any::<bool>()), 1..6),
+    ) {
+        check_kept_chord(&polygon, &cut, &bounds, &splits)?;
+    }
+
+    #[test]
+    fn a_kept_chord_split_through_vertices_agrees_with_clipping(
+        polygon in cut_polygon(240),
+        picks in prop::collection::vec((any::<u8>(), any::<usize>(), any::<usize>(), grid_point(80), plane(80), any::<bool>()), 2..7),
+    ) {
+        let planes: Vec<(Plane, bool)> = picks
+            .iter()
+            .map(|&(pick, a, b, extra, random, to_back)| {
+                (plane_near(&polygon, (pick, a, b), extra, random), to_back)
+            })
+            .collect();
+        // The chord's plane, one bound, then the cuts (through the
+        // polygon's vertices, or through the chord's ends' lines, often).
+        let (cut, bound) = (planes[0].0, planes[1].0);
+        check_kept_chord(&polygon, &cut, &[bound], &planes[2..])?;
+    }
+}
