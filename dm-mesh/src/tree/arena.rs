@@ -201,22 +201,23 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         node: u32,
         piece: ConvexPolygon,
     ) -> impl Iterator<Item = (u32, ConvexPolygon)> + use<K> {
-        self.descend_with(node, piece, (), |(), _, _| ((), ()), |_, _| false)
+        self.descend_with(node, piece, (), |(), _| ((), ()), |_, _| false)
             .into_iter()
             .map(|(leaf, part, ())| (leaf, part))
     }
 
     /// [`Self::descend`], with what the piece carries divided between the
-    /// back and front parts (by `divide`) at every cut. A part that comes
-    /// out of a cut and is `settled` stops at the node it reaches, which
-    /// is then returned in place of the leaves under it (in the order the
-    /// walk would have reached them: back first).
+    /// back and front parts at every cut (by `divide`, given the cut's
+    /// line). A part that comes out of a cut and is `settled` stops at the
+    /// node it reaches, which is then returned in place of the leaves
+    /// under it (in the order the walk would have reached them: back
+    /// first).
     pub(super) fn descend_with<C>(
         &self,
         node: u32,
         piece: ConvexPolygon,
         carried: C,
-        mut divide: impl FnMut(C, &ConvexPolygon, &ConvexPolygon) -> (C, C),
+        mut divide: impl FnMut(C, &Plane) -> (C, C),
         settled: impl Fn(&ConvexPolygon, &C) -> bool,
     ) -> Vec<(u32, ConvexPolygon, C)> {
         let mut out = Vec::new();
@@ -240,7 +241,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                         Split::Back => (n, cut) = (*back, false),
                         Split::Front => (n, cut) = (*front, false),
                         Split::Both(b, f) => {
-                            let (to_back, to_front) = divide(carried, &b, &f);
+                            let (to_back, to_front) = divide(carried, line);
                             stack.push((*front, f, to_front, true));
                             (n, piece, carried, cut) = (*back, b, to_back, true);
                         }

@@ -3,7 +3,7 @@
 use super::{Reach, ReceiverDm, clip};
 use crate::cell::{Entry, Sides};
 use crate::critical::{Critical, UnitPlanes};
-use bsp_core::{ConvexPolygon, FaceKey, Plane, PolygonSide, Side, Split};
+use bsp_core::{Chord, ConvexPolygon, FaceKey, Plane, PolygonSide, Side, Split};
 use smallvec::SmallVec;
 use std::borrow::Cow;
 use std::ops::Range;
@@ -72,13 +72,19 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         // in its leaves' pieces: an internal discontinuity that does not
         // cross a piece crosses none of them, and is not tried on each.
         // A piece that misses one has parts that miss it too, so they are
-        // sorted out on the way down, at the cuts; each piece carries the
-        // range of `crossing` that holds its own.
-        let mut crossing: Vec<&Critical> = if exact {
+        // sorted out on the way down, at the cuts: each discontinuity that
+        // crosses a piece is kept with its chord through it, divided at
+        // each cut between the parts (two exact sides of the chord's ends,
+        // where trying each part anew took a polygon's sides to each of the
+        // discontinuity's planes); each piece carries the range of
+        // `chords` that holds its own.
+        let support = *self.polygon.support();
+        let mut chords: Vec<(u32, Chord)> = if exact {
             planes
                 .internal
                 .iter()
-                .filter(|c| crosses(&region, c))
+                .enumerate()
+                .filter_map(|(k, c)| Some((k as u32, region.chord_inside(&c.plane, &c.wedge)?)))
                 .collect()
         } else {
             Vec::new()
@@ -92,7 +98,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             }
             other => other.map(Cow::Borrowed),
         };
-        let whole = 0..crossing.len() as u32;
+        let whole = 0..chords.len() as u32;
         // A piece that is all of its node's cell (no edge on the region's
         // planes), crossed by no internal discontinuity and wholly in or
         // out of the umbra grows every leaf under the node alike: the
@@ -110,18 +116,21 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             node,
             region,
             whole,
-            |range, back, front| {
-                let mut share = |part: &ConvexPolygon| {
-                    let start = crossing.len() as u32;
-                    for k in range.clone() {
-                        let critical = crossing[k as usize];
-                        if crosses(part, critical) {
-                            crossing.push(critical);
-                        }
-                    }
-                    start..crossing.len() as u32
-                };
-                (share(back), share(front))
+            |range, line| {
+                // The back parts' chords first, then the front parts'.
+                let mut ahead: SmallVec<[(u32, Chord); 8]> = SmallVec::new();
+                let start = chords.len() as u32;
+                for k in range {
+                    let (critical, (back, front)) = {
+                        let (critical, chord) = &chords[k as usize];
+                        (*critical, chord.split(&support, line))
+                    };
+                    chords.extend(back.map(|chord| (critical, chord)));
+                    ahead.extend(front.map(|chord| (critical, chord)));
+                }
+                let middle = chords.len() as u32;
+                chords.extend(ahead);
+                (start..middle, middle..chords.len() as u32)
             },
             settled,
         );
@@ -142,10 +151,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             }
             match grown {
                 Some(grown) if exact => {
-                    let crossing = &crossing[range.start as usize..range.end as usize];
-                    if crossing.is_empty() {
+                    if range.is_empty() {
                         continue;
                     }
+                    let crossing: SmallVec<[&Critical; 16]> = chords
+                        [range.start as usize..range.end as usize]
+                        .iter()
+                        .map(|(k, _)| &planes.internal[*k as usize])
+                        .collect();
+                    let crossing = crossing.as_slice();
                     match grown {
                         // (No face polygon to make: the cell is the piece.)
                         Grown::Whole(inner) => {
