@@ -17,10 +17,10 @@
 //! exactly where a part of the open chord lies in it, two sides of the
 //! chord's ends per cut ([`Chord::split`]).
 
+use crate::grid::GridPoint;
 use crate::plane::Plane;
 use crate::polygon::{ConvexPolygon, PolygonSide};
-use crate::predicates::{ImplicitPoint, PointFilter, Side, side_of_implicit};
-use crate::winged_edge::VertexPosition;
+use crate::predicates::{PointFilter, Side, side_of_implicit, side_of_point};
 
 /// One end of a chord: a polygon vertex on the plane, or where the plane
 /// crosses an edge.
@@ -125,28 +125,36 @@ impl ConvexPolygon {
             }
         }
         let [first, second] = self.chord_ends(plane)?;
-        let position = |end: End| match end {
-            End::Vertex(i) => self.vertex_position(i),
-            End::Crossing { filter, planes } => {
-                VertexPosition::Implicit(ImplicitPoint::from_parts(planes.map(|p| *p), filter))
-            }
+        let end = |end: End| match end {
+            End::Vertex(i) => match self.vertex_grid_point(i) {
+                Some(p) => Some(ChordEnd::Grid(p)),
+                // The chord's line crosses the polygon's inside, so it
+                // runs along neither edge at the vertex: either edge's
+                // plane meets it there alone.
+                None => ChordEnd::on_line(self.support(), plane, self.edge(i)),
+            },
+            End::Crossing { filter, planes } => Some(ChordEnd::OnLine {
+                plane: *planes[2],
+                filter,
+            }),
         };
         let mut chord = Chord {
             plane: *plane,
-            ends: [position(first), position(second)],
+            ends: [end(first)?, end(second)?],
         };
         // Clipped by each bound in turn: an end strictly in front of it
         // moves to where it crosses the line (the other end, strictly
         // behind, keeps the open segment between them of positive length).
+        let support = self.support();
         for bound in cutting {
-            let (a, b) = (chord.ends[0].side(bound), chord.ends[1].side(bound));
+            let (a, b) = (chord.side(0, support, bound), chord.side(1, support, bound));
             match (a, b) {
                 (Side::Back, Side::Back) | (Side::Back, Side::On) | (Side::On, Side::Back) => {}
                 (Side::Back, Side::Front) => {
-                    chord.ends[1] = chord.crossing(self.support(), bound)?
+                    chord.ends[1] = ChordEnd::on_line(support, plane, bound)?
                 }
                 (Side::Front, Side::Back) => {
-                    chord.ends[0] = chord.crossing(self.support(), bound)?
+                    chord.ends[0] = ChordEnd::on_line(support, plane, bound)?
                 }
                 _ => return None,
             }
@@ -167,7 +175,9 @@ impl ConvexPolygon {
                 ends.push(End::Vertex(i));
             } else if sides[next] != Side::On && sides[next] != sides[i] {
                 // Edge `i` runs from vertex `i` to vertex `i + 1`.
-                let planes = [self.support(), self.edge(i), plane];
+                // (In the order a kept chord's ends use: support, the
+                // chord's plane, the other.)
+                let planes = [self.support(), plane, self.edge(i)];
                 let filter = PointFilter::new(planes[0], planes[1], planes[2])?;
                 ends.push(End::Crossing { filter, planes });
             }
@@ -188,13 +198,45 @@ impl ConvexPolygon {
 #[derive(Debug, Clone)]
 pub struct Chord {
     plane: Plane,
-    ends: [VertexPosition; 2],
+    ends: [ChordEnd; 2],
+}
+
+/// An end of a chord: a grid point, or where a plane crosses the chord's
+/// line (the polygon's support and the chord's plane make the point's
+/// other two planes: a third of an implicit point's size, for chords
+/// carried by the thousand).
+#[derive(Debug, Clone, Copy)]
+enum ChordEnd {
+    Grid(GridPoint),
+    OnLine { plane: Plane, filter: PointFilter },
+}
+
+impl ChordEnd {
+    /// Where `other` crosses the line of `plane` on `support`, if at one
+    /// point.
+    fn on_line(support: &Plane, plane: &Plane, other: &Plane) -> Option<Self> {
+        let filter = PointFilter::new(support, plane, other)?;
+        Some(Self::OnLine {
+            plane: *other,
+            filter,
+        })
+    }
 }
 
 impl Chord {
     /// The plane whose chord it is.
     pub fn plane(&self) -> &Plane {
         &self.plane
+    }
+
+    /// The side of `q` end `i` lies on (the polygon's support `support`).
+    fn side(&self, i: usize, support: &Plane, q: &Plane) -> Side {
+        match &self.ends[i] {
+            ChordEnd::Grid(p) => side_of_point(q, *p),
+            ChordEnd::OnLine { plane, filter } => {
+                side_of_implicit(filter, [support, &self.plane, plane], q)
+            }
+        }
     }
 
     /// The chord's parts strictly behind and strictly in front of `cut`,
@@ -204,7 +246,7 @@ impl Chord {
     /// Two exact sides, and where the chord crosses `cut`, its crossing
     /// point.
     pub fn split(&self, support: &Plane, cut: &Plane) -> (Option<Chord>, Option<Chord>) {
-        let (a, b) = (self.ends[0].side(cut), self.ends[1].side(cut));
+        let (a, b) = (self.side(0, support, cut), self.side(1, support, cut));
         let behind = a == Side::Back || b == Side::Back;
         let ahead = a == Side::Front || b == Side::Front;
         if !(behind && ahead) {
@@ -213,7 +255,7 @@ impl Chord {
         }
         // Ends strictly on either side: the cut crosses the line at one
         // point, inside the chord.
-        let Some(crossing) = self.crossing(support, cut) else {
+        let Some(crossing) = ChordEnd::on_line(support, &self.plane, cut) else {
             // Not reached (the three planes meet in one point); both
             // parts keep all of it, a superset of the truth.
             return (Some(self.clone()), Some(self.clone()));
@@ -224,12 +266,5 @@ impl Chord {
         back.ends[ahead_end] = crossing;
         front.ends[1 - ahead_end] = crossing;
         (Some(back), Some(front))
-    }
-
-    /// Where `plane` crosses the chord's line (on `support`).
-    fn crossing(&self, support: &Plane, plane: &Plane) -> Option<VertexPosition> {
-        ImplicitPoint::new(*support, self.plane, *plane)
-            .ok()
-            .map(VertexPosition::Implicit)
     }
 }

@@ -1,9 +1,7 @@
 //! Convex polygons with implicit vertices, and their exact splitting.
 
-use crate::predicates::{
-    self, ImplicitPoint, PointFilter, Side, cross_of_differences, dot_i128, side_of_point,
-};
-use crate::{Error, GridPoint, Plane, VertexPosition};
+use crate::predicates::{self, PointFilter, Side, cross_of_differences, dot_i128, side_of_point};
+use crate::{Error, GridPoint, Plane};
 use smallvec::SmallVec;
 
 /// How a coplanar polygon faces relative to a plane.
@@ -247,17 +245,6 @@ impl ConvexPolygon {
             &self.corners[(i + n - 1) % n].edge,
             &self.corners[i].edge,
         ]
-    }
-
-    /// Vertex `i` as a point of its own.
-    pub(crate) fn vertex_position(&self, i: usize) -> VertexPosition {
-        match self.corners[i].vertex {
-            Vertex::Grid(p) => VertexPosition::Grid(p),
-            Vertex::Implicit(filter) => {
-                let [s, a, b] = self.vertex_planes(i);
-                VertexPosition::Implicit(ImplicitPoint::from_parts([*s, *a, *b], filter))
-            }
-        }
     }
 
     /// Vertex `i` if it is an input grid point.

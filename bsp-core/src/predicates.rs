@@ -690,12 +690,6 @@ impl ImplicitPoint {
         })
     }
 
-    /// The point of three planes whose filter is already made (a
-    /// polygon's vertex).
-    pub(crate) fn from_parts(planes: [Plane; 3], filter: PointFilter) -> Self {
-        Self { planes, filter }
-    }
-
     /// The three planes that define the point.
     pub fn planes(&self) -> &[Plane; 3] {
         &self.planes
