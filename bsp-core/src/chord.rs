@@ -51,18 +51,9 @@ impl ConvexPolygon {
         if self.classify(plane) != PolygonSide::Both {
             return false;
         }
-        // The open chord lies inside the polygon: a bound with every vertex
-        // on or behind it (one strictly) keeps all of it, one with none
-        // strictly behind keeps nothing. Only the bounds that cut the
-        // polygon need the chord's ends, the costly part.
-        let mut cutting: smallvec::SmallVec<[&Plane; 4]> = smallvec::SmallVec::new();
-        for bound in bounds {
-            match self.classify(bound) {
-                PolygonSide::Back => {}
-                PolygonSide::Both => cutting.push(bound),
-                PolygonSide::Front | PolygonSide::Coplanar(_) => return false,
-            }
-        }
+        let Some(cutting) = self.cutting_bounds(bounds) else {
+            return false;
+        };
         if cutting.is_empty() {
             return true;
         }
@@ -116,14 +107,7 @@ impl ConvexPolygon {
         if self.classify(plane) != PolygonSide::Both {
             return None;
         }
-        let mut cutting: smallvec::SmallVec<[&Plane; 4]> = smallvec::SmallVec::new();
-        for bound in bounds {
-            match self.classify(bound) {
-                PolygonSide::Back => {}
-                PolygonSide::Both => cutting.push(bound),
-                PolygonSide::Front | PolygonSide::Coplanar(_) => return None,
-            }
-        }
+        let cutting = self.cutting_bounds(bounds)?;
         let [first, second] = self.chord_ends(plane)?;
         let end = |end: End| match end {
             End::Vertex(i) => match self.vertex_grid_point(i) {
@@ -160,6 +144,27 @@ impl ConvexPolygon {
             }
         }
         Some(chord)
+    }
+
+    /// The bounds that cut the polygon, or `None` when one keeps nothing
+    /// of its inside. The open chord of a plane that crosses the polygon
+    /// lies inside it: a bound with every vertex on or behind it (one
+    /// strictly) keeps all of it, one with none strictly behind keeps
+    /// nothing. Only the bounds that cut the polygon need the chord's
+    /// ends, the costly part.
+    fn cutting_bounds<'a>(
+        &self,
+        bounds: &'a [Plane],
+    ) -> Option<smallvec::SmallVec<[&'a Plane; 4]>> {
+        let mut cutting = smallvec::SmallVec::new();
+        for bound in bounds {
+            match self.classify(bound) {
+                PolygonSide::Back => {}
+                PolygonSide::Both => cutting.push(bound),
+                PolygonSide::Front | PolygonSide::Coplanar(_) => return None,
+            }
+        }
+        Some(cutting)
     }
 
     /// The two ends of the chord of a plane that cuts the polygon (vertices

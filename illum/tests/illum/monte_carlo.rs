@@ -2,24 +2,10 @@
 //! `E = L * integral over the light of cos(t) cos(t') / r^2 dA`, with an
 //! exact occlusion test (segment against occluder triangles).
 
-use crate::unit;
+use crate::{cross, dot, sub, unit};
 use illum::{AreaLight, Sidedness::OneSided, Vec3, VisiblePart, visible_irradiance};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 
 /// Whether the open segment from `p` to `x` crosses triangle `t`
 /// (Möller–Trumbore, both sides).

@@ -3,28 +3,10 @@
 //! points, the silhouette found independently as the convex hull of the
 //! corners' images on a screen facing the box.
 
-use crate::rect_light;
+use crate::{cross, dot, rect_light, sub, unit};
 use illum::{Occluder, Sidedness::OneSided, Vec3, VisiblePart, visible_irradiance};
 use rand::{Rng, SeedableRng};
 use rand_pcg::Pcg64;
-
-fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: Vec3, b: Vec3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-fn unit(v: Vec3) -> Vec3 {
-    let l = dot(v, v).sqrt();
-    [v[0] / l, v[1] / l, v[2] / l]
-}
 
 /// A box: centre, three orthogonal half-axes.
 struct Cuboid {
