@@ -8,6 +8,14 @@ use smallvec::SmallVec;
 use std::borrow::Cow;
 use std::ops::Range;
 
+thread_local! {
+    /// The chords a unit's region carries down a tree ([`ReceiverDm::merge_region`]),
+    /// kept from one region to the next on each thread: grown anew each
+    /// time, the list (240 bytes a chord, a few thousand on a big
+    /// receiver) was copied over and over as it grew, 4 % of a move.
+    static CHORDS: std::cell::Cell<Vec<(u32, Chord)>> = const { std::cell::Cell::new(Vec::new()) };
+}
+
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Appends a unit (occluder `key` under light `light`, with its volume
     /// planes) and merges its single tree in. Returns its unit number.
@@ -79,16 +87,15 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         // discontinuity's planes); each piece carries the range of
         // `chords` that holds its own.
         let support = *self.polygon.support();
-        let mut chords: Vec<(u32, Chord)> = if exact {
-            planes
-                .internal
-                .iter()
-                .enumerate()
-                .filter_map(|(k, c)| Some((k as u32, region.chord_inside(&c.plane, &c.wedge)?)))
-                .collect()
-        } else {
-            Vec::new()
-        };
+        let mut chords = CHORDS.take();
+        chords.clear();
+        if exact {
+            chords.extend(
+                planes.internal.iter().enumerate().filter_map(|(k, c)| {
+                    Some((k as u32, region.chord_inside(&c.plane, &c.wedge)?))
+                }),
+            );
+        }
         // Likewise the umbra: where the whole region misses it, so do its
         // pieces, and only the umbra planes that bound the region's umbra
         // part can cut a piece's.
@@ -171,6 +178,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 _ => self.grow_all_internal(leaf, planes, unit),
             }
         }
+        CHORDS.set(chords);
     }
 
     /// Grows the unit's single tree in a settled subtree at `node` (its
