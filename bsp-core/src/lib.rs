@@ -64,7 +64,7 @@ pub use grid::{GRID_BITS, GRID_LIMIT, Grid, GridPoint};
 pub use lattice::PlaneLattice;
 pub use line2d::{LineMeeting, ReceiverLine};
 pub use plane::{NORMAL_LIMIT, OFFSET_LIMIT, Plane};
-pub use polygon::{ConvexPolygon, Edges, Facing, PolygonSide, Split};
+pub use polygon::{Behind, ConvexPolygon, Edges, Facing, PolygonSide, Split};
 pub use predicates::{ImplicitPoint, Side};
 pub use scene_bsp::{Location, SceneBsp, SceneChild, SceneNode, Traversal, Viewpoint};
 pub use solid::{BspSolid, Containment, PointClass, Region, SolidChild, SolidNode};

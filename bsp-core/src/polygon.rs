@@ -43,6 +43,28 @@ pub enum Split {
     Coplanar(Facing),
 }
 
+/// The result of [`ConvexPolygon::behind`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum Behind {
+    /// All of the polygon is behind the plane (touching it at most along
+    /// an edge or a vertex).
+    All,
+    /// The plane cuts the polygon: its part behind.
+    Part(ConvexPolygon),
+    /// Nothing of it (with area) is behind: it is in front, or in the
+    /// plane.
+    Nothing,
+}
+
+/// [`ConvexPolygon::split`], or its back part alone.
+#[allow(clippy::large_enum_variant)] // (as `Split`)
+enum Cut {
+    Back,
+    Front,
+    Both(ConvexPolygon, Option<ConvexPolygon>),
+    Coplanar(Facing),
+}
+
 /// A vertex of a polygon: an input grid point, or the intersection of the
 /// polygon's support plane with its two edge planes.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -423,8 +445,28 @@ impl ConvexPolygon {
     /// A part is made only where vertices lie strictly on both sides, so no
     /// part has zero area and none is lost: the parts tile the polygon.
     pub fn split(&self, plane: &Plane) -> Split {
+        match self.cut(plane, true) {
+            Cut::Back => Split::Back,
+            Cut::Front => Split::Front,
+            Cut::Coplanar(facing) => Split::Coplanar(facing),
+            Cut::Both(back, front) => Split::Both(back, front.expect("the front part was made")),
+        }
+    }
+
+    /// The polygon's part behind `plane`, as [`Self::split`] finds it,
+    /// without making the front part (clipping keeps one side only).
+    pub fn behind(&self, plane: &Plane) -> Behind {
+        match self.cut(plane, false) {
+            Cut::Back => Behind::All,
+            Cut::Both(back, _) => Behind::Part(back),
+            Cut::Front | Cut::Coplanar(_) => Behind::Nothing,
+        }
+    }
+
+    /// [`Self::split`], the front part made only if `front`.
+    fn cut(&self, plane: &Plane, front: bool) -> Cut {
         if let Some(facing) = self.coincident_facing(plane) {
-            return Split::Coplanar(facing);
+            return Cut::Coplanar(facing);
         }
         let n = self.len();
         // Most calls find the polygon on one side: the sides are kept in a
@@ -477,14 +519,14 @@ impl ConvexPolygon {
                     }
                 }
                 let crossings = &crossings[..count];
-                Split::Both(
-                    self.part(sides, crossings, enter_back, backs, *plane),
-                    self.part(sides, crossings, enter_front, fronts, plane.flipped()),
-                )
+                let back = self.part(sides, crossings, enter_back, backs, *plane);
+                let front = front
+                    .then(|| self.part(sides, crossings, enter_front, fronts, plane.flipped()));
+                Cut::Both(back, front)
             }
-            (true, false) => Split::Back,
-            (false, true) => Split::Front,
-            (false, false) => Split::Coplanar(self.facing(plane)),
+            (true, false) => Cut::Back,
+            (false, true) => Cut::Front,
+            (false, false) => Cut::Coplanar(self.facing(plane)),
         }
     }
 

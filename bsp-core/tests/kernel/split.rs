@@ -2,7 +2,7 @@
 //! adding up, degenerate planes decided.
 
 use crate::common::{convex_polygon, gp, grid_point, plane};
-use bsp_core::{ConvexPolygon, Facing, GRID_LIMIT, Plane, PolygonSide, Side, Split};
+use bsp_core::{Behind, ConvexPolygon, Facing, GRID_LIMIT, Plane, PolygonSide, Side, Split};
 use proptest::prelude::*;
 
 /// Checks one split against the definition of each outcome.
@@ -76,6 +76,20 @@ proptest! {
     #[test]
     fn random_planes_partition_exactly(polygon in convex_polygon(4000), cut in plane(1200)) {
         check_split(&polygon, &cut)?;
+    }
+
+    /// `behind` keeps what `split` puts behind, and only that.
+    #[test]
+    fn the_part_behind_is_the_back_of_the_split(
+        polygon in convex_polygon(4000),
+        cut in plane(1200),
+    ) {
+        match (polygon.split(&cut), polygon.behind(&cut)) {
+            (Split::Back, Behind::All) => {}
+            (Split::Both(back, _), Behind::Part(part)) => prop_assert_eq!(back, part),
+            (Split::Front | Split::Coplanar(_), Behind::Nothing) => {}
+            (split, behind) => prop_assert!(false, "{:?} against {:?}", split, behind),
+        }
     }
 
     #[test]

@@ -38,7 +38,7 @@ use crate::cell::{Cell, CellClass};
 use crate::hash::KeySet;
 use area_shadow::{AreaSource, SourceSide};
 use bsp_core::predicates::Side;
-use bsp_core::{ConvexPolygon, FaceKey, Plane, Split, WingedMesh};
+use bsp_core::{Behind, ConvexPolygon, FaceKey, Plane, WingedMesh};
 
 mod arena;
 mod check;
@@ -133,15 +133,17 @@ pub(crate) fn clip<'a>(
     polygon: &ConvexPolygon,
     planes: impl IntoIterator<Item = &'a Plane>,
 ) -> Option<ConvexPolygon> {
-    let mut piece = polygon.clone();
+    // (`None` while no plane has cut it: the polygon is copied only if
+    // kept whole.)
+    let mut piece: Option<ConvexPolygon> = None;
     for plane in planes {
-        piece = match piece.split(plane) {
-            Split::Back => piece,
-            Split::Both(back, _) => back,
-            Split::Front | Split::Coplanar(_) => return None,
-        };
+        match piece.as_ref().unwrap_or(polygon).behind(plane) {
+            Behind::All => {}
+            Behind::Part(back) => piece = Some(back),
+            Behind::Nothing => return None,
+        }
     }
-    Some(piece)
+    Some(piece.unwrap_or_else(|| polygon.clone()))
 }
 
 impl<K: Copy + Ord> ReceiverDm<K> {
