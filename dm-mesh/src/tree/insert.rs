@@ -3,7 +3,7 @@
 use super::{Reach, ReceiverDm, clip};
 use crate::cell::{Entry, Sides};
 use crate::critical::{Critical, UnitPlanes};
-use bsp_core::{Chord, ConvexPolygon, FaceKey, Plane, PolygonSide, Side, Split};
+use bsp_core::{Chord, ConvexPolygon, FaceKey, Plane, PolygonSide, Side};
 use smallvec::SmallVec;
 use std::borrow::Cow;
 use std::ops::Range;
@@ -161,16 +161,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     if range.is_empty() {
                         continue;
                     }
-                    let crossing: SmallVec<[&Critical; 16]> = chords
-                        [range.start as usize..range.end as usize]
+                    let own = &chords[range.start as usize..range.end as usize];
+                    let crossing: SmallVec<[&Critical; 16]> = own
                         .iter()
                         .map(|(k, _)| &planes.internal[*k as usize])
                         .collect();
                     let crossing = crossing.as_slice();
                     match grown {
-                        // (No face polygon to make: the cell is the piece.)
+                        // (No face polygon to make: the cell is the piece,
+                        // its chords those it carried down.)
                         Grown::Whole(inner) => {
-                            self.split_by_internal(vec![(inner, piece)], crossing, unit)
+                            let carried = own.iter().map(|(_, c)| Some(c.clone())).collect();
+                            self.split_by_internal(vec![(inner, carried)], crossing, unit)
                         }
                         Grown::Parts => self.grow_internal(leaf, crossing, unit),
                     }
@@ -307,7 +309,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// its umbra by its internal discontinuities, each where its wedge
     /// crosses the cell.
     pub(super) fn grow_internal(&mut self, node: u32, internal: &[&Critical], unit: u32) {
-        let cells: Vec<(u32, ConvexPolygon)> = self
+        let cells: Vec<(u32, Vec<Option<Chord>>)> = self
             .leaves(node)
             .into_iter()
             .filter(|&n| {
@@ -318,46 +320,49 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             })
             .filter_map(|n| {
                 let polygon = self.mesh.face_polygon(self.face_of(n), 0).ok()?;
-                Some((n, polygon))
+                let chords = internal
+                    .iter()
+                    .map(|c| polygon.chord_inside(&c.plane, &c.wedge))
+                    .collect();
+                Some((n, chords))
             })
             .collect();
         self.split_by_internal(cells, internal, unit);
     }
 
     /// Splits `cells` (leaves listing `unit` outside its umbra, each with
-    /// its polygon) by the unit's internal discontinuities `internal`, each
-    /// where its wedge crosses a cell.
+    /// the chords through it of the unit's internal discontinuities
+    /// `internal`, one each, `None` where one does not cross it) by those
+    /// discontinuities, each where its wedge crosses a cell: a cell split
+    /// by one divides the later ones' chords between its parts (no polygon
+    /// is made or asked again).
     fn split_by_internal(
         &mut self,
-        mut cells: Vec<(u32, ConvexPolygon)>,
+        mut cells: Vec<(u32, Vec<Option<Chord>>)>,
         internal: &[&Critical],
         unit: u32,
     ) {
-        for critical in internal {
+        let support = *self.polygon.support();
+        for (k, critical) in internal.iter().enumerate() {
             let mut next = Vec::with_capacity(cells.len());
-            for (leaf, polygon) in cells {
-                if !crosses(&polygon, critical) {
-                    next.push((leaf, polygon));
+            for (leaf, chords) in cells {
+                if chords[k].is_none() {
+                    next.push((leaf, chords));
                     continue;
                 }
-                // The cell's polygon and its face split alike (the same
-                // exact predicates on the same vertices).
-                match (
-                    polygon.split(&critical.plane),
-                    self.split_leaf(leaf, &critical.plane, unit).ok(),
-                ) {
-                    (Split::Both(b, f), Some((back, front))) => {
-                        next.extend([(back, b), (front, f)])
-                    }
-                    (_, Some((back, front))) => {
-                        for n in [back, front] {
-                            if let Ok(p) = self.mesh.face_polygon(self.face_of(n), 0) {
-                                next.push((n, p));
-                            }
-                        }
-                    }
-                    (_, None) => next.push((leaf, polygon)),
+                let Ok((back, front)) = self.split_leaf(leaf, &critical.plane, unit) else {
+                    next.push((leaf, chords));
+                    continue;
+                };
+                let (mut behind, mut ahead) = (vec![None; k + 1], vec![None; k + 1]);
+                for chord in &chords[k + 1..] {
+                    let (b, f) = chord
+                        .as_ref()
+                        .map_or((None, None), |c| c.split(&support, &critical.plane));
+                    behind.push(b);
+                    ahead.push(f);
                 }
+                next.extend([(back, behind), (front, ahead)]);
             }
             cells = next;
         }
@@ -419,13 +424,6 @@ fn umbra_cover(piece: &ConvexPolygon, umbra: &[Plane]) -> Option<UmbraCover> {
     } else {
         None
     }
-}
-
-/// Whether an internal discontinuity crosses `polygon`: its plane cuts
-/// the polygon's part inside the wedge (decided on the plane's chord, no
-/// polygon made).
-fn crosses(polygon: &ConvexPolygon, critical: &Critical) -> bool {
-    polygon.crosses_inside(&critical.plane, &critical.wedge)
 }
 
 /// The planes of `planes` (in their order) that hold an edge of `part`, a
