@@ -8,11 +8,11 @@
 //! sides of the plane exactly when the open chord meets the open region
 //! behind every `W_i`. Along the chord, each `W_i` keeps all of it, none of
 //! it, a prefix or a suffix (its side is affine along the line), so the
-//! answer is a few exact sides of the chord's ends and of the points where
-//! the `W_i` cross `L`: no polygon is made.
+//! chord clipped by them in turn is a few exact sides of its ends and of
+//! the points where the `W_i` cross `L`: no polygon is made.
 //!
 //! Where the polygon is then cut again and again (a region filtered down a
-//! tree, each part asking again), the chord itself can be kept
+//! tree, each part asking again), the chord itself is kept
 //! ([`ConvexPolygon::chord_inside`]): a part of the polygon is crossed
 //! exactly where a part of the open chord lies in it, two sides of the
 //! chord's ends per cut ([`Chord::split`]).
@@ -22,109 +22,26 @@ use crate::plane::Plane;
 use crate::polygon::{ConvexPolygon, PolygonSide};
 use crate::predicates::{PointFilter, Side, side_of_implicit, side_of_point};
 
-/// One end of a chord: a polygon vertex on the plane, or where the plane
-/// crosses an edge.
-enum End<'a> {
-    Vertex(usize),
-    Crossing {
-        filter: PointFilter,
-        planes: [&'a Plane; 3],
-    },
-}
-
-/// What a bounding plane keeps of the open chord (ends in chord order).
-enum Keeps<'a> {
-    All,
-    Nothing,
-    /// From the first end up to where the plane crosses `L`.
-    Prefix(&'a Plane),
-    /// From where the plane crosses `L` to the second end.
-    Suffix(&'a Plane),
-}
-
 impl ConvexPolygon {
     /// Whether `plane` has points of the polygon's part behind every plane
     /// of `bounds` strictly on both sides, exact; the same answer as
     /// clipping the polygon by `bounds` (keeping what lies behind) and
     /// classifying the part (`Both`), without building it.
     pub fn crosses_inside(&self, plane: &Plane, bounds: &[Plane]) -> bool {
-        if self.classify(plane) != PolygonSide::Both {
-            return false;
-        }
-        let Some(cutting) = self.cutting_bounds(bounds) else {
-            return false;
-        };
-        if cutting.is_empty() {
-            return true;
-        }
-        let Some([first, second]) = self.chord_ends(plane) else {
-            return false;
-        };
-        let side = |end: &End, q: &Plane| match end {
-            End::Vertex(i) => self.vertex_side(*i, q),
-            End::Crossing { filter, planes } => side_of_implicit(filter, *planes, q),
-        };
-        let mut keeps: smallvec::SmallVec<[Keeps; 4]> = smallvec::SmallVec::new();
-        for bound in cutting {
-            let k = match (side(&first, bound), side(&second, bound)) {
-                (Side::Back, Side::Back) => Keeps::All,
-                (Side::Back, _) => Keeps::Prefix(bound),
-                (_, Side::Back) => Keeps::Suffix(bound),
-                _ => Keeps::Nothing,
-            };
-            if matches!(k, Keeps::Nothing) {
-                return false;
-            }
-            keeps.push(k);
-        }
-        // A suffix from `s` and a prefix up to `p` overlap when `s` comes
-        // first: where `s` crosses `L` lies strictly behind `p`.
-        for s in keeps.iter().filter_map(|k| match k {
-            Keeps::Suffix(s) => Some(*s),
-            _ => None,
-        }) {
-            let Some(filter) = PointFilter::new(self.support(), plane, s) else {
-                // Not reached: `s` separates the chord's ends, so it meets L.
-                return false;
-            };
-            let at = [self.support(), plane, s];
-            for p in keeps.iter().filter_map(|k| match k {
-                Keeps::Prefix(p) => Some(*p),
-                _ => None,
-            }) {
-                if side_of_implicit(&filter, at, p) != Side::Back {
-                    return false;
-                }
-            }
-        }
-        true
+        self.chord_inside(plane, bounds).is_some()
     }
 
     /// The open chord along which `plane` crosses the polygon's part behind
-    /// every plane of `bounds`, if it does (as [`Self::crosses_inside`]
-    /// says): the chord through the polygon clipped by the bounds, exact.
+    /// every plane of `bounds`, if it does: the chord through the polygon
+    /// clipped by the bounds in turn, exact.
     pub fn chord_inside(&self, plane: &Plane, bounds: &[Plane]) -> Option<Chord> {
         if self.classify(plane) != PolygonSide::Both {
             return None;
         }
         let cutting = self.cutting_bounds(bounds)?;
-        let [first, second] = self.chord_ends(plane)?;
-        let end = |end: End| match end {
-            End::Vertex(i) => match self.vertex_grid_point(i) {
-                Some(p) => Some(ChordEnd::Grid(p)),
-                // The chord's line crosses the polygon's inside, so it
-                // runs along neither edge at the vertex: either edge's
-                // plane meets it there alone.
-                None => ChordEnd::on_line(self.support(), plane, self.edge(i)),
-            },
-            End::Crossing { filter, planes } => Some(ChordEnd::OnLine {
-                plane: *planes[2],
-                filter,
-            }),
-        };
         let mut chord = Chord {
             plane: *plane,
-            ends: [end(first)?, end(second)?],
+            ends: self.chord_ends(plane)?,
         };
         // Clipped by each bound in turn: an end strictly in front of it
         // moves to where it crosses the line (the other end, strictly
@@ -168,23 +85,26 @@ impl ConvexPolygon {
     }
 
     /// The two ends of the chord of a plane that cuts the polygon (vertices
-    /// strictly on both sides), in the polygon's vertex order.
-    fn chord_ends<'a>(&'a self, plane: &'a Plane) -> Option<[End<'a>; 2]> {
+    /// strictly on both sides), in the polygon's vertex order: vertices on
+    /// the plane, or where it crosses edges.
+    fn chord_ends(&self, plane: &Plane) -> Option<[ChordEnd; 2]> {
         let n = self.len();
         let sides: smallvec::SmallVec<[Side; 8]> =
             (0..n).map(|i| self.vertex_side(i, plane)).collect();
-        let mut ends: smallvec::SmallVec<[End; 2]> = smallvec::SmallVec::new();
+        let mut ends: smallvec::SmallVec<[ChordEnd; 2]> = smallvec::SmallVec::new();
         for i in 0..n {
             let next = (i + 1) % n;
             if sides[i] == Side::On {
-                ends.push(End::Vertex(i));
+                ends.push(match self.vertex_grid_point(i) {
+                    Some(p) => ChordEnd::Grid(p),
+                    // The chord's line crosses the polygon's inside, so it
+                    // runs along neither edge at the vertex: either edge's
+                    // plane meets it there alone.
+                    None => ChordEnd::on_line(self.support(), plane, self.edge(i))?,
+                });
             } else if sides[next] != Side::On && sides[next] != sides[i] {
                 // Edge `i` runs from vertex `i` to vertex `i + 1`.
-                // (In the order a kept chord's ends use: support, the
-                // chord's plane, the other.)
-                let planes = [self.support(), plane, self.edge(i)];
-                let filter = PointFilter::new(planes[0], planes[1], planes[2])?;
-                ends.push(End::Crossing { filter, planes });
+                ends.push(ChordEnd::on_line(self.support(), plane, self.edge(i))?);
             }
         }
         let mut ends = ends.into_iter();
