@@ -113,6 +113,11 @@ struct MoveRow<'a> {
     delete: f64,
     update: f64,
     rebuild: f64,
+    /// A move's median seconds over a rebuild's, both on one thread: the
+    /// work a move does against a rebuild's, beside the share of the
+    /// output it must write (`change`), whatever share of a rebuild's two
+    /// threads a move's few receivers can use.
+    one_thread: f64,
     /// What one step of the move changes in the output.
     change: OutputChange,
 }
@@ -174,6 +179,17 @@ pub fn print() {
             let figures = moving
                 .move_steps(&scene, object, *by, 11, |_, _, _| {})
                 .expect("moves");
+            let one_thread = rayon::ThreadPoolBuilder::new()
+                .num_threads(1)
+                .build()
+                .expect("a one-thread pool")
+                .install(|| {
+                    let mut moving = dm_scene(&scene).expect("builds");
+                    let figures = moving
+                        .move_steps(&scene, object, *by, 11, |_, _, _| {})
+                        .expect("moves");
+                    median(figures.update_seconds) / median(figures.rebuild_seconds)
+                });
             let mut one_step = dm_scene(&scene).expect("builds");
             one_step
                 .move_steps(&scene, object, *by, 1, |_, _, _| {})
@@ -190,15 +206,16 @@ pub fn print() {
                 delete,
                 update: median(figures.update_seconds.clone()),
                 rebuild: median(figures.rebuild_seconds.clone()),
+                one_thread,
                 change,
             });
         }
     }
     println!(
-        "  new cells / values: the share of a rebuild's output that one step's move must write (cells it lacked before, vertices new or of another irradiance)"
+        "  new cells / values: the share of a rebuild's output that one step's move must write (cells it lacked before, vertices new or of another irradiance); 1 thread: move % with move and rebuild on one thread"
     );
     println!(
-        "{:<10} {:<10} {:>7} {:>10} {:>10} {:>11} {:>9} {:>9} {:>10} {:>7}",
+        "{:<10} {:<10} {:>7} {:>10} {:>10} {:>11} {:>9} {:>9} {:>9} {:>10} {:>7}",
         "scene",
         "object",
         "share",
@@ -207,12 +224,13 @@ pub fn print() {
         "rebuild ms",
         "delete %",
         "move %",
+        "1 thread",
         "new cells",
         "values"
     );
     for row in rows {
         println!(
-            "{:<10} {:<10} {:>6.1}% {:>10.3} {:>10.3} {:>11.3} {:>8.1}% {:>8.1}% {:>9.1}% {:>6.1}%",
+            "{:<10} {:<10} {:>6.1}% {:>10.3} {:>10.3} {:>11.3} {:>8.1}% {:>8.1}% {:>8.1}% {:>9.1}% {:>6.1}%",
             row.scene,
             row.object,
             100.0 * row.share,
@@ -221,6 +239,7 @@ pub fn print() {
             1e3 * row.rebuild,
             100.0 * row.delete / row.rebuild,
             100.0 * row.update / row.rebuild,
+            100.0 * row.one_thread,
             100.0 * row.change.cell_share(),
             100.0 * row.change.value_share()
         );
