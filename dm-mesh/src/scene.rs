@@ -11,11 +11,13 @@ use area_shadow::{AreaSource, ConvexGroup};
 use bsp_core::{ConvexPolygon, GridPoint, Plane, Side, VertexPosition};
 use contact::ContactPlanes;
 use silhouette::SolidCorners;
+use rayon::prelude::*;
 use slotmap::{SecondaryMap, SlotMap, new_key_type};
 use smallvec::SmallVec;
 use std::collections::BTreeSet;
 use svbsp::PieceFlags;
 
+mod attach;
 mod contact;
 mod joint;
 mod silhouette;
@@ -444,12 +446,20 @@ impl DmScene {
         options: DmOptions,
     ) -> Result<(Self, Vec<ObjectId>), Error> {
         let mut scene = Self::with_options(lights, options)?;
-        let mut ids = Vec::with_capacity(objects.len());
+        let ids: Vec<ObjectId> = objects
+            .iter()
+            .map(|_| scene.objects.insert(Object::default()))
+            .collect();
+        // Every object's pieces made side by side, then put in the scene
+        // in order (the first error in order is the one returned).
+        let prepared: Vec<_> = objects
+            .into_par_iter()
+            .zip(&ids)
+            .map(|((polygons, flags), &id)| scene.prepare(id, polygons, flags))
+            .collect();
         let mut added = Vec::new();
-        for (polygons, flags) in objects {
-            let id = scene.objects.insert(Object::default());
-            added.extend(scene.attach(id, polygons, flags)?);
-            ids.push(id);
+        for (prepared, &id) in prepared.into_iter().zip(&ids) {
+            added.extend(scene.commit(id, prepared?));
         }
         let (joined, _) = scene.reconcile_joints(&ids.iter().copied().collect());
         added.extend(joined);

@@ -15,7 +15,7 @@
 //! with those there: the scene holds the same joint bodies whatever the
 //! history of changes, as a rebuild would.
 
-use super::update::BodyCast;
+use super::attach::BodyCast;
 use super::{DmScene, ObjectId, PieceId};
 use area_shadow::{
     AreaSource, ConvexGroup, FlatUnion, convex_unions, edge_contact, flat_joints, one_way,
@@ -327,11 +327,14 @@ impl DmScene {
             let cast = BodyCast {
                 outward: outward.clone(),
                 members: &listed,
-                keys: members.clone(),
                 volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
                 solid: false,
             };
-            let joint = self.attach_body(owner, flags, cast, &sources);
+            let mut piece = self.body_piece(owner, flags, cast, &sources);
+            for (member, &key) in piece.members.iter_mut().zip(&members) {
+                member.piece = key;
+            }
+            let joint = self.insert_body(piece);
             for &o in &objects {
                 self.objects[o].joints.push(joint);
             }
