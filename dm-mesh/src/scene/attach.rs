@@ -181,7 +181,10 @@ impl DmScene {
                     volumes,
                     solid: body.is_closed_convex(),
                 };
-                (self.body_piece(id, flags, cast, &sources), body.pieces.clone())
+                (
+                    self.body_piece(id, flags, cast, &sources),
+                    body.pieces.clone(),
+                )
             })
             .collect();
         let parts = self.umbra_part_bodies(id, flags, &polygons, &groups, &sources);

@@ -3,6 +3,7 @@
 mod bodies;
 mod classes;
 mod common;
+mod errors;
 mod flat_unions;
 mod illumination;
 mod joint;
