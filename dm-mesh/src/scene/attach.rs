@@ -16,8 +16,8 @@ use crate::illuminate::ReceiverIllum;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
 use area_shadow::{
-    AreaSource, ConvexGroup, SourceSide, VolumePlanes, closed_parts, convex_groups, flat_unions,
-    section_unions, volume_planes,
+    AreaSource, ConvexGroup, FlatUnion, SourceSide, VolumePlanes, closed_parts, convex_groups,
+    flat_unions, section_unions, volume_planes,
 };
 use bsp_core::{ConvexPolygon, Plane};
 use rayon::prelude::*;
@@ -80,16 +80,45 @@ impl DmScene {
     ) -> Result<Prepared, Error> {
         Self::validate(&polygons)?;
         let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
-        let surface = if flags.casts_shadows && self.options.internal_discontinuities {
-            surroundings(&polygons)
-        } else {
-            Vec::new()
-        };
-        let groups = if flags.casts_shadows {
-            convex_groups(&polygons, &vec![Some(0); polygons.len()])
-        } else {
-            Vec::new()
-        };
+        let casts = flags.casts_shadows;
+        let one = vec![Some(0); polygons.len()];
+        // The polygons' surroundings, convex groups, flat unions and
+        // closed faces, found side by side: each walks all the polygons
+        // (one after another, a tenth of moving an office desk).
+        let ((surface, groups), (unions, closed)) = rayon::join(
+            || {
+                rayon::join(
+                    || {
+                        if casts && self.options.internal_discontinuities {
+                            surroundings(&polygons)
+                        } else {
+                            Vec::new()
+                        }
+                    },
+                    || {
+                        if casts {
+                            convex_groups(&polygons, &one)
+                        } else {
+                            Vec::new()
+                        }
+                    },
+                )
+            },
+            || {
+                rayon::join(
+                    || {
+                        if casts {
+                            let mut unions = flat_unions(&polygons, &one);
+                            unions.extend(section_unions(&polygons, &one));
+                            unions
+                        } else {
+                            Vec::new()
+                        }
+                    },
+                    || closed_faces(&polygons, flags, &sources),
+                )
+            },
+        );
         // Per body and light, its umbra volume, and its penumbra volume
         // where it casts in place of its polygons (never without an umbra:
         // cells where it hides all of the light must be umbra); per
@@ -109,26 +138,6 @@ impl DmScene {
                     .collect()
             })
             .collect();
-        // Per polygon, whether it is a face of a closed surface facing out
-        // that no light lies on or in: such faces turned away from a light
-        // cast nothing. The object's closed parts,
-        // when its flags say it has some (the whole object, or a mesh and a
-        // floor in one); a part some light is not clear of casts every
-        // face under every light, as the flag's meaning asks ("no light
-        // lies in it"), so that an object of several parts casts as its
-        // parts would as objects of their own. Decided as the object is
-        // added, so a move into a light decides again.
-        let mut closed = vec![false; polygons.len()];
-        if flags.closed_surface && flags.casts_shadows {
-            for part in closed_parts(&polygons, &vec![0; polygons.len()]) {
-                let corners = part.corners(&polygons);
-                if part.six_volume > 0 && sources.iter().all(|light| light.clear_of(&corners)) {
-                    for &k in &part.pieces {
-                        closed[k as usize] = true;
-                    }
-                }
-            }
-        }
         let mut in_body = vec![0_u32; polygons.len()];
         for (body, volumes) in groups.iter().zip(&volumes) {
             let whole = light_mask(volumes.iter().map(|(penumbra, _)| penumbra.is_some()));
@@ -187,7 +196,7 @@ impl DmScene {
                 )
             })
             .collect();
-        let parts = self.umbra_part_bodies(id, flags, &polygons, &groups, &sources);
+        let parts = self.umbra_part_bodies(id, flags, &polygons, &groups, &unions, &sources);
         Ok(Prepared {
             polygons: pieces,
             bodies,
@@ -234,7 +243,7 @@ impl DmScene {
 
     /// The bodies of the object's polygons for the umbrae they make only
     /// together that are no convex volume: of a flat union that is no
-    /// convex polygon ([`flat_unions`]), of a body that holds a light in,
+    /// convex polygon (`unions`: [`flat_unions`], [`section_unions`]), of a body that holds a light in,
     /// and of one a face short ([`ConvexGroup::umbra_parts`]). Each convex
     /// part of such an umbra is a body of the polygons (indices into
     /// `polygons`) with only that umbra.
@@ -244,16 +253,9 @@ impl DmScene {
         flags: PieceFlags,
         polygons: &[ConvexPolygon],
         bodies: &[ConvexGroup],
+        unions: &[FlatUnion],
         sources: &[AreaSource],
     ) -> Vec<(Piece, Vec<u32>)> {
-        let unions = if flags.casts_shadows {
-            let one = vec![Some(0); polygons.len()];
-            let mut unions = flat_unions(polygons, &one);
-            unions.extend(section_unions(polygons, &one));
-            unions
-        } else {
-            Vec::new()
-        };
         // Per group: its pieces, per light its umbra's parts, and each
         // piece's plane facing out (a flat union's as it is).
         let umbra = |pieces: &'_ [u32],
@@ -443,6 +445,33 @@ impl DmScene {
         self.overlap.insert(key, &self.pieces[key], false);
         key
     }
+}
+
+/// Per polygon, whether it is a face of a closed surface facing out that
+/// no light lies on or in: such faces turned away from a light cast
+/// nothing. The object's closed parts, when its flags say it has some (the
+/// whole object, or a mesh and a floor in one); a part some light is not
+/// clear of casts every face under every light, as the flag's meaning asks
+/// ("no light lies in it"), so that an object of several parts casts as
+/// its parts would as objects of their own. Decided as the object is
+/// added, so a move into a light decides again.
+fn closed_faces(
+    polygons: &[ConvexPolygon],
+    flags: PieceFlags,
+    sources: &[AreaSource],
+) -> Vec<bool> {
+    let mut closed = vec![false; polygons.len()];
+    if flags.closed_surface && flags.casts_shadows {
+        for part in closed_parts(polygons, &vec![0; polygons.len()]) {
+            let corners = part.corners(polygons);
+            if part.six_volume > 0 && sources.iter().all(|light| light.clear_of(&corners)) {
+                for &k in &part.pieces {
+                    closed[k as usize] = true;
+                }
+            }
+        }
+    }
+    closed
 }
 
 /// One bit per light, set where `set` holds.
