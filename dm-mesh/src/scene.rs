@@ -450,8 +450,11 @@ impl DmScene {
             .iter()
             .map(|_| scene.objects.insert(Object::default()))
             .collect();
+        for (polygons, _) in &objects {
+            Self::validate(polygons)?;
+        }
         // Every object's pieces made side by side, then put in the scene
-        // in order (the first error in order is the one returned).
+        // in order.
         let prepared: Vec<_> = objects
             .into_par_iter()
             .zip(&ids)
@@ -459,7 +462,7 @@ impl DmScene {
             .collect();
         let mut added = Vec::new();
         for (prepared, &id) in prepared.into_iter().zip(&ids) {
-            added.extend(scene.commit(id, prepared?));
+            added.extend(scene.commit(id, prepared));
         }
         let (joined, _) = scene.reconcile_joints(&ids.iter().copied().collect());
         added.extend(joined);

@@ -11,7 +11,6 @@
 use super::silhouette::SolidCorners;
 use super::{DmScene, Member, ObjectId, Piece, PieceId, PieceKind, bounds_of};
 use crate::critical::{UnitPlanes, body_internal_planes, internal_planes};
-use crate::error::Error;
 use crate::illuminate::ReceiverIllum;
 use crate::surface::{Surroundings, surroundings};
 use crate::tree::ReceiverDm;
@@ -58,27 +57,15 @@ pub(super) struct BodyCast<'a> {
 }
 
 impl DmScene {
-    /// Creates the pieces and their empty receivers, and the bodies their
-    /// polygons form; returns all of them (receivers first).
-    pub(super) fn attach(
-        &mut self,
-        id: ObjectId,
-        polygons: Vec<ConvexPolygon>,
-        flags: PieceFlags,
-    ) -> Result<Vec<PieceId>, Error> {
-        let prepared = self.prepare(id, polygons, flags)?;
-        Ok(self.commit(id, prepared))
-    }
-
-    /// Makes the pieces of object `id`'s polygons (validated) and of the
-    /// bodies they form, leaving the scene as it is.
+    /// Makes the pieces of object `id`'s polygons (validated: their
+    /// vertices are grid points, [`Self::validate`]) and of the bodies
+    /// they form, leaving the scene as it is.
     pub(super) fn prepare(
         &self,
         id: ObjectId,
         polygons: Vec<ConvexPolygon>,
         flags: PieceFlags,
-    ) -> Result<Prepared, Error> {
-        Self::validate(&polygons)?;
+    ) -> Prepared {
         let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
         let casts = flags.casts_shadows;
         let one = vec![Some(0); polygons.len()];
@@ -197,12 +184,12 @@ impl DmScene {
             })
             .collect();
         let parts = self.umbra_part_bodies(id, flags, &polygons, &groups, &unions, &sources);
-        Ok(Prepared {
+        Prepared {
             polygons: pieces,
             bodies,
             parts,
             groups,
-        })
+        }
     }
 
     /// Puts object `id`'s pieces made by [`Self::prepare`] in the scene;

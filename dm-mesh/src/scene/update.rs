@@ -1,16 +1,19 @@
 //! Changing a scene: pieces attached ([`super::attach`]) and detached, and
-//! the units that come and go per receiver, applied to the receivers in one
-//! parallel pass.
+//! the units that come and go per receiver, applied to the receivers side
+//! by side.
 //!
-//! A change is decided first (which units leave and which enter each
-//! receiver, in what order), then applied: every receiver removes its
-//! leaving units and then merges its entering ones, the receivers side by
-//! side (each tree only ever sees its own units, in the same order, so the
-//! result does not depend on the number of threads), and, once the scene
-//! has been illuminated, illuminates each receiver right after its update.
-//! A move does both in that one pass: a big receiver's removal and
-//! insertion run on one thread while the small ones share the other,
-//! instead of two passes each waiting for the big receiver.
+//! A change first takes the object's old units out of the receivers they
+//! reach, while the object's new pieces are made (the biggest receiver's
+//! removal beside the making). Then it decides which units enter each
+//! receiver, in what order (and which leave with the joint bodies the
+//! change parted), and applies that in one pass: every receiver removes
+//! its leaving units, merges its entering ones and, once the scene has
+//! been illuminated, computes its vertices' irradiance again, the
+//! receivers side by side (each tree only ever sees its own units, in the
+//! same order, so the result does not depend on the number of threads). A
+//! big receiver's insertion and illumination run on one thread while the
+//! small receivers share the other, instead of passes each waiting for the
+//! big receiver.
 
 use super::contact::ContactPlanes;
 use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS};
@@ -49,14 +52,23 @@ impl DmScene {
     /// every occluder on the new receivers.
     pub(super) fn cast(&mut self, added: &[PieceId]) {
         let insertions = self.insertions(added);
-        self.apply(Removals::default(), insertions, &KeyMap::default());
+        self.apply(
+            Removals::default(),
+            insertions,
+            &BTreeSet::new(),
+            &KeyMap::default(),
+        );
     }
 
     /// Changes an object, in one pass over the receivers: its pieces and
     /// discontinuities leave, and (unless `polygons` is `None`) pieces of
     /// `polygons` (validated) take their place and cast their shadows;
     /// the joint bodies of the objects it touched and touches are brought
-    /// up to date ([`Self::reconcile_joints`]).
+    /// up to date ([`Self::reconcile_joints`]). Its old units leave the
+    /// receivers while its new pieces are made (the biggest receiver's
+    /// removal beside the making, which waited for it); the joints' and
+    /// new pieces' units then come and go, and the receivers changed are
+    /// illuminated, in one pass.
     pub(super) fn change(
         &mut self,
         id: ObjectId,
@@ -64,20 +76,32 @@ impl DmScene {
     ) -> Result<(), Error> {
         let mut seeds = self.touching(id);
         let normals = self.receiver_normals(id);
-        let mut gone = self.take(id)?;
-        let mut added = match polygons {
-            Some((polygons, flags)) => self.attach(id, polygons, flags)?,
+        let gone = self.take(id)?;
+        let removals = self.removals(&gone);
+        let mut left = self.forget(gone);
+        let mut leaving = self.take_work(removals, Insertions::default(), &BTreeSet::new(), false);
+        let relight: BTreeSet<PieceId> = leaving.iter().map(|work| work.0).collect();
+        let prepared = {
+            let (scene, left) = (&*self, &left);
+            rayon::join(
+                || polygons.map(|(polygons, flags)| scene.prepare(id, polygons, flags)),
+                || scene.run_work(&mut leaving, left),
+            )
+            .0
+        };
+        self.put_back(leaving);
+        let mut added = match prepared {
+            Some(prepared) => self.commit(id, prepared),
             None => Vec::new(),
         };
         self.keep_receiver_normals(&normals, &added);
         seeds.insert(id);
         let (joined, parted) = self.reconcile_joints(&seeds);
-        gone.extend(parted);
         added.extend(joined);
-        let removals = self.removals(&gone);
-        let left = self.forget(gone);
+        let removals = self.removals(&parted);
+        left.extend(self.forget(parted));
         let insertions = self.insertions(&added);
-        self.apply(removals, insertions, &left);
+        self.apply(removals, insertions, &relight, &left);
         Ok(())
     }
 
@@ -231,27 +255,51 @@ impl DmScene {
 
     /// Applies a change: each receiver named removes its leaving units,
     /// then merges its entering ones, then (once the scene has been
-    /// illuminated) computes its vertices' irradiance again; the receivers
-    /// in parallel, the biggest first (so that no thread is left with one
-    /// at the end). `left` holds the pieces already gone whose units leave.
+    /// illuminated) computes its vertices' irradiance again, as do the
+    /// receivers `relight` changed before. `left` holds the pieces already
+    /// gone whose units leave.
     fn apply(
+        &mut self,
+        removals: Removals,
+        insertions: Insertions,
+        relight: &BTreeSet<PieceId>,
+        left: &KeyMap<PieceId, Piece>,
+    ) {
+        let mut work = self.take_work(removals, insertions, relight, self.lit);
+        let stats = self.run_work(&mut work, left);
+        self.put_back(work);
+        self.lit_since = self.lit_since.add(stats);
+        if self.lit {
+            // New receivers that no unit reaches, not among the work.
+            let rest = self.illuminate_pending();
+            self.lit_since = self.lit_since.add(rest);
+        }
+    }
+
+    /// The receivers a change names (in `removals`, `insertions` or
+    /// `relight`), taken out of the scene with what leaves and enters
+    /// each, and their illumination if `lit` (looked up by key: a walk
+    /// over every receiver costs a tenth of a small move on the 10k hall).
+    fn take_work(
         &mut self,
         mut removals: Removals,
         mut insertions: Insertions,
-        left: &KeyMap<PieceId, Piece>,
-    ) {
-        // The receivers changed, taken out of the scene (looked up by key:
-        // a walk over every receiver costs a tenth of a small move on the
-        // 10k hall).
-        let changed: BTreeSet<PieceId> =
-            removals.keys().chain(insertions.keys()).copied().collect();
+        relight: &BTreeSet<PieceId>,
+        lit: bool,
+    ) -> Vec<Work> {
+        let changed: BTreeSet<PieceId> = removals
+            .keys()
+            .chain(insertions.keys())
+            .chain(relight)
+            .copied()
+            .collect();
         let mut work: Vec<Work> = Vec::with_capacity(changed.len());
         for r in changed {
             if !self.receivers.contains_key(r) || !self.contacts.contains_key(r) {
                 continue;
             }
             if let (Some(dm), Some(contact)) = (self.receivers.remove(r), self.contacts.remove(r)) {
-                let illum = if self.lit { self.illum.remove(r) } else { None };
+                let illum = if lit { self.illum.remove(r) } else { None };
                 work.push((
                     r,
                     dm,
@@ -262,6 +310,26 @@ impl DmScene {
                 ));
             }
         }
+        work
+    }
+
+    /// Puts receivers taken out by [`Self::take_work`] back.
+    fn put_back(&mut self, work: Vec<Work>) {
+        for (r, dm, contact, _, _, illum) in work {
+            self.receivers.insert(r, dm);
+            self.contacts.insert(r, contact);
+            if let Some(illum) = illum {
+                self.illum.insert(r, illum);
+                self.unlit.remove(&r);
+            }
+        }
+    }
+
+    /// Each receiver of `work` removes its leaving units, merges its
+    /// entering ones and computes its vertices' irradiance again (if its
+    /// illumination was taken out with it): the receivers in parallel, the
+    /// biggest first (so that no thread is left with one at the end).
+    fn run_work(&self, work: &mut [Work], left: &KeyMap<PieceId, Piece>) -> IllumStats {
         let (lights, pieces, how) = (&self.lights, &self.pieces, self.options.deletion);
         let sources: Vec<AreaSource> = lights.iter().map(|l| l.source.clone()).collect();
         let run = |(r, dm, contact, out, into, illum): &mut Work| {
@@ -285,39 +353,25 @@ impl DmScene {
                 illuminate_receiver(lights, pieces, *r, dm, state, &mut VisiblePart::new())
             })
         };
-        let stats = if work.len() <= 2 {
+        if work.len() <= 2 {
             // A small change: no tasks to hand out.
-            work.iter_mut()
+            return work
+                .iter_mut()
                 .map(run)
-                .fold(IllumStats::default(), IllumStats::add)
-        } else {
-            work.sort_by_key(|(_, dm, _, out, into, _)| {
-                let units = into.as_ref().map_or(0, |(_, order)| order.len());
-                std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
-            });
-            // Each receiver a task of its own: a run of receivers split off
-            // together would go on one thread, after the biggest, while the
-            // other waits at the end (10k hall: the last 1.3-1.7 s of the
-            // build on about one core).
-            work.par_iter_mut()
-                .with_max_len(1)
-                .map(run)
-                .reduce(IllumStats::default, IllumStats::add)
-        };
-        for (r, dm, contact, _, _, illum) in work {
-            self.receivers.insert(r, dm);
-            self.contacts.insert(r, contact);
-            if let Some(illum) = illum {
-                self.illum.insert(r, illum);
-                self.unlit.remove(&r);
-            }
+                .fold(IllumStats::default(), IllumStats::add);
         }
-        self.lit_since = self.lit_since.add(stats);
-        if self.lit {
-            // New receivers that no unit reaches, not among the work.
-            let rest = self.illuminate_pending();
-            self.lit_since = self.lit_since.add(rest);
-        }
+        work.sort_by_key(|(_, dm, _, out, into, _)| {
+            let units = into.as_ref().map_or(0, |(_, order)| order.len());
+            std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
+        });
+        // Each receiver a task of its own: a run of receivers split off
+        // together would go on one thread, after the biggest, while the
+        // other waits at the end (10k hall: the last 1.3-1.7 s of the
+        // build on about one core).
+        work.par_iter_mut()
+            .with_max_len(1)
+            .map(run)
+            .reduce(IllumStats::default, IllumStats::add)
     }
 }
 
