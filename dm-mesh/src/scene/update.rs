@@ -2,18 +2,18 @@
 //! the units that come and go per receiver, applied to the receivers side
 //! by side.
 //!
-//! A change first takes the object's old units out of the receivers they
-//! reach, while the object's new pieces are made (the biggest receiver's
-//! removal beside the making). Then it decides which units enter each
-//! receiver, in what order (and which leave with the joint bodies the
-//! change parted), and applies that in one pass: every receiver removes
-//! its leaving units, merges its entering ones and, once the scene has
-//! been illuminated, computes its vertices' irradiance again, the
-//! receivers side by side (each tree only ever sees its own units, in the
-//! same order, so the result does not depend on the number of threads). A
-//! big receiver's insertion and illumination run on one thread while the
-//! small receivers share the other, instead of passes each waiting for the
-//! big receiver.
+//! A change that makes new pieces (a move) first takes the object's old
+//! units out of the receivers they reach, while the pieces are made (the
+//! biggest receiver's removal beside the making). Then it decides which
+//! units enter each receiver, in what order (and which leave: a removed
+//! object's, and those of the joint bodies the change parted), and
+//! applies that in one pass: every receiver removes its leaving units,
+//! merges its entering ones and, once the scene has been illuminated,
+//! computes its vertices' irradiance again, the receivers side by side
+//! (each tree only ever sees its own units, in the same order, so the
+//! result does not depend on the number of threads). A big receiver's
+//! work runs on one thread while the small receivers share the other,
+//! instead of passes each waiting for the big receiver.
 
 use super::contact::ContactPlanes;
 use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS};
@@ -60,15 +60,14 @@ impl DmScene {
         );
     }
 
-    /// Changes an object, in one pass over the receivers: its pieces and
-    /// discontinuities leave, and (unless `polygons` is `None`) pieces of
-    /// `polygons` (validated) take their place and cast their shadows;
-    /// the joint bodies of the objects it touched and touches are brought
-    /// up to date ([`Self::reconcile_joints`]). Its old units leave the
-    /// receivers while its new pieces are made (the biggest receiver's
-    /// removal beside the making, which waited for it); the joints' and
-    /// new pieces' units then come and go, and the receivers changed are
-    /// illuminated, in one pass.
+    /// Changes an object: its pieces and discontinuities leave, and
+    /// (unless `polygons` is `None`) pieces of `polygons` (validated) take
+    /// their place and cast their shadows; the joint bodies of the objects
+    /// it touched and touches are brought up to date
+    /// ([`Self::reconcile_joints`]). With pieces to make, its old units
+    /// leave the receivers first, while the pieces are made
+    /// ([`Self::replace`]); the other units come and go, and the receivers
+    /// changed are illuminated, in one pass.
     pub(super) fn change(
         &mut self,
         id: ObjectId,
@@ -76,33 +75,51 @@ impl DmScene {
     ) -> Result<(), Error> {
         let mut seeds = self.touching(id);
         let normals = self.receiver_normals(id);
-        let gone = self.take(id)?;
-        let removals = self.removals(&gone);
-        let mut left = self.forget(gone);
-        let mut leaving = self.take_work(removals, Insertions::default(), &BTreeSet::new(), false);
-        let relight: BTreeSet<PieceId> = leaving.iter().map(|work| work.0).collect();
-        let prepared = {
-            let (scene, left) = (&*self, &left);
-            rayon::join(
-                || polygons.map(|(polygons, flags)| scene.prepare(id, polygons, flags)),
-                || scene.run_work(&mut leaving, left),
-            )
-            .0
-        };
-        self.put_back(leaving);
-        let mut added = match prepared {
-            Some(prepared) => self.commit(id, prepared),
-            None => Vec::new(),
+        let mut gone = self.take(id)?;
+        let (mut added, mut left, relight) = match polygons {
+            Some((polygons, flags)) => self.replace(id, std::mem::take(&mut gone), polygons, flags),
+            // Nothing to make: the old units leave in the one pass.
+            None => (Vec::new(), KeyMap::default(), BTreeSet::new()),
         };
         self.keep_receiver_normals(&normals, &added);
         seeds.insert(id);
         let (joined, parted) = self.reconcile_joints(&seeds);
         added.extend(joined);
-        let removals = self.removals(&parted);
-        left.extend(self.forget(parted));
+        gone.extend(parted);
+        let removals = self.removals(&gone);
+        left.extend(self.forget(gone));
         let insertions = self.insertions(&added);
         self.apply(removals, insertions, &relight, &left);
         Ok(())
+    }
+
+    /// Takes the units of pieces `gone` out of the receivers they reach
+    /// while object `id`'s new pieces are made of `polygons` (validated),
+    /// the biggest receiver's removal beside the making, which waited for
+    /// it; then puts the new pieces in the scene. Returns them (receivers
+    /// first), the pieces gone (their planes), and the receivers changed,
+    /// to illuminate.
+    fn replace(
+        &mut self,
+        id: ObjectId,
+        gone: Vec<PieceId>,
+        polygons: Vec<ConvexPolygon>,
+        flags: PieceFlags,
+    ) -> (Vec<PieceId>, KeyMap<PieceId, Piece>, BTreeSet<PieceId>) {
+        let removals = self.removals(&gone);
+        let left = self.forget(gone);
+        let mut leaving = self.take_work(removals, Insertions::default(), &BTreeSet::new(), false);
+        let changed: BTreeSet<PieceId> = leaving.iter().map(|work| work.0).collect();
+        let prepared = {
+            let (scene, left) = (&*self, &left);
+            rayon::join(
+                || scene.prepare(id, polygons, flags),
+                || scene.run_work(&mut leaving, left),
+            )
+            .0
+        };
+        self.put_back(leaving);
+        (self.commit(id, prepared), left, changed)
     }
 
     /// The receiver normals set on an object's polygons, in order, with
