@@ -446,13 +446,13 @@ impl DmScene {
         options: DmOptions,
     ) -> Result<(Self, Vec<ObjectId>), Error> {
         let mut scene = Self::with_options(lights, options)?;
+        for (polygons, _) in &objects {
+            Self::validate(polygons)?;
+        }
         let ids: Vec<ObjectId> = objects
             .iter()
             .map(|_| scene.objects.insert(Object::default()))
             .collect();
-        for (polygons, _) in &objects {
-            Self::validate(polygons)?;
-        }
         // Every object's pieces made side by side, then put in the scene
         // in order.
         let prepared: Vec<_> = objects

@@ -212,11 +212,8 @@ impl DmScene {
             added.push(key);
         }
         self.objects[id].pieces.extend(&added);
-        let mut insert = |(mut piece, members): (Piece, Vec<u32>)| {
-            for (member, k) in piece.members.iter_mut().zip(members) {
-                member.piece = added[k as usize];
-            }
-            self.insert_body(piece)
+        let mut insert = |(piece, members): (Piece, Vec<u32>)| {
+            self.insert_body(piece, members.iter().map(|&k| added[k as usize]))
         };
         let made: Vec<PieceId> = bodies.into_iter().map(&mut insert).collect();
         let parts: Vec<PieceId> = parts.into_iter().map(&mut insert).collect();
@@ -322,8 +319,8 @@ impl DmScene {
     }
 
     /// The occluder of a body of object `id`'s polygons; its members'
-    /// pieces are left unset ([`PieceId::default`]), for the caller to
-    /// name.
+    /// pieces are left unset ([`PieceId::default`]), for
+    /// [`Self::insert_body`] to name.
     pub(super) fn body_piece(
         &self,
         id: ObjectId,
@@ -426,8 +423,16 @@ impl DmScene {
         }
     }
 
-    /// Puts a body's piece in the scene (its members named).
-    pub(super) fn insert_body(&mut self, piece: Piece) -> PieceId {
+    /// Puts a body's piece in the scene, its members' pieces named by
+    /// `members`, in order.
+    pub(super) fn insert_body(
+        &mut self,
+        mut piece: Piece,
+        members: impl IntoIterator<Item = PieceId>,
+    ) -> PieceId {
+        for (member, key) in piece.members.iter_mut().zip(members) {
+            member.piece = key;
+        }
         let key = self.pieces.insert(piece);
         self.overlap.insert(key, &self.pieces[key], false);
         key

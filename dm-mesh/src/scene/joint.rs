@@ -330,11 +330,8 @@ impl DmScene {
                 volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
                 solid: false,
             };
-            let mut piece = self.body_piece(owner, flags, cast, &sources);
-            for (member, &key) in piece.members.iter_mut().zip(&members) {
-                member.piece = key;
-            }
-            let joint = self.insert_body(piece);
+            let piece = self.body_piece(owner, flags, cast, &sources);
+            let joint = self.insert_body(piece, members.iter().copied());
             for &o in &objects {
                 self.objects[o].joints.push(joint);
             }

@@ -1,7 +1,7 @@
 //! Input the scene rejects, as values: polygons whose vertices are not
-//! grid points, whether they come in a build (objects made side by side:
-//! the first bad polygon in order is the one named, whatever the threads),
-//! an addition or a move, which then leave the scene as it was.
+//! grid points, whether they come in a build (the first bad polygon in
+//! order is the one named, on one thread or two: objects are made side by
+//! side), an addition or a move, which then leave the scene as it was.
 
 use crate::common::{floor, gp, level_rect, light};
 use bsp_core::{ConvexPolygon, Plane, Split};
