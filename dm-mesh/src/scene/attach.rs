@@ -6,8 +6,10 @@
 //! every object's side by side, and an object's own polygons and bodies
 //! are made side by side too), then enter the scene in the order made
 //! ([`DmScene::commit`]: keys, receivers and overlap entries, the same
-//! whatever the number of threads).
+//! whatever the number of threads). A move takes the object's old units
+//! out of the receivers while its new pieces are made (module `update`).
 
+use super::contact::ContactPlanes;
 use super::silhouette::SolidCorners;
 use super::{DmScene, Member, ObjectId, Piece, PieceId, PieceKind, bounds_of};
 use crate::critical::{UnitPlanes, body_internal_planes, internal_planes};
@@ -21,8 +23,6 @@ use area_shadow::{
 use bsp_core::{ConvexPolygon, Plane};
 use rayon::prelude::*;
 use svbsp::PieceFlags;
-
-use super::contact::ContactPlanes;
 
 /// An object's pieces, made and not yet in the scene.
 pub(super) struct Prepared {
