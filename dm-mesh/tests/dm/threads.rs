@@ -2,7 +2,7 @@
 //! depend on the number of threads (same cells, same lists, same vertex
 //! irradiance, bit for bit), also after moves.
 
-use crate::common::{TestScene, scene_with, translated};
+use crate::common::{TestScene, bumpy_bodies, scene_with, translated};
 use bsp_core::ConvexPolygon;
 use dm_mesh::DmScene;
 use proptest::prelude::*;
@@ -56,16 +56,27 @@ proptest! {
 
     #[test]
     fn results_do_not_depend_on_the_thread_count(t in scene_with(9..14)) {
-        let runs: Vec<_> = [1, 3]
-            .iter()
-            .map(|&n| {
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(n)
-                    .build()
-                    .unwrap()
-                    .install(|| build_and_move(&t))
-            })
-            .collect();
-        prop_assert!(runs[0] == runs[1]);
+        prop_assert!(same_on_1_and_3_threads(&t));
     }
+
+    /// Bodies of 32 triangles: a move makes their pieces beside the old
+    /// units' removal.
+    #[test]
+    fn big_objects_move_alike_on_any_thread_count(t in bumpy_bodies()) {
+        prop_assert!(same_on_1_and_3_threads(&t));
+    }
+}
+
+fn same_on_1_and_3_threads(t: &TestScene) -> bool {
+    let runs: Vec<_> = [1, 3]
+        .iter()
+        .map(|&n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+                .install(|| build_and_move(t))
+        })
+        .collect();
+    runs[0] == runs[1]
 }
