@@ -56,6 +56,25 @@ pub(super) struct BodyCast<'a> {
     pub(super) solid: bool,
 }
 
+impl<'a> BodyCast<'a> {
+    /// A body that casts only an umbra: under each light the `i`-th convex
+    /// part of its umbra (`parts`, per light), none where that light's has
+    /// fewer.
+    pub(super) fn umbra_part(
+        outward: Vec<Plane>,
+        members: &'a [(&'a ConvexPolygon, Option<&'a Surroundings>)],
+        parts: &[Vec<Vec<Plane>>],
+        i: usize,
+    ) -> Self {
+        Self {
+            outward,
+            members,
+            volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
+            solid: false,
+        }
+    }
+}
+
 impl DmScene {
     /// Makes the pieces of object `id`'s polygons (validated: their
     /// vertices are grid points, [`Self::validate`]) and of the bodies
@@ -270,12 +289,7 @@ impl DmScene {
             // Per light its parts; body `i` takes each light's `i`-th.
             let count = parts.iter().map(Vec::len).max().unwrap_or(0);
             for i in 0..count {
-                let cast = BodyCast {
-                    outward: outward.clone(),
-                    members: &members,
-                    volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
-                    solid: false,
-                };
+                let cast = BodyCast::umbra_part(outward.clone(), &members, &parts, i);
                 made.push((self.body_piece(id, flags, cast, sources), pieces.clone()));
             }
         }

@@ -324,12 +324,7 @@ impl DmScene {
         let count = parts.iter().map(Vec::len).max().unwrap_or(0).max(1);
         let mut made = Vec::with_capacity(count);
         for i in 0..count {
-            let cast = BodyCast {
-                outward: outward.clone(),
-                members: &listed,
-                volumes: parts.iter().map(|p| (None, p.get(i).cloned())).collect(),
-                solid: false,
-            };
+            let cast = BodyCast::umbra_part(outward.clone(), &listed, &parts, i);
             let piece = self.body_piece(owner, flags, cast, &sources);
             let joint = self.insert_body(piece, members.iter().copied());
             for &o in &objects {
