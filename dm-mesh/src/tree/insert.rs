@@ -8,6 +8,10 @@ use smallvec::SmallVec;
 use std::borrow::Cow;
 use std::ops::Range;
 
+/// The chords through a cell of the unit's internal discontinuities that
+/// cross it, each with the discontinuity's index, in order.
+type CellChords = Vec<(u32, Chord)>;
+
 thread_local! {
     /// The chords a unit's region carries down a tree ([`ReceiverDm::merge_region`]),
     /// kept from one region to the next on each thread: grown anew each
@@ -171,7 +175,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                         // (No face polygon to make: the cell is the piece,
                         // its chords those it carried down.)
                         Grown::Whole(inner) => {
-                            let carried = own.iter().map(|(_, c)| Some(c.clone())).collect();
+                            let carried = own
+                                .iter()
+                                .enumerate()
+                                .map(|(k, (_, c))| (k as u32, c.clone()))
+                                .collect();
                             self.split_by_internal(vec![(inner, carried)], crossing, unit)
                         }
                         Grown::Parts => self.grow_internal(leaf, crossing, unit),
@@ -309,7 +317,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// its umbra by its internal discontinuities, each where its wedge
     /// crosses the cell.
     pub(super) fn grow_internal(&mut self, node: u32, internal: &[&Critical], unit: u32) {
-        let cells: Vec<(u32, Vec<Option<Chord>>)> = self
+        let cells: Vec<(u32, CellChords)> = self
             .leaves(node)
             .into_iter()
             .filter(|&n| {
@@ -322,7 +330,10 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 let polygon = self.mesh.face_polygon(self.face_of(n), 0).ok()?;
                 let chords = internal
                     .iter()
-                    .map(|c| polygon.chord_inside(&c.plane, &c.wedge))
+                    .enumerate()
+                    .filter_map(|(k, c)| {
+                        Some((k as u32, polygon.chord_inside(&c.plane, &c.wedge)?))
+                    })
                     .collect();
                 Some((n, chords))
             })
@@ -331,38 +342,58 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     }
 
     /// Splits `cells` (leaves listing `unit` outside its umbra, each with
-    /// the chords through it of the unit's internal discontinuities
-    /// `internal`, one each, `None` where one does not cross it) by those
-    /// discontinuities, each where its wedge crosses a cell: a cell split
-    /// by one divides the later ones' chords between its parts (no polygon
-    /// is made or asked again).
+    /// the chords through it of those of the unit's internal
+    /// discontinuities `internal` that cross it) by those discontinuities,
+    /// each where its wedge crosses a cell: a cell split by one divides the
+    /// later ones' chords between its parts (no polygon is made or asked
+    /// again).
     fn split_by_internal(
         &mut self,
-        mut cells: Vec<(u32, Vec<Option<Chord>>)>,
+        cells: Vec<(u32, CellChords)>,
         internal: &[&Critical],
         unit: u32,
     ) {
         let support = *self.polygon.support();
+        // Each cell's chords are a run of `chords`, by discontinuity; a
+        // split appends its parts' runs. (Runs of every discontinuity,
+        // crossing or not, made each split copy and allocate two lists of
+        // mostly empty slots.)
+        let mut chords: Vec<(u32, Chord)> = Vec::new();
+        let mut cells: Vec<(u32, Range<usize>)> = cells
+            .into_iter()
+            .map(|(leaf, own)| {
+                let start = chords.len();
+                chords.extend(own);
+                (leaf, start..chords.len())
+            })
+            .collect();
         for (k, critical) in internal.iter().enumerate() {
+            let k = k as u32;
             let mut next = Vec::with_capacity(cells.len());
-            for (leaf, chords) in cells {
-                if chords[k].is_none() {
-                    next.push((leaf, chords));
+            for (leaf, mut run) in cells {
+                // (The runs hold the discontinuities from `k` on.)
+                if run.is_empty() || chords[run.start].0 != k {
+                    next.push((leaf, run));
                     continue;
                 }
+                run.start += 1;
                 let Ok((back, front)) = self.split_leaf(leaf, &critical.plane, unit) else {
-                    next.push((leaf, chords));
+                    next.push((leaf, run));
                     continue;
                 };
-                let (mut behind, mut ahead) = (vec![None; k + 1], vec![None; k + 1]);
-                for chord in &chords[k + 1..] {
-                    let (b, f) = chord
-                        .as_ref()
-                        .map_or((None, None), |c| c.split(&support, &critical.plane));
-                    behind.push(b);
-                    ahead.push(f);
+                let mut ahead: SmallVec<[(u32, Chord); 8]> = SmallVec::new();
+                let start = chords.len();
+                for i in run {
+                    let (j, (b, f)) = {
+                        let (j, chord) = &chords[i];
+                        (*j, chord.split(&support, &critical.plane))
+                    };
+                    chords.extend(b.map(|chord| (j, chord)));
+                    ahead.extend(f.map(|chord| (j, chord)));
                 }
-                next.extend([(back, behind), (front, ahead)]);
+                let middle = chords.len();
+                chords.extend(ahead);
+                next.extend([(back, start..middle), (front, middle..chords.len())]);
             }
             cells = next;
         }
