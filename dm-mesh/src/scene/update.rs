@@ -75,8 +75,9 @@ impl DmScene {
     /// it touched and touches are brought up to date
     /// ([`Self::reconcile_joints`]). With many pieces to make, its old
     /// units leave the receivers first, while the pieces are made
-    /// ([`Self::replace`]); the other units come and go, and the receivers
-    /// changed are illuminated, in one pass.
+    /// ([`Self::replace`]); with few, the units that leave are only found
+    /// while the pieces are made. The other units come and go, and the
+    /// receivers changed are illuminated, in one pass.
     pub(super) fn change(
         &mut self,
         id: ObjectId,
@@ -85,12 +86,25 @@ impl DmScene {
         let mut seeds = self.touching(id);
         let normals = self.receiver_normals(id);
         let mut gone = self.take(id)?;
+        // The units of `gone` that leave the receivers, where found before
+        // the joints are reconciled.
+        let mut planned: Option<Removals> = None;
         let (mut added, mut left, relight) = match polygons {
             Some((polygons, flags)) if polygons.len() >= OVERLAPPED_MAKING => {
                 self.replace(id, std::mem::take(&mut gone), polygons, flags)
             }
             Some((polygons, flags)) => {
-                let prepared = self.prepare(id, polygons, flags);
+                // The old units that leave are found while the new pieces
+                // are made (neither needs the other).
+                self.overlap.refresh(&self.pieces);
+                let (prepared, removals) = {
+                    let scene = &*self;
+                    rayon::join(
+                        || scene.prepare(id, polygons, flags),
+                        || scene.removals_of(&gone),
+                    )
+                };
+                planned = Some(removals);
                 let added = self.commit(id, prepared);
                 (added, KeyMap::default(), BTreeSet::new())
             }
@@ -101,8 +115,17 @@ impl DmScene {
         seeds.insert(id);
         let (joined, parted) = self.reconcile_joints(&seeds);
         added.extend(joined);
+        let planned_pieces = gone.len();
         gone.extend(parted);
-        let removals = self.removals(&gone);
+        let removals = match planned {
+            Some(mut removals) => {
+                for (r, units) in self.removals(&gone[planned_pieces..]) {
+                    removals.entry(r).or_default().extend(units);
+                }
+                removals
+            }
+            None => self.removals(&gone),
+        };
         left.extend(self.forget(gone));
         let insertions = self.insertions(&added);
         self.apply(removals, insertions, &relight, &left);
@@ -191,9 +214,14 @@ impl DmScene {
     }
 
     /// The units the pieces `gone` make on every other receiver.
-    fn removals(&mut self, gone_pieces: &[PieceId]) -> Removals {
-        let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
+    fn removals(&mut self, gone: &[PieceId]) -> Removals {
         self.overlap.refresh(&self.pieces);
+        self.removals_of(gone)
+    }
+
+    /// [`Self::removals`], the overlap structure up to date.
+    fn removals_of(&self, gone_pieces: &[PieceId]) -> Removals {
+        let gone: BTreeSet<PieceId> = gone_pieces.iter().copied().collect();
         let mut touched: BTreeSet<PieceId> = BTreeSet::new();
         for &o in gone_pieces {
             touched.extend(self.overlap.receivers_near(o, &self.pieces));
