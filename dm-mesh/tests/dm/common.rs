@@ -489,3 +489,30 @@ pub fn ring_bodies() -> impl Strategy<Value = TestScene> {
             }
         })
 }
+
+/// A wide plate (object 1) over a floor crowded with the shadows of 36
+/// small boxes under a wide light: the plate's penumbra holds many of the
+/// floor's cells.
+pub fn plate_over_boxes() -> TestScene {
+    let mut objects = vec![
+        (vec![floor(500)], PieceFlags::default()),
+        (
+            vec![level_rect([-150, 150], 220, [-150, 150])],
+            two_sided_flags(),
+        ),
+    ];
+    for i in 0..6_i64 {
+        for k in 0..6_i64 {
+            let (x, z) = (-330 + 130 * i + 7 * k, -330 + 130 * k - 5 * i);
+            let height = 30 + 17 * ((i * 5 + k * 3) % 4);
+            objects.push((
+                cuboid([x, 0, z], [x + 24, height, z + 18]),
+                closed_surface_flags(),
+            ));
+        }
+    }
+    TestScene {
+        objects,
+        light: light(-60, -40, 160, 120, 420, 10),
+    }
+}

@@ -2,7 +2,7 @@
 //! depend on the number of threads (same cells, same lists, same vertex
 //! irradiance, bit for bit), also after moves.
 
-use crate::common::{TestScene, bumpy_bodies, scene_with, translated};
+use crate::common::{TestScene, bumpy_bodies, plate_over_boxes, scene_with, translated};
 use bsp_core::ConvexPolygon;
 use dm_mesh::DmScene;
 use proptest::prelude::*;
@@ -79,4 +79,33 @@ fn same_on_1_and_3_threads(t: &TestScene) -> bool {
         })
         .collect();
     runs[0] == runs[1]
+}
+
+/// A plate moved over a floor of many cells: the floor's cells whose
+/// lists change are many (their vertices are gathered and evaluated a
+/// chunk of faces at a time, the chunks in parallel), and the result is
+/// the same on any number of threads.
+#[test]
+fn a_move_over_many_cells_is_alike_on_any_thread_count() {
+    let t = plate_over_boxes();
+    let (scene, ids) = t.build();
+    let plate = scene.object_pieces(ids[1]).unwrap().to_vec();
+    let floor = scene.object_pieces(ids[0]).unwrap()[0];
+    let dm = scene.receiver(floor).unwrap();
+    let listing = dm
+        .cells()
+        .filter(|(_, c)| {
+            c.entries().iter().any(|e| {
+                dm.unit_source(e.unit)
+                    .is_some_and(|(o, _)| plate.contains(&o))
+            })
+        })
+        .count();
+    // (From 512 faces touched on one receiver on, a change's vertices are
+    // gathered in chunks.)
+    assert!(
+        listing > 512,
+        "{listing} of the floor's cells list the plate"
+    );
+    assert!(same_on_1_and_3_threads(&t));
 }

@@ -5,8 +5,8 @@
 //! keep their invariants after every operation.
 
 use crate::common::{
-    Object, TestScene, bumpy_bodies, class_areas, concavity, facing_boxes, ring_bodies, scene,
-    scene_with, translated,
+    Object, TestScene, bumpy_bodies, class_areas, concavity, facing_boxes, plate_over_boxes,
+    ring_bodies, scene, scene_with, translated,
 };
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
@@ -284,6 +284,15 @@ proptest! {
         prop_assert!(groups.iter().all(|g| g.pieces.len() == ring.len() && !g.is_closed_convex()));
         run(&t, &ops)?;
     }
+}
+
+/// A plate moved over a floor of many cells (hundreds of them change
+/// lists, their vertices gathered and evaluated in chunks) agrees with a
+/// rebuild.
+#[test]
+fn a_move_over_many_cells_agrees_with_a_rebuild() {
+    let t = plate_over_boxes();
+    run(&t, &[Op::Move(1, [30, 0, -20]), Op::Move(1, [-9, 0, 14])]).unwrap();
 }
 
 #[test]
