@@ -32,6 +32,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             vertices: SlotMap::with_key(),
             edges: SlotMap::with_key(),
             faces: SlotMap::with_key(),
+            supports: vec![*polygon.support()],
         };
         let n = polygon.len();
         let vertices: Vec<VertexKey> = (0..n)
@@ -52,7 +53,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             })
             .collect();
         let face = mesh.faces.insert(Face {
-            support: *polygon.support(),
+            plane: 0,
             edge: EdgeKey::default(),
             data: face_data,
         });
@@ -100,9 +101,11 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             vertices: SlotMap::with_key(),
             edges: SlotMap::with_key(),
             faces: SlotMap::with_key(),
+            supports: Vec::new(),
         };
         let mut vertex_of: HashMap<GridPoint, VertexKey> = HashMap::new();
         let mut edge_of: HashMap<(VertexKey, VertexKey), EdgeKey> = HashMap::new();
+        let mut plane_of: HashMap<Plane, u32> = HashMap::new();
         let mut loops: Vec<(FaceKey, Vec<EdgeKey>)> = Vec::new();
         let mut polygon_of: HashMap<FaceKey, usize> = HashMap::new();
         for (index, polygon) in polygons.iter().enumerate() {
@@ -118,8 +121,12 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 });
                 keys.push(key);
             }
+            let plane = *plane_of.entry(*polygon.support()).or_insert_with(|| {
+                mesh.supports.push(*polygon.support());
+                (mesh.supports.len() - 1) as u32
+            });
             let face = mesh.faces.insert(Face {
-                support: *polygon.support(),
+                plane,
                 edge: EdgeKey::default(),
                 data: face_data.clone(),
             });

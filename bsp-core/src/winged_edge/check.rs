@@ -62,7 +62,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             }
             for &v in &vertices {
                 let p = &self.vertices[v].position;
-                if p.side(&face.support) != Side::On {
+                if p.side(self.support(face)) != Side::On {
                     return Err(format!("{k:?}: a vertex is off the support plane"));
                 }
                 if planes.iter().any(|plane| p.side(plane) == Side::Front) {

@@ -70,7 +70,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     /// along the plane separates the parts. No zero-area face is made: a
     /// plane that only touches the face leaves it whole.
     pub fn split_face(&mut self, f: FaceKey, plane: &Plane) -> FaceSplit {
-        let support = self.faces[f].support;
+        let support = *self.support(&self.faces[f]);
         let side = Some(f);
         // One walk around the face: each edge with the side of the vertex
         // the walk leaves it from.
@@ -144,7 +144,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         // front part (out_b .. in_a) walks it va -> vb: on its left, so the
         // line plane, with the left face behind it, is the plane flipped.
         let front_face = self.faces.insert(Face {
-            support,
+            plane: self.faces[f].plane,
             edge: out_b,
             data: self.faces[f].data.clone(),
         });
@@ -198,7 +198,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         if keep == gone {
             return Err(Error::TooFewVertices);
         }
-        if self.faces[keep].support != self.faces[gone].support {
+        if self.faces[keep].plane != self.faces[gone].plane {
             return Err(Error::NonPlanar);
         }
         // The two faces may share a straight chain of edges (a vertex of

@@ -8,7 +8,7 @@
 //! other's, so that the result is one conforming subdivision. Every
 //! decision is an exact side test.
 
-use super::{Edge, VertexPosition, WingedMesh};
+use super::{Edge, Face, VertexPosition, WingedMesh};
 use crate::predicates::Side;
 use crate::{EdgeKey, Error, FaceKey, ImplicitPoint, Plane, VertexKey};
 use slotmap::SecondaryMap;
@@ -49,7 +49,12 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         mut sub: WingedMesh<F, E>,
     ) -> Result<SecondaryMap<FaceKey, FaceKey>, Error> {
         let face = self.faces.get(f).ok_or(Error::NoIntersection)?;
-        if sub.faces.values().any(|g| g.support != face.support) {
+        let plane = face.plane;
+        if sub
+            .faces
+            .values()
+            .any(|g| sub.support(g) != self.support(face))
+        {
             return Err(Error::NonPlanar);
         }
         // A corner of the face, in both meshes.
@@ -175,7 +180,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         self.reserve(sub.vertices.len(), sub.edges.len(), sub.faces.len());
         let mut fmap: SecondaryMap<FaceKey, FaceKey> = SecondaryMap::new();
         for (g, face) in sub.faces.drain() {
-            fmap.insert(g, self.faces.insert(face));
+            fmap.insert(g, self.faces.insert(Face { plane, ..face }));
         }
         // (The vertices inside, with the edge each points at in `sub`.)
         let mut inside: Vec<(VertexKey, EdgeKey)> = Vec::new();

@@ -143,11 +143,16 @@ pub struct FaceSide<'a, E> {
     pub end: VertexKey,
 }
 
-/// A face, its support plane and one edge of its boundary.
+/// A face: its support plane (by number, [`WingedMesh::face_support`])
+/// and one edge of its boundary.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Face<F> {
-    /// The plane the face lies in; its front is the face's front.
-    pub support: Plane,
+    /// The number of the plane the face lies in among the mesh's support
+    /// planes (its front is the face's front): a subdivision of one
+    /// polygon, whose faces all lie in one plane, keeps it once, not a
+    /// copy per face (a third of a face's bytes, over a million faces on a
+    /// big receiver).
+    plane: u32,
     edge: EdgeKey,
     /// The user's payload.
     pub data: F,
@@ -177,6 +182,8 @@ pub struct WingedMesh<F = (), E = ()> {
     vertices: SlotMap<VertexKey, Vertex>,
     edges: SlotMap<EdgeKey, Edge<E>>,
     faces: SlotMap<FaceKey, Face<F>>,
+    /// The faces' support planes, each once.
+    supports: Vec<Plane>,
 }
 
 impl<F: Clone, E: Clone> WingedMesh<F, E> {
@@ -193,6 +200,16 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     /// The edges.
     pub fn edges(&self) -> impl Iterator<Item = (EdgeKey, &Edge<E>)> {
         self.edges.iter()
+    }
+
+    /// The plane face `f` lies in; its front is the face's front.
+    pub fn face_support(&self, f: FaceKey) -> Option<&Plane> {
+        self.faces.get(f).map(|face| self.support(face))
+    }
+
+    /// The support plane of a face of the mesh.
+    fn support(&self, face: &Face<F>) -> &Plane {
+        &self.supports[face.plane as usize]
     }
 
     /// A face.
@@ -415,7 +432,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
 
     /// The face as a convex polygon with source `source`.
     pub fn face_polygon(&self, f: FaceKey, source: u32) -> Result<ConvexPolygon, Error> {
-        ConvexPolygon::from_planes(self.faces[f].support, &self.face_planes(f), source)
+        ConvexPolygon::from_planes(*self.support(&self.faces[f]), &self.face_planes(f), source)
     }
 
     /// The face's outline in grid units, counter-clockwise (output only).
@@ -430,7 +447,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     fn support_of(&self, e: EdgeKey) -> Plane {
         let edge = &self.edges[e];
         let f = edge.left.or(edge.right).expect("an edge has a face");
-        self.faces[f].support
+        *self.support(&self.faces[f])
     }
 
     fn prev_in(&self, e: EdgeKey, side: Option<FaceKey>) -> EdgeKey {

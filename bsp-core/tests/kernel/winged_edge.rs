@@ -102,7 +102,7 @@ proptest! {
                 Op::SplitEdge(i, p) => {
                     let edges: Vec<_> = mesh.edges().map(|(k, e)| (k, e.line, e.left.or(e.right).unwrap())).collect();
                     let (e, line, face) = edges[i % edges.len()];
-                    let support = mesh.face(face).unwrap().support;
+                    let support = *mesh.face_support(face).unwrap();
                     if let Ok(point) = ImplicitPoint::new(support, line, p) {
                         // Inside the edge or not, the mesh decides exactly.
                         let (v, e) = match mesh.split_edge(e, VertexPosition::Implicit(point)) {
@@ -340,6 +340,18 @@ fn glued_polygons_share_vertices_and_edges() {
         cube.edges()
             .all(|(_, e)| e.left.is_some() && e.right.is_some())
     );
+    // Faces in one plane share their support plane; the cube's six differ.
+    let planes = |m: &WingedMesh| -> std::collections::HashSet<bsp_core::Plane> {
+        m.faces()
+            .map(|(f, _)| *m.face_support(f).unwrap())
+            .collect()
+    };
+    assert_eq!(planes(&mesh).len(), 1);
+    assert_eq!(planes(&cube).len(), 6);
+    // (Faces are made in the polygons' order.)
+    for ((f, _), polygon) in cube.faces().zip(cube_faces(6)) {
+        assert_eq!(cube.face_support(f), Some(polygon.support()));
+    }
     // The same square twice is an inconsistent surface.
     assert!(WingedMesh::<(), ()>::from_polygons(&[square(0, 0), square(0, 0)], (), ()).is_err());
 }
