@@ -48,17 +48,23 @@ impl SharedMarks {
         }
     }
 
-    /// Marks `n` (below the bound); whether it was not marked before, by
-    /// this call or another's.
+    /// Marks `n`; whether it was not marked before, by this call or
+    /// another's. (A number past the bound is new every time: its user
+    /// then does its work twice, which is all that goes wrong.)
     pub(crate) fn insert(&self, n: u32) -> bool {
         let (word, bit) = ((n / 64) as usize, 1_u64 << (n % 64));
-        self.words[word].fetch_or(bit, Ordering::Relaxed) & bit == 0
+        self.words
+            .get(word)
+            .is_none_or(|w| w.fetch_or(bit, Ordering::Relaxed) & bit == 0)
     }
 }
 
-/// The slot of an arena key (below the arena's capacity plus one).
+/// The slot of an arena key: distinct for the live keys of a slot map,
+/// and below its capacity plus one.
 pub(crate) fn slot<K: Key>(key: K) -> u32 {
-    // (A key's FFI form holds its slot in the low half.)
+    // (A key's FFI form holds its slot in the low half, which `slotmap`
+    // does not promise: the test `slots_are_distinct_and_bounded` checks
+    // it for the version in use.)
     key.data().as_ffi() as u32
 }
 
@@ -79,6 +85,27 @@ mod tests {
         assert!(marks.insert(128));
     }
 
+    /// The slots of a slot map's live keys, after removals and insertions
+    /// that reuse slots, are distinct and below its capacity plus one.
+    #[test]
+    fn slots_are_distinct_and_bounded() {
+        use super::slot;
+        use slotmap::{DefaultKey, SlotMap};
+        let mut map: SlotMap<DefaultKey, u32> = SlotMap::new();
+        let keys: Vec<DefaultKey> = (0..1000).map(|i| map.insert(i)).collect();
+        for k in keys.iter().step_by(3) {
+            map.remove(*k);
+        }
+        for i in 0..500 {
+            map.insert(i);
+        }
+        let mut slots: Vec<u32> = map.keys().map(slot).collect();
+        assert!(slots.iter().all(|&s| (s as usize) < map.capacity() + 1));
+        slots.sort_unstable();
+        slots.dedup();
+        assert_eq!(slots.len(), map.len());
+    }
+
     /// Threads marking the same numbers side by side: each number is new
     /// to exactly one of them.
     #[test]
@@ -92,5 +119,6 @@ mod tests {
             .sum();
         assert_eq!(fresh, 5000);
         assert!(!marks.insert(4999));
+        assert!(marks.insert(9000) && marks.insert(9000), "past the bound");
     }
 }
