@@ -463,11 +463,12 @@ pub(crate) fn illuminate_receiver(
             vertices.iter().map(|&v| work(v, scratch)).collect()
         }
     };
-    let results: Vec<_> = if everything {
+    // (In chunks, as found.)
+    let results: Vec<Vec<_>> = if everything {
         // All of them the first time.
         let vertices: Vec<VertexKey> = mesh.vertices().map(|(v, _)| v).collect();
         stats.vertices = vertices.len();
-        in_order(&vertices, scratch)
+        vec![in_order(&vertices, scratch)]
     } else if touched.len() >= GATHER_FACES {
         // After a big change, those of the faces touched, gathered and
         // evaluated a chunk of faces at a time, the chunks in parallel
@@ -489,7 +490,7 @@ pub(crate) fn illuminate_receiver(
             })
             .collect();
         stats.vertices = chunks.iter().map(|(n, _)| n).sum();
-        chunks.into_iter().flat_map(|(_, values)| values).collect()
+        chunks.into_iter().map(|(_, values)| values).collect()
     } else {
         // After a small one, those of the faces touched, once each (by a
         // hash set: sorting them all with their repeats costs more).
@@ -502,10 +503,10 @@ pub(crate) fn illuminate_receiver(
             .collect();
         each.sort_unstable();
         stats.vertices = each.len();
-        in_order(&each, scratch)
+        vec![in_order(&each, scratch)]
     };
     let values = &mut state.values;
-    for (v, value, comparisons) in results.into_iter().flatten() {
+    for (v, value, comparisons) in results.into_iter().flatten().flatten() {
         stats = stats.add(IllumStats::of_evaluation(&value.covers, comparisons));
         values.insert(v, value);
     }
