@@ -35,7 +35,7 @@ use crate::marks::{SharedMarks, slot};
 use crate::scene::{DmLight, DmScene, Hider, Piece, PieceId};
 use crate::tree::ReceiverDm;
 use area_shadow::dark::DARK_FRACTION;
-use bsp_core::{Side, VertexKey, VertexPosition};
+use bsp_core::{FaceKey, Side, VertexKey, VertexPosition, WingedMesh};
 use illum::{Occluder, Sidedness, VisiblePart, visible_irradiance};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
@@ -479,9 +479,7 @@ pub(crate) fn illuminate_receiver(
         let chunks: Vec<(usize, Vec<_>)> = touched
             .par_chunks(GATHER_FACES / 4)
             .map_init(VisiblePart::new, |scratch, faces| {
-                let mut each: Vec<VertexKey> = faces
-                    .iter()
-                    .flat_map(|&f| mesh.face_sides(f).map(|side| side.start))
+                let mut each: Vec<VertexKey> = corners(mesh, faces)
                     .filter(|&v| seen.insert(slot(v)))
                     .collect();
                 each.sort_unstable();
@@ -496,9 +494,7 @@ pub(crate) fn illuminate_receiver(
         // hash set: sorting them all with their repeats costs more).
         let mut seen: KeySet<VertexKey> = KeySet::default();
         seen.reserve(4 * touched.len());
-        let mut each: Vec<VertexKey> = touched
-            .iter()
-            .flat_map(|&f| mesh.face_sides(f).map(|side| side.start))
+        let mut each: Vec<VertexKey> = corners(mesh, &touched)
             .filter(|&v| seen.insert(v))
             .collect();
         each.sort_unstable();
@@ -517,6 +513,16 @@ pub(crate) fn illuminate_receiver(
     }
     state.fresh = true;
     stats
+}
+
+/// The corners of `faces`, with repeats.
+fn corners<'a>(
+    mesh: &'a WingedMesh<Cell, ()>,
+    faces: &'a [FaceKey],
+) -> impl Iterator<Item = VertexKey> + 'a {
+    faces
+        .iter()
+        .flat_map(|&f| mesh.face_sides(f).map(|side| side.start))
 }
 
 /// The irradiance at a vertex at `position` (receiver normal `normal`)

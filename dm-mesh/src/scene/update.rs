@@ -86,9 +86,9 @@ impl DmScene {
         let mut seeds = self.touching(id);
         let normals = self.receiver_normals(id);
         let mut gone = self.take(id)?;
-        // The units of `gone` that leave the receivers, where found before
-        // the joints are reconciled.
-        let mut planned: Option<Removals> = None;
+        // The units that leave the receivers, found for the first
+        // `planned` pieces of `gone` so far.
+        let (mut removals, mut planned) = (Removals::default(), 0);
         let (mut added, mut left, relight) = match polygons {
             Some((polygons, flags)) if polygons.len() >= OVERLAPPED_MAKING => {
                 self.replace(id, std::mem::take(&mut gone), polygons, flags)
@@ -97,14 +97,15 @@ impl DmScene {
                 // The old units that leave are found while the new pieces
                 // are made (neither needs the other).
                 self.overlap.refresh(&self.pieces);
-                let (prepared, removals) = {
+                let prepared;
+                (prepared, removals) = {
                     let scene = &*self;
                     rayon::join(
                         || scene.prepare(id, polygons, flags),
                         || scene.removals_of(&gone),
                     )
                 };
-                planned = Some(removals);
+                planned = gone.len();
                 let added = self.commit(id, prepared);
                 (added, KeyMap::default(), BTreeSet::new())
             }
@@ -115,17 +116,10 @@ impl DmScene {
         seeds.insert(id);
         let (joined, parted) = self.reconcile_joints(&seeds);
         added.extend(joined);
-        let planned_pieces = gone.len();
         gone.extend(parted);
-        let removals = match planned {
-            Some(mut removals) => {
-                for (r, units) in self.removals(&gone[planned_pieces..]) {
-                    removals.entry(r).or_default().extend(units);
-                }
-                removals
-            }
-            None => self.removals(&gone),
-        };
+        for (r, units) in self.removals(&gone[planned..]) {
+            removals.entry(r).or_default().extend(units);
+        }
         left.extend(self.forget(gone));
         let insertions = self.insertions(&added);
         self.apply(removals, insertions, &relight, &left);
