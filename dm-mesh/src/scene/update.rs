@@ -83,6 +83,21 @@ impl DmScene {
         id: ObjectId,
         polygons: Option<(Vec<ConvexPolygon>, PieceFlags)>,
     ) -> Result<(), Error> {
+        // On a pool thread: from outside the pool each parallel step would
+        // hand its work over and sleep until woken (a few wake-ups a
+        // change, 0.13-0.2 ms of a small move's 8.8-9.1 on the 10k hall);
+        // on a pool thread the steps start at once.
+        let mut result = Ok(());
+        rayon::scope(|_| result = self.change_on_pool(id, polygons));
+        result
+    }
+
+    /// [`Self::change`], on a pool thread.
+    fn change_on_pool(
+        &mut self,
+        id: ObjectId,
+        polygons: Option<(Vec<ConvexPolygon>, PieceFlags)>,
+    ) -> Result<(), Error> {
         let mut seeds = self.touching(id);
         let normals = self.receiver_normals(id);
         let mut gone = self.take(id)?;
