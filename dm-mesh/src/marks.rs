@@ -1,41 +1,22 @@
 //! A set of numbers below a bound (node numbers, arena slots) kept as one
-//! bit each.
+//! bit each, that threads mark side by side.
 //!
 //! A flood over a big receiver's cells asks of each cell, again and again
 //! from its neighbours, whether it was reached yet. As bits by leaf number
 //! the answers for the 10k hall floor (1.3M nodes) take 160 kB, with no
 //! hashing and no table to grow: a small box's removal floods about 4k of
-//! its cells (some 20k questions) in 1.0-1.2 ms instead of 1.1-1.3 ms with
-//! a hash set of their faces (2 cores, loaded machine). Threads gathering
-//! a big receiver's changed vertices side by side mark them by arena slot
-//! in one [`SharedMarks`] (atomic words).
+//! its cells (some 20k questions) in 0.9-1.2 ms, where a hash set of their
+//! faces took 1.1-1.3 ms (2 cores, loaded machine). Two threads may flood
+//! side by side (module `tree::removal::flood`), and threads gathering a
+//! big receiver's changed vertices side by side mark them by arena slot.
+//! Most questions are about numbers marked already, which a load answers
+//! (the atomic read-modify-write only marks).
 
 use slotmap::Key;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-/// Numbers below a bound, each marked or not.
-pub(crate) struct Marks {
-    words: Vec<u64>,
-}
-
-impl Marks {
-    /// No number below `len` marked.
-    pub(crate) fn new(len: usize) -> Self {
-        Self {
-            words: vec![0; len.div_ceil(64)],
-        }
-    }
-
-    /// Marks `n` (below the bound); whether it was not marked before.
-    pub(crate) fn insert(&mut self, n: u32) -> bool {
-        let (word, bit) = ((n / 64) as usize, 1_u64 << (n % 64));
-        let fresh = self.words[word] & bit == 0;
-        self.words[word] |= bit;
-        fresh
-    }
-}
-
-/// [`Marks`] that threads mark side by side.
+/// Numbers below a bound, each marked or not, that threads mark side by
+/// side.
 pub(crate) struct SharedMarks {
     words: Vec<AtomicU64>,
 }
@@ -53,9 +34,11 @@ impl SharedMarks {
     /// then does its work twice, which is all that goes wrong.)
     pub(crate) fn insert(&self, n: u32) -> bool {
         let (word, bit) = ((n / 64) as usize, 1_u64 << (n % 64));
-        self.words
-            .get(word)
-            .is_none_or(|w| w.fetch_or(bit, Ordering::Relaxed) & bit == 0)
+        // (Most numbers asked about are marked already: a load answers
+        // them without the exclusive access a read-modify-write takes.)
+        self.words.get(word).is_none_or(|w| {
+            w.load(Ordering::Relaxed) & bit == 0 && w.fetch_or(bit, Ordering::Relaxed) & bit == 0
+        })
     }
 }
 
@@ -70,11 +53,11 @@ pub(crate) fn slot<K: Key>(key: K) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use super::Marks;
+    use super::SharedMarks;
 
     #[test]
     fn a_number_is_new_once() {
-        let mut marks = Marks::new(130);
+        let marks = SharedMarks::new(130);
         for n in [0, 63, 64, 129, 5] {
             assert!(marks.insert(n), "{n} is new");
         }
@@ -110,7 +93,6 @@ mod tests {
     /// to exactly one of them.
     #[test]
     fn a_shared_number_is_new_to_one_thread() {
-        use super::SharedMarks;
         use rayon::prelude::*;
         let marks = SharedMarks::new(5000);
         let fresh: usize = (0..8)

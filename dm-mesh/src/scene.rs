@@ -17,6 +17,7 @@ use smallvec::SmallVec;
 use std::collections::BTreeSet;
 use svbsp::PieceFlags;
 
+mod ahead;
 mod attach;
 mod contact;
 mod joint;
@@ -397,6 +398,12 @@ pub struct DmScene {
     /// looks only here for the rest, not at every receiver of the scene
     /// (the 10k hall's 10k: a tenth of a box's move).
     pub(crate) unlit: BTreeSet<PieceId>,
+    /// The receivers of many cells, whose removals a small change floods
+    /// ahead (module `ahead`), kept as changes put receivers back.
+    pub(crate) big_receivers: BTreeSet<PieceId>,
+    /// Removals flooded ahead so far (for tests to see that they were).
+    #[cfg(test)]
+    pub(crate) floods_ahead: usize,
 }
 
 impl DmScene {
@@ -427,6 +434,9 @@ impl DmScene {
             lit: false,
             lit_since: IllumStats::default(),
             unlit: BTreeSet::new(),
+            big_receivers: BTreeSet::new(),
+            #[cfg(test)]
+            floods_ahead: 0,
         })
     }
 

@@ -15,6 +15,7 @@
 //! big receiver's work runs on one thread while the small receivers share
 //! the other, instead of passes each waiting for the big receiver.
 
+use super::ahead::AHEAD_CELLS;
 use super::contact::ContactPlanes;
 use super::{DmScene, MAX_TILE_DEPTH, ObjectId, Order, Piece, PieceId, PieceKind, TILE_UNITS};
 use crate::critical::UnitPlanes;
@@ -22,7 +23,7 @@ use crate::error::Error;
 use crate::hash::KeyMap;
 use crate::illuminate::{IllumStats, ReceiverIllum, illuminate_receiver};
 use crate::order::unit_order;
-use crate::tree::ReceiverDm;
+use crate::tree::{Flooded, ReceiverDm};
 use area_shadow::AreaSource;
 use bsp_core::ConvexPolygon;
 use illum::VisiblePart;
@@ -44,25 +45,29 @@ const OVERLAPPED_MAKING: usize = 16;
 type Removals = KeyMap<PieceId, BTreeSet<u32>>;
 /// Per receiver, the units that enter it (after tiling it to a depth).
 type Insertions = KeyMap<PieceId, Order>;
+/// Per receiver, the cells of the units that leave it, found ahead.
+type Floods = KeyMap<PieceId, Flooded>;
 /// One receiver's part of a change: units out, then units in, then its
 /// illumination if the scene keeps it; the receiver's state is taken out
 /// of the scene for it, and put back after.
-type Work = (
-    PieceId,
-    ReceiverDm<PieceId>,
-    ContactPlanes,
-    Option<BTreeSet<u32>>,
-    Option<Order>,
-    Option<ReceiverIllum>,
-);
+struct Work {
+    receiver: PieceId,
+    dm: ReceiverDm<PieceId>,
+    contact: ContactPlanes,
+    /// The units that leave, and their cells if found ahead.
+    out: Option<(BTreeSet<u32>, Option<Flooded>)>,
+    into: Option<Order>,
+    illum: Option<ReceiverIllum>,
+}
 
 impl DmScene {
     /// Casts the shadows of `added` (new pieces) on every receiver, and of
     /// every occluder on the new receivers.
     pub(super) fn cast(&mut self, added: &[PieceId]) {
-        let insertions = self.insertions(added);
+        let insertions = self.insertions(added, None);
         self.apply(
             Removals::default(),
+            Floods::default(),
             insertions,
             &BTreeSet::new(),
             &KeyMap::default(),
@@ -88,13 +93,14 @@ impl DmScene {
         // change, 0.13-0.2 ms of a small move's 8.8-9.1 on the 10k hall);
         // on a pool thread the steps start at once.
         let mut result = Ok(());
-        rayon::scope(|_| result = self.change_on_pool(id, polygons));
+        rayon::scope(|scope| result = self.change_on_pool(scope, id, polygons));
         result
     }
 
-    /// [`Self::change`], on a pool thread.
+    /// [`Self::change`], on a pool thread, its tasks in `scope`.
     fn change_on_pool(
         &mut self,
+        scope: &rayon::Scope<'_>,
         id: ObjectId,
         polygons: Option<(Vec<ConvexPolygon>, PieceFlags)>,
     ) -> Result<(), Error> {
@@ -104,6 +110,9 @@ impl DmScene {
         // The units that leave the receivers, found for the first
         // `planned` pieces of `gone` so far.
         let (mut removals, mut planned) = (Removals::default(), 0);
+        let mut floods = Floods::default();
+        // The biggest receiver's removal flood, made meanwhile.
+        let mut ahead = None;
         let (mut added, mut left, relight) = match polygons {
             Some((polygons, flags)) if polygons.len() >= OVERLAPPED_MAKING => {
                 self.replace(id, std::mem::take(&mut gone), polygons, flags)
@@ -112,6 +121,7 @@ impl DmScene {
                 // The old units that leave are found while the new pieces
                 // are made (neither needs the other).
                 self.overlap.refresh(&self.pieces);
+                ahead = self.flood_ahead(scope, &gone);
                 let prepared;
                 (prepared, removals) = {
                     let scene = &*self;
@@ -135,9 +145,20 @@ impl DmScene {
         for (r, units) in self.removals(&gone[planned..]) {
             removals.entry(r).or_default().extend(units);
         }
+        // (Out of the scene, the receiver flooded ahead is not among them.)
+        let also_gone = gone[planned..].to_vec();
         left.extend(self.forget(gone));
-        let insertions = self.insertions(&added);
-        self.apply(removals, insertions, &relight, &left);
+        let insertions = self.insertions(&added, ahead.as_ref().map(|a| a.receiver()));
+        if let Some(ahead) = ahead {
+            let (r, units, flooded) = self.land(ahead, &also_gone);
+            if !units.is_empty() {
+                removals.insert(r, units);
+            }
+            if let Some(flooded) = flooded {
+                floods.insert(r, flooded);
+            }
+        }
+        self.apply(removals, floods, insertions, &relight, &left);
         Ok(())
     }
 
@@ -156,8 +177,14 @@ impl DmScene {
     ) -> (Vec<PieceId>, KeyMap<PieceId, Piece>, BTreeSet<PieceId>) {
         let removals = self.removals(&gone);
         let left = self.forget(gone);
-        let mut leaving = self.take_work(removals, Insertions::default(), &BTreeSet::new(), false);
-        let changed: BTreeSet<PieceId> = leaving.iter().map(|work| work.0).collect();
+        let mut leaving = self.take_work(
+            removals,
+            Floods::default(),
+            Insertions::default(),
+            &BTreeSet::new(),
+            false,
+        );
+        let changed: BTreeSet<PieceId> = leaving.iter().map(|work| work.receiver).collect();
         let prepared = {
             let (scene, left) = (&*self, &left);
             rayon::join(
@@ -259,6 +286,7 @@ impl DmScene {
         for p in gone {
             self.overlap.remove(p);
             self.receivers.remove(p);
+            self.big_receivers.remove(&p);
             self.illum.remove(p);
             self.contacts.remove(p);
             self.unlit.remove(&p);
@@ -271,8 +299,9 @@ impl DmScene {
 
     /// Which units of `added` (new pieces) enter which receivers, in what
     /// order: on an old receiver the new occluders, appended; on a new one
-    /// every occluder the overlap structure pairs it with.
-    fn insertions(&mut self, added: &[PieceId]) -> Insertions {
+    /// every occluder the overlap structure pairs it with. `parked`: a
+    /// receiver out of the scene for now, that light reaches.
+    fn insertions(&mut self, added: &[PieceId], parked: Option<PieceId>) -> Insertions {
         self.overlap.refresh(&self.pieces);
         let new: BTreeSet<PieceId> = added.iter().copied().collect();
         // Old receivers the new occluders may reach.
@@ -289,7 +318,11 @@ impl DmScene {
             .iter()
             .map(|&r| (r, true))
             .chain(touched.into_iter().map(|r| (r, false)))
-            .filter(|(r, _)| self.receivers.get(*r).is_some_and(|dm| !dm.in_the_dark()))
+            .filter(|&(r, _)| {
+                self.receivers
+                    .get(r)
+                    .map_or(parked == Some(r), |dm| !dm.in_the_dark())
+            })
             .collect();
         let (lights, pieces, overlap) = (&self.lights, &self.pieces, &self.overlap);
         targets
@@ -331,11 +364,12 @@ impl DmScene {
     fn apply(
         &mut self,
         removals: Removals,
+        floods: Floods,
         insertions: Insertions,
         relight: &BTreeSet<PieceId>,
         left: &KeyMap<PieceId, Piece>,
     ) {
-        let mut work = self.take_work(removals, insertions, relight, self.lit);
+        let mut work = self.take_work(removals, floods, insertions, relight, self.lit);
         let stats = self.run_work(&mut work, left);
         self.put_back(work);
         self.lit_since = self.lit_since.add(stats);
@@ -353,6 +387,7 @@ impl DmScene {
     fn take_work(
         &mut self,
         mut removals: Removals,
+        mut floods: Floods,
         mut insertions: Insertions,
         relight: &BTreeSet<PieceId>,
         lit: bool,
@@ -370,14 +405,14 @@ impl DmScene {
             }
             if let (Some(dm), Some(contact)) = (self.receivers.remove(r), self.contacts.remove(r)) {
                 let illum = if lit { self.illum.remove(r) } else { None };
-                work.push((
-                    r,
+                work.push(Work {
+                    receiver: r,
                     dm,
                     contact,
-                    removals.remove(&r),
-                    insertions.remove(&r),
+                    out: removals.remove(&r).map(|units| (units, floods.remove(&r))),
+                    into: insertions.remove(&r),
                     illum,
-                ));
+                });
             }
         }
         work
@@ -385,10 +420,16 @@ impl DmScene {
 
     /// Puts receivers taken out by [`Self::take_work`] back.
     fn put_back(&mut self, work: Vec<Work>) {
-        for (r, dm, contact, _, _, illum) in work {
-            self.receivers.insert(r, dm);
-            self.contacts.insert(r, contact);
-            if let Some(illum) = illum {
+        for work in work {
+            let r = work.receiver;
+            if work.dm.cell_count() >= AHEAD_CELLS {
+                self.big_receivers.insert(r);
+            } else {
+                self.big_receivers.remove(&r);
+            }
+            self.receivers.insert(r, work.dm);
+            self.contacts.insert(r, work.contact);
+            if let Some(illum) = work.illum {
                 self.illum.insert(r, illum);
                 self.unlit.remove(&r);
             }
@@ -402,7 +443,15 @@ impl DmScene {
     fn run_work(&self, work: &mut [Work], left: &KeyMap<PieceId, Piece>) -> IllumStats {
         let (lights, pieces, how) = (&self.lights, &self.pieces, self.options.deletion);
         let sources: Vec<AreaSource> = lights.iter().map(|l| l.source.clone()).collect();
-        let run = |(r, dm, contact, out, into, illum): &mut Work| {
+        let run = |work: &mut Work| {
+            let Work {
+                receiver: r,
+                dm,
+                contact,
+                out,
+                into,
+                illum,
+            } = work;
             let piece = |o: PieceId| left.get(&o).unwrap_or_else(|| &pieces[o]);
             let entering = into.iter().flat_map(|(_, order)| order.iter().copied());
             contact.add(&pieces[*r], &sources, entering, piece);
@@ -410,8 +459,8 @@ impl DmScene {
             let planes = |occluder: PieceId, light: u8| {
                 seen.get(occluder, light, unit_planes(pieces, left, occluder, light))
             };
-            if let Some(units) = out {
-                dm.remove_units(units, planes, how);
+            if let Some((units, flooded)) = out {
+                dm.remove_units(units, planes, how, flooded.take());
             }
             if let Some((depth, order)) = into {
                 dm.insert_tiled(*depth, order, &planes);
@@ -430,9 +479,12 @@ impl DmScene {
                 .map(run)
                 .fold(IllumStats::default(), IllumStats::add);
         }
-        work.sort_by_key(|(_, dm, _, out, into, _)| {
-            let units = into.as_ref().map_or(0, |(_, order)| order.len());
-            std::cmp::Reverse((dm.cell_count() + units * TILE_UNITS, out.is_some()))
+        work.sort_by_key(|work| {
+            let units = work.into.as_ref().map_or(0, |(_, order)| order.len());
+            std::cmp::Reverse((
+                work.dm.cell_count() + units * TILE_UNITS,
+                work.out.is_some(),
+            ))
         });
         // Each receiver a task of its own: a run of receivers split off
         // together would go on one thread, after the biggest, while the

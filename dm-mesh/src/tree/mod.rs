@@ -52,6 +52,7 @@ mod tiled;
 
 pub use regions::Region;
 pub use removal::Deletion;
+pub(crate) use removal::{Flood, Flooded};
 
 /// The unit number of the light-plane splits and tiles made when a
 /// receiver is created (they are never removed, and always above every

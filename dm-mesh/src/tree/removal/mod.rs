@@ -29,10 +29,7 @@
 //! one's cells.
 
 use super::{ReceiverDm, clip};
-use crate::cell::Cell;
 use crate::critical::UnitPlanes;
-use crate::hash::KeySet;
-use crate::marks::Marks;
 use bsp_core::predicates::Pencil;
 use bsp_core::{ConvexPolygon, FaceKey, Plane, VertexKey};
 use smallvec::SmallVec;
@@ -40,9 +37,12 @@ use std::cell::RefCell;
 use std::collections::{BTreeMap, BTreeSet};
 
 mod collapse;
+mod flood;
 mod local;
 #[cfg(test)]
 mod tests;
+
+pub(crate) use flood::{Flood, Flooded};
 
 /// How a removal takes an occluder's discontinuities out of a DM-tree.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -130,12 +130,14 @@ impl<'a, 'p, K> Planes<'a, 'p, K> {
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// Removes the units in `gone` by `how`; `planes(key, light)` gives a
     /// unit's volume planes (of the removed units too: they are still
-    /// there when this is called).
+    /// there when this is called). `ahead`: their cells, if already found
+    /// ([`Self::flood_ahead`]; a flood of other units is not used).
     pub(crate) fn remove_units<'p>(
         &mut self,
         gone: &BTreeSet<u32>,
         planes: impl Fn(K, u8) -> &'p UnitPlanes,
         how: Deletion,
+        ahead: Option<Flooded>,
     ) {
         let planes = Planes::new(&planes);
         let removed: Vec<(u32, u8, &UnitPlanes)> = gone
@@ -151,7 +153,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         // Construction nodes over cells whose lists change may separate
         // nothing any more: they are looked at once the nodes are gone.
         let mut made = Vec::new();
-        let freed = self.drop_from_lists(&removed, &mut made);
+        let freed = self.drop_from_lists(&removed, &mut made, ahead);
         match how {
             Deletion::Local => self.delete_nodes(gone, &planes, &mut made),
             Deletion::Collapse => self.collapse_units(gone, &planes),
@@ -180,15 +182,17 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         &mut self,
         removed: &[(u32, u8, &UnitPlanes)],
         parents: &mut Vec<u32>,
+        ahead: Option<Flooded>,
     ) -> BTreeMap<u32, BTreeSet<u32>> {
         let mut freed: BTreeMap<u32, BTreeSet<u32>> = BTreeMap::new();
-        let held = self.cells_of(removed);
+        let held = self.cells_of(removed, ahead);
         // Each cell's units leave in the order of `removed` (a cell's lists
         // change only by its own units leaving); the parents are listed
         // unit by unit, each unit's cells in ascending order.
         let mut cells_of_unit: Vec<Vec<u32>> = vec![Vec::new(); removed.len()];
         for (leaf, units) in held {
             for i in units {
+                let i = i as usize;
                 let (u, light, _) = removed[i];
                 cells_of_unit[i].push(leaf);
                 let l = usize::from(light);
@@ -221,125 +225,6 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             }
         }
         freed
-    }
-
-    /// The leaves whose cells list or culled one of the `removed` units
-    /// (ascending), each with the positions in `removed` of those units.
-    ///
-    /// A cell lists a unit only inside its penumbra region, and every cell
-    /// that meets the region lists or culled it (outside the part its
-    /// light does not reach); a cell split after culling it keeps it in
-    /// both parts. So a unit's cells are connected through shared edges (a
-    /// convex region, and the parts of split cells), and all of them are
-    /// found by one flood over the cells holding any removed unit, from
-    /// each unit's seed cell, or, when that no longer holds the unit or the
-    /// unit has several penumbra regions, from the cells its regions reach
-    /// down the tree. (One flood for all: the units of one object cover
-    /// much the same cells.)
-    fn cells_of(&self, removed: &[(u32, u8, &UnitPlanes)]) -> Vec<(u32, SmallVec<[usize; 8]>)> {
-        let mut starts: Vec<FaceKey> = Vec::new();
-        for &(u, _, planes) in removed {
-            let seed = self
-                .seeds
-                .get(u as usize)
-                .copied()
-                .filter(|&f| self.holds(f, u))
-                .filter(|_| planes.volumes.penumbra.len() == 1);
-            match seed {
-                Some(seed) => starts.push(seed),
-                None => starts.extend(self.cells_by_descent(u, planes)),
-            }
-        }
-        // Positions in `removed` (ascending by unit) of the units a cell
-        // holds.
-        let units_held = |data: &Cell| -> SmallVec<[usize; 8]> {
-            let mut out: SmallVec<[usize; 8]> = data
-                .entries
-                .iter()
-                .map(|e| e.unit)
-                .chain(data.culled.iter().copied())
-                .filter_map(|u| removed.binary_search_by_key(&u, |r| r.0).ok())
-                .collect();
-            out.sort_unstable();
-            out.dedup();
-            out
-        };
-        // Cells reached, by leaf.
-        let mut seen = Marks::new(self.nodes.len());
-        let mut stack: Vec<FaceKey> = Vec::new();
-        let mut out: Vec<(u32, SmallVec<[usize; 8]>)> = Vec::new();
-        // (A cell holding none is marked too: the cells around the flood
-        // are each reached from several inside it.)
-        let mut visit = |f: FaceKey, stack: &mut Vec<FaceKey>| {
-            let Some(face) = self.mesh.face(f) else {
-                return;
-            };
-            let data = &face.data;
-            if !seen.insert(data.leaf) {
-                return;
-            }
-            let units = units_held(data);
-            if units.is_empty() {
-                return;
-            }
-            stack.push(f);
-            out.push((data.leaf, units));
-        };
-        for f in starts {
-            visit(f, &mut stack);
-        }
-        while let Some(f) = stack.pop() {
-            for side in self.mesh.face_sides(f) {
-                if let Some(g) = side.across {
-                    visit(g, &mut stack);
-                }
-            }
-        }
-        out.sort_unstable_by_key(|(leaf, _)| *leaf);
-        debug_assert!(
-            removed.iter().enumerate().all(|(i, &(u, _, planes))| {
-                let found: Vec<u32> = out
-                    .iter()
-                    .filter(|(_, units)| units.contains(&i))
-                    .map(|(leaf, _)| *leaf)
-                    .collect();
-                found == self.flood(u, self.cells_by_descent(u, planes))
-            }),
-            "one flood for the removed units finds each unit's cells"
-        );
-        out
-    }
-
-    /// Whether face `f` exists and lists or culled unit `u`.
-    fn holds(&self, f: FaceKey, u: u32) -> bool {
-        self.mesh
-            .face(f)
-            .is_some_and(|face| face.data.has_unit(u) || face.data.culled.contains(&u))
-    }
-
-    /// The leaves of the faces holding unit `u` connected to `starts`
-    /// (faces that hold it) through shared edges, ascending (a check of
-    /// [`cells_of`](Self::cells_of) in debug builds).
-    fn flood(&self, u: u32, starts: Vec<FaceKey>) -> Vec<u32> {
-        let mut seen: KeySet<FaceKey> = starts.iter().copied().collect();
-        let mut stack = starts;
-        while let Some(f) = stack.pop() {
-            for side in self.mesh.face_sides(f) {
-                if let Some(g) = side.across
-                    && !seen.contains(&g)
-                    && self.holds(g, u)
-                {
-                    seen.insert(g);
-                    stack.push(g);
-                }
-            }
-        }
-        let mut out: Vec<u32> = seen
-            .into_iter()
-            .map(|f| self.mesh.face(f).expect("face").data.leaf)
-            .collect();
-        out.sort_unstable();
-        out
     }
 
     /// The faces holding unit `u` that its penumbra regions reach with
