@@ -57,8 +57,9 @@ struct FloodState {
     stack: Vec<FaceKey>,
     /// Threads flooding from cells taken off `stack`.
     busy: usize,
-    /// The cells found so far (in no order).
-    held: Held,
+    /// The cells found: those it started from, and each thread's, each
+    /// run ascending (sorted by the thread that found it, side by side).
+    runs: Vec<Held>,
 }
 
 impl Flood {
@@ -73,10 +74,12 @@ impl Flood {
         };
         {
             let mut state = flood.lock();
-            let FloodState { stack, held, .. } = &mut *state;
+            let mut held = Vec::new();
             for &f in starts {
-                flood.visit(dm, f, stack, held);
+                flood.visit(dm, f, &mut state.stack, &mut held);
             }
+            held.sort_unstable_by_key(|(leaf, _)| *leaf);
+            state.runs.push(held);
         }
         flood
     }
@@ -174,18 +177,35 @@ impl Flood {
         if waits {
             self.waiting.fetch_sub(1, Ordering::Relaxed);
         }
-        self.lock().held.append(&mut held);
+        held.sort_unstable_by_key(|(leaf, _)| *leaf);
+        self.lock().runs.push(held);
     }
 
     /// What the flood found, once no thread helps any more.
     pub(crate) fn finish(&self) -> Flooded {
-        let mut held = std::mem::take(&mut self.lock().held);
-        held.sort_unstable_by_key(|(leaf, _)| *leaf);
+        let runs = std::mem::take(&mut self.lock().runs);
+        let held = runs.into_iter().fold(Vec::new(), merge_by_leaf);
         Flooded {
             units: self.units.clone(),
             held,
         }
     }
+}
+
+/// Two runs of cells, each ascending by leaf (no leaf in both), merged.
+fn merge_by_leaf(a: Held, b: Held) -> Held {
+    if a.is_empty() || b.is_empty() {
+        return if a.is_empty() { b } else { a };
+    }
+    let mut out = Vec::with_capacity(a.len() + b.len());
+    let (mut a, mut b) = (a.into_iter().peekable(), b.into_iter().peekable());
+    while let (Some(x), Some(y)) = (a.peek(), b.peek()) {
+        let next = if x.0 < y.0 { a.next() } else { b.next() };
+        out.extend(next);
+    }
+    out.extend(a);
+    out.extend(b);
+    out
 }
 
 impl<K: Copy + Ord> ReceiverDm<K> {
