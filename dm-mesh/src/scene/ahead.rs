@@ -136,9 +136,7 @@ impl DmScene {
                 Err(TryLockError::WouldBlock) => std::thread::yield_now(),
             }
         };
-        let Some(dm) = dm else {
-            return (ahead.receiver, BTreeSet::new(), None);
-        };
+        let dm = dm.expect("only landing takes the receiver, once");
         let flooded = ahead
             .flood
             .get()
