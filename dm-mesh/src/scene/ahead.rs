@@ -178,45 +178,30 @@ mod tests {
 
     /// A box `[lo, hi]`, faces outwards.
     fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
-        let ([x0, y0, z0], [x1, y1, z1]) = (lo, hi);
-        vec![
-            quad([
-                gp(x0, y0, z0),
-                gp(x1, y0, z0),
-                gp(x1, y0, z1),
-                gp(x0, y0, z1),
-            ]),
-            quad([
-                gp(x0, y1, z0),
-                gp(x0, y1, z1),
-                gp(x1, y1, z1),
-                gp(x1, y1, z0),
-            ]),
-            quad([
-                gp(x0, y0, z0),
-                gp(x0, y0, z1),
-                gp(x0, y1, z1),
-                gp(x0, y1, z0),
-            ]),
-            quad([
-                gp(x1, y0, z0),
-                gp(x1, y1, z0),
-                gp(x1, y1, z1),
-                gp(x1, y0, z1),
-            ]),
-            quad([
-                gp(x0, y0, z0),
-                gp(x0, y1, z0),
-                gp(x1, y1, z0),
-                gp(x1, y0, z0),
-            ]),
-            quad([
-                gp(x0, y0, z1),
-                gp(x1, y0, z1),
-                gp(x1, y1, z1),
-                gp(x0, y1, z1),
-            ]),
+        // Corner `i` takes x, y and z from `hi` where bits 0, 1 and 2 of
+        // `i` are set.
+        let corner = |i: usize| {
+            let at = |axis: usize| {
+                if i >> axis & 1 == 0 {
+                    lo[axis]
+                } else {
+                    hi[axis]
+                }
+            };
+            gp(at(0), at(1), at(2))
+        };
+        // Each face counter-clockwise seen from outside.
+        [
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
         ]
+        .into_iter()
+        .map(|face| quad(face.map(corner)))
+        .collect()
     }
 
     fn closed() -> PieceFlags {
