@@ -145,11 +145,7 @@ impl DmScene {
         // (The flood's units are those of the occluders flooded for.)
         let units = match &flooded {
             Some(flooded) if also_gone.is_empty() => flooded.units.iter().copied().collect(),
-            _ => dm
-                .units()
-                .filter(|(_, (o, _))| ahead.gone.contains(o) || also_gone.contains(o))
-                .map(|(u, _)| u)
-                .collect(),
+            _ => dm.units_of(|o| ahead.gone.contains(&o) || also_gone.contains(&o)),
         };
         #[cfg(test)]
         {

@@ -266,13 +266,7 @@ impl DmScene {
             .into_iter()
             .filter(|r| !gone.contains(r))
             .filter_map(|r| {
-                let units: BTreeSet<u32> = self
-                    .receivers
-                    .get(r)?
-                    .units()
-                    .filter(|(_, (o, _))| gone.contains(o))
-                    .map(|(u, _)| u)
-                    .collect();
+                let units = self.receivers.get(r)?.units_of(|o| gone.contains(&o));
                 (!units.is_empty()).then_some((r, units))
             })
             .collect()

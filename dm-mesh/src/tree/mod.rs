@@ -290,4 +290,12 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             .enumerate()
             .filter_map(|(u, v)| v.map(|v| (u as u32, v)))
     }
+
+    /// The units of the occluders `of` picks.
+    pub(crate) fn units_of(&self, of: impl Fn(K) -> bool) -> std::collections::BTreeSet<u32> {
+        self.units()
+            .filter(|&(_, (key, _))| of(key))
+            .map(|(u, _)| u)
+            .collect()
+    }
 }

@@ -210,8 +210,8 @@ fn merge_by_leaf(a: Held, b: Held) -> Held {
 
 impl<K: Copy + Ord> ReceiverDm<K> {
     /// The leaves whose cells list or culled one of the `removed` units
-    /// (ascending by unit), each with the positions in `removed` of those
-    /// units.
+    /// (ascending), each with the positions in `removed` (ascending by
+    /// unit) of those units.
     ///
     /// A cell lists a unit only inside its penumbra region, and every cell
     /// that meets the region lists or culled it (outside the part its
