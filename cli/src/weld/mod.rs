@@ -198,8 +198,13 @@ impl Corners {
     ) -> impl Iterator<Item = usize> + '_ {
         let lo = bucket(std::array::from_fn(|k| a[k].min(c[k]) - margin), self.side);
         let hi = bucket(std::array::from_fn(|k| a[k].max(c[k]) + margin), self.side);
-        let span: i64 = (0..3).map(|k| hi[k] - lo[k] + 1).product();
-        let all = span > MAX_BUCKETS;
+        // (Counted without overflow: a far corner puts a bucket number
+        // near `i64::MAX`, and a wrapped count would have the loops below
+        // walk that many buckets.)
+        let span = (0..3).try_fold(1_i64, |count, k| {
+            hi[k].checked_sub(lo[k])?.checked_add(1)?.checked_mul(count)
+        });
+        let all = span.is_none_or(|span| span > MAX_BUCKETS);
         let mut found: Vec<usize> = if all {
             (0..self.points.len()).collect()
         } else {
@@ -298,5 +303,28 @@ mod tests {
         ];
         let welds = weld_t_junctions(&input, &snapped, 1e-3 * 0.25);
         assert!(welds.iter().flatten().all(Vec::is_empty));
+    }
+
+    /// A tolerance huge beside the object's edges (the grid set by a far
+    /// corner of another object: 1e17 world units across), and a corner
+    /// far out: an edge's box spans more buckets than an `i64` counts, and
+    /// every corner is looked at instead (the count once wrapped, and the
+    /// search walked the buckets for ever).
+    #[test]
+    fn far_corners_and_coarse_grids_look_at_every_corner() {
+        let small: Vec<[f64; 3]> = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]];
+        let far: Vec<[f64; 3]> = vec![[-1e17, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, -1.0]];
+        for (input, tolerance) in [(vec![&small[..]], 5e6), (vec![&far[..], &small[..]], 1e-3)] {
+            let snapped: Vec<Vec<GridPoint>> = input
+                .iter()
+                .map(|ps| {
+                    ps.iter()
+                        .map(|p| gp(p[0].max(-1e6) as i64, 0, p[2] as i64))
+                        .collect()
+                })
+                .collect();
+            let welds = weld_t_junctions(&input, &snapped, tolerance);
+            assert_eq!(welds.len(), input.len());
+        }
     }
 }

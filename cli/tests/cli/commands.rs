@@ -156,3 +156,28 @@ fn check_lists_dropped_faces_with_their_line() {
         run.stdout
     );
 }
+
+/// A corner 1e17 units out makes the grid step 5e9: the other object's
+/// unit triangle snaps to nothing, and is dropped. The run ends (it once
+/// walked the buckets around that triangle's edges for ever, their count
+/// wrapped) with both polygons dropped, for every command that loads.
+#[test]
+fn a_far_corner_drops_small_polygons_and_ends() {
+    let dir = folder(&[(
+        "scene.toml",
+        "[[object]]\nname = \"a\"\npolygons = [[[0,0,0],[1,0,0],[0,0,-1]]]\n\
+         [[object]]\nname = \"b\"\npolygons = [[[-1e17,0,0],[1,0,0],[0,0,-1]]]\n",
+    )]);
+    let run = umbra(dir.path(), &["check", "scene.toml"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("dropped        2"), "{}", run.stdout);
+    for command in ["shadow", "dm"] {
+        let run = umbra(dir.path(), &[command, "scene.toml", "-o", "out.ply"]);
+        assert!(
+            !run.stderr.contains("panicked"),
+            "{command}: {}",
+            run.stderr
+        );
+        assert_eq!(run.code, 0, "{command}: {}", run.stderr);
+    }
+}

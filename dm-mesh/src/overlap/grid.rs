@@ -187,10 +187,12 @@ impl Grid {
 
     fn cells(&self, b: Box3) -> Option<Vec<[i64; 3]>> {
         let (lo, hi) = self.range(b);
-        let span: i64 = (0..3).map(|a| hi[a] - lo[a] + 1).product();
-        if span > BIG {
-            return None;
-        }
+        // (Counted without overflow, a wrapped count being small.)
+        let span = (0..3)
+            .try_fold(1_i64, |count, a| {
+                hi[a].checked_sub(lo[a])?.checked_add(1)?.checked_mul(count)
+            })
+            .filter(|&span| span <= BIG)?;
         let mut out = Vec::with_capacity(span as usize);
         for x in lo[0]..=hi[0] {
             for y in lo[1]..=hi[1] {
