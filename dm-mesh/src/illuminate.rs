@@ -36,7 +36,7 @@ use crate::scene::{DmLight, DmScene, Hider, Piece, PieceId};
 use crate::tree::ReceiverDm;
 use area_shadow::dark::DARK_FRACTION;
 use bsp_core::{FaceKey, Side, VertexKey, VertexPosition, WingedMesh};
-use illum::{Occluder, Sidedness, VisiblePart, visible_irradiance};
+use illum::{AreaLight, Occluder, Sidedness, VisiblePart, visible_irradiance};
 use rayon::prelude::*;
 use slotmap::SecondaryMap;
 use slotmap::SlotMap;
@@ -564,11 +564,30 @@ fn evaluate(
         // (1e-18 of it, say): dark below a billionth of the whole light.
         if value == 0.0
             || (matches!(cover, Cover::Occluders(_))
-                && value <= DARK_FRACTION * light.illum.irradiance(p, normal, sided))
+                && is_trace(value, &light.illum, p, normal, sided))
         {
             dark |= 1 << i;
         }
         irradiance += value;
     }
     (irradiance, dark, comparisons)
+}
+
+/// Whether `value`, the irradiance from the part of `light` a vertex at
+/// `p` sees (unit normal `normal`), is a trace that rounding leaves: at
+/// most [`DARK_FRACTION`] of what all of the light gives there. That
+/// whole light's irradiance (a contour integral, the cost of a vertex that
+/// sees all of the light) is computed only when `value` is below that
+/// fraction of a bound on it, `4 pi` radiance: a side's projected solid
+/// angle is at most `pi`, and a two-sided receiver has two (the bound
+/// doubled again for rounding). A vertex in penumbra sees far more.
+fn is_trace(
+    value: f64,
+    light: &AreaLight,
+    p: [f64; 3],
+    normal: [f64; 3],
+    sided: Sidedness,
+) -> bool {
+    let bound = 4.0 * std::f64::consts::PI * light.radiance();
+    value <= DARK_FRACTION * bound && value <= DARK_FRACTION * light.irradiance(p, normal, sided)
 }
