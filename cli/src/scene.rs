@@ -610,8 +610,11 @@ impl Checker<'_> {
         if !(c.fov_deg > 0.0 && c.fov_deg < 180.0) {
             return Err(self.field("camera.fov_deg", "must be between 0 and 180 degrees"));
         }
-        if c.width == 0 || c.height == 0 {
+        if c.width == 0 {
             return Err(self.field("camera.width", "image size must be positive"));
+        }
+        if c.height == 0 {
+            return Err(self.field("camera.height", "image size must be positive"));
         }
         Ok(Camera {
             eye: c.eye,

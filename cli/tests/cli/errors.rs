@@ -238,3 +238,21 @@ fn an_output_that_cannot_be_written_leaves_no_other() {
         assert_eq!(names, ["scene.toml", "taken"], "{args:?}");
     }
 }
+
+#[test]
+fn zero_image_size_names_the_field() {
+    let camera = |width: u32, height: u32| {
+        format!(
+            "{TRIANGLE}[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\n\
+             up = [0.0, 1.0, 0.0]\nfov_deg = 60.0\nwidth = {width}\nheight = {height}\n"
+        )
+    };
+    fails_with(
+        &[("scene.toml", &camera(0, 120))],
+        "camera.width: image size must be positive",
+    );
+    fails_with(
+        &[("scene.toml", &camera(160, 0))],
+        "camera.height: image size must be positive",
+    );
+}
