@@ -90,7 +90,12 @@ pub fn fragments_svg(scene: &Scene, mesh: &OutputMesh, polygon: u32) -> Result<S
         hi = (hi.0.max(x), hi.1.max(y));
     }
     let span = (hi.0 - lo.0).max(hi.1 - lo.1).max(f64::MIN_POSITIVE);
-    let scale = SIZE / span;
+    let mut scale = SIZE / span;
+    if points.is_empty() {
+        // No fragment (a polygon of zero area, dropped): an empty picture
+        // of the margins alone.
+        (lo, hi, scale) = ((0.0, 0.0), (0.0, 0.0), 1.0);
+    }
     let margin = 10.0;
     // SVG's y runs down: flip so the plan is seen from the polygon's front.
     let to_svg = |(x, y): (f64, f64)| ((x - lo.0) * scale + margin, (hi.1 - y) * scale + margin);

@@ -182,10 +182,15 @@ impl DirectionalLight {
     /// and non-zero); `irradiance` is measured perpendicular to it.
     pub fn new(direction: Vec3, irradiance: f64) -> Result<Self, IllumError> {
         let direction = check_vec(direction)?;
-        let len = norm(direction);
-        if len == 0.0 || !len.is_finite() {
+        // Scaled to a largest component of 1 before its length is taken,
+        // which would underflow for a tiny direction (1e-300) and
+        // overflow for a huge one.
+        let largest = direction.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
+        if largest == 0.0 {
             return Err(IllumError::BadVector { value: direction });
         }
+        let direction = direction.map(|c| c / largest);
+        let len = norm(direction);
         Ok(Self {
             direction: scale(direction, 1.0 / len),
             irradiance: check_strength(irradiance)?,
@@ -292,5 +297,21 @@ mod tests {
         assert!(DirectionalLight::new([0.0; 3], 1.0).is_err());
         assert!(PointLight::new([f64::NAN, 0.0, 0.0], 1.0).is_err());
         assert!(PointLight::new([0.0; 3], -1.0).is_err());
+    }
+
+    /// A direction whose length underflows or overflows `f64` (its
+    /// components do not) is a direction like any other.
+    #[test]
+    fn tiny_and_huge_directions_normalise() {
+        for (given, unit) in [
+            ([0.0, -1e-300, 0.0], [0.0, -1.0, 0.0]),
+            ([3e-320, 0.0, -4e-320], [0.6, 0.0, -0.8]),
+            ([1e300, 1e300, 0.0], [0.5_f64.sqrt(), 0.5_f64.sqrt(), 0.0]),
+        ] {
+            let d = DirectionalLight::new(given, 1.0).unwrap().direction();
+            for k in 0..3 {
+                assert!((d[k] - unit[k]).abs() < 1e-3, "{given:?}: {d:?}");
+            }
+        }
     }
 }

@@ -290,6 +290,28 @@ fn svg_draws_one_polygons_fragments() {
     assert!(!dir.path().join("none.svg").exists());
 }
 
+/// A polygon of zero area (collinear corners) is dropped and has no
+/// fragment: its picture is empty, of finite size (it was `-inf` wide).
+#[test]
+fn svg_of_a_dropped_polygon_is_empty() {
+    let scene = "[[object]]\nname = \"floor\"\npolygons = [[[-5,0,-5],[-5,0,5],[5,0,5],[5,0,-5]]]\n\
+                 [[object]]\nname = \"line\"\npolygons = [[[0,1,0],[1,1,0],[2,1,0]]]\n\
+                 [[light]]\ntype = \"point\"\nposition = [0.0, 4.0, 0.0]\n";
+    let dir = folder(&[("scene.toml", scene)]);
+    let run = umbra(
+        dir.path(),
+        &["svg", "scene.toml", "--polygon", "1", "-o", "line.svg"],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let svg = std::fs::read_to_string(dir.path().join("line.svg")).unwrap();
+    assert!(!svg.contains("inf") && !svg.contains("NaN"), "{svg}");
+    assert!(svg.contains(r#"width="20.0" height="20.0""#), "{svg}");
+    assert!(
+        svg.contains("0 fragments") && !svg.contains("<polygon "),
+        "{svg}"
+    );
+}
+
 /// Distance from `x` to the convex polygon `v` (counter-clockwise about
 /// its normal): to its plane when `x` projects inside, else to its
 /// nearest edge.
@@ -435,4 +457,35 @@ fn irradiance_past_the_float_range_is_written_as_the_largest_float() {
             mesh.vertices
         );
     }
+}
+
+/// A directional light's direction is any non-zero vector, however small
+/// or large its components (its length underflowed to zero for
+/// `1e-300`, and `check` passed a scene that `shadow` refused).
+#[test]
+fn tiny_and_huge_light_directions_shade_like_unit_ones() {
+    let scene = |d: &str| {
+        format!(
+            "[[object]]\nname = \"floor\"\npolygons = [[[-5,0,-5],[-5,0,5],[5,0,5],[5,0,-5]]]\n\
+             [[object]]\nname = \"square\"\npolygons = [[[-1,1,-1],[-1,1,1],[1,1,1],[1,1,-1]]]\n\
+             [[light]]\ntype = \"directional\"\ndirection = {d}\n"
+        )
+    };
+    let mut outputs = Vec::new();
+    for d in [
+        "[0.0, -1.0, 0.0]",
+        "[0.0, -1e-300, 0.0]",
+        "[0.0, -1e300, 0.0]",
+    ] {
+        let dir = folder(&[("scene.toml", &scene(d))]);
+        for command in ["check", "shadow"] {
+            let run = umbra(
+                dir.path(),
+                &[command, "scene.toml", "-o", "out.ply"][..if command == "check" { 2 } else { 4 }],
+            );
+            assert_eq!(run.code, 0, "{d} {command}: {}", run.stderr);
+        }
+        outputs.push(std::fs::read(dir.path().join("out.ply")).unwrap());
+    }
+    assert!(outputs.iter().all(|o| *o == outputs[0]));
 }
