@@ -604,7 +604,18 @@ impl Checker<'_> {
             return Err(self.field("camera.target", "must differ from camera.eye"));
         }
         let view = sub(c.target, c.eye);
-        if norm(cross(view, c.up)) <= 1e-12 * norm(view) * norm(c.up) {
+        if !view.iter().all(|x| x.is_finite()) {
+            return Err(self.field("camera.eye", "too far from camera.target"));
+        }
+        // Each scaled to a largest component of 1 first: the products
+        // overflowed for huge vectors (an eye 1e200 away, an up of 1e300)
+        // and underflowed for tiny ones.
+        let scaled = |v: [f64; 3]| {
+            let largest = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            v.map(|x| if largest > 0.0 { x / largest } else { 0.0 })
+        };
+        let (view, up) = (scaled(view), scaled(c.up));
+        if norm(cross(view, up)) <= 1e-12 * norm(view) * norm(up) {
             return Err(self.field("camera.up", "must not be zero or parallel to the view"));
         }
         if !(c.fov_deg > 0.0 && c.fov_deg < 180.0) {
@@ -619,7 +630,8 @@ impl Checker<'_> {
         Ok(Camera {
             eye: c.eye,
             target: c.target,
-            up: c.up,
+            // (Only its direction counts.)
+            up,
             fov_deg: c.fov_deg,
             width: c.width,
             height: c.height,

@@ -111,6 +111,23 @@ fn the_same_scene_gives_the_same_bytes() {
     }
 }
 
+/// The camera's up vector counts by its direction only, however long (a
+/// length of 1e300 overflowed: refused as parallel to the view, then
+/// rendered black), and a camera 1e200 away renders (the scene too small
+/// to show).
+#[test]
+fn a_huge_up_vector_or_a_far_eye_renders() {
+    let dir = folder(&[("scene.toml", SCENE)]);
+    let unit = render(dir.path(), "shaded", "unit.png");
+    let huge = SCENE.replace("up = [0.0, 1.0, 0.0]", "up = [0.0, 1e300, 0.0]");
+    let dir = folder(&[("scene.toml", &huge)]);
+    assert_eq!(render(dir.path(), "shaded", "huge.png"), unit);
+    let far = SCENE.replace("eye = [0.0, 3.0, 12.0]", "eye = [0.0, 3e200, 12e200]");
+    let dir = folder(&[("scene.toml", &far)]);
+    let (width, height, _) = render(dir.path(), "shaded", "far.png");
+    assert_eq!((width, height), (160, 120));
+}
+
 #[test]
 fn fragments_are_outlined() {
     let dir = folder(&[("scene.toml", SCENE)]);
