@@ -80,7 +80,36 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
             ),
         });
     }
+    if six_volume(&pieces) == 0 {
+        return Err(Error::Field {
+            path: path.to_path_buf(),
+            field: "faces".into(),
+            message: format!(
+                "the mesh encloses no volume once snapped to the grid (step {:e}): it is thinner than a step",
+                grid.cell_size()
+            ),
+        });
+    }
     Ok(pieces)
+}
+
+/// Six times the volume a closed surface of grid-point polygons encloses
+/// (positive when they face out), exactly: each polygon's fan of
+/// triangles with the origin, `det[a, b, c]`.
+fn six_volume(pieces: &[ConvexPolygon]) -> i128 {
+    let mut sum = 0_i128;
+    for piece in pieces {
+        let corners: Vec<[i128; 3]> = (0..piece.len())
+            .filter_map(|i| piece.vertex_grid_point(i))
+            .map(|g| g.to_i64().map(i128::from))
+            .collect();
+        for k in 1..corners.len().saturating_sub(1) {
+            let [a, b, c] = [corners[0], corners[k], corners[k + 1]];
+            sum += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]);
+        }
+    }
+    sum
 }
 
 /// Writes the mesh as OBJ (atomically).

@@ -103,3 +103,36 @@ fn an_open_mesh_is_refused() {
     );
     assert!(!dir.path().join("out.obj").exists());
 }
+
+/// A slab thinner than a grid step (1e-8 across a unit cube, snapped to a
+/// step of about 1e-7) collapses to a doubled sheet that still closes up:
+/// it is refused by name, where the set operations once took the sheet
+/// for a solid (an intersection with a cube beside it gave the cube).
+#[test]
+fn a_mesh_thinner_than_the_grid_is_refused() {
+    for (a, b) in [
+        (
+            cube([0.0; 3], [1.0; 3]),
+            cube([0.5, -1.0, -1.0], [0.500_000_01, 2.0, 2.0]),
+        ),
+        (
+            cube([5.0; 3], [6.0; 3]),
+            cube([0.5, 0.0, 0.0], [0.500_000_001, 1.0, 1.0]),
+        ),
+    ] {
+        let dir = folder(&[("a.obj", &a), ("thin.obj", &b)]);
+        for op in ["--union", "--intersect", "--subtract"] {
+            let run = umbra(
+                dir.path(),
+                &["csg", "a.obj", op, "thin.obj", "-o", "out.obj"],
+            );
+            assert_eq!(run.code, 2, "{op}: {}", run.stderr);
+            assert!(
+                run.stderr.contains("thin.obj") && run.stderr.contains("encloses no volume"),
+                "{}",
+                run.stderr
+            );
+            assert!(!dir.path().join("out.obj").exists());
+        }
+    }
+}
