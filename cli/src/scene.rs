@@ -153,10 +153,11 @@ struct SceneFile {
 struct ObjectSpec {
     name: String,
     mesh: Option<String>,
+    #[serde(default, deserialize_with = "three_each")]
     polygons: Option<Vec<Vec<[f64; 3]>>>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "three_each")]
     translate: [f64; 3],
-    #[serde(default)]
+    #[serde(default, deserialize_with = "three_each")]
     rotate_deg: [f64; 3],
     scale: Option<ScaleSpec>,
     #[serde(default = "yes")]
@@ -169,7 +170,7 @@ struct ObjectSpec {
 #[serde(untagged, expecting = "expected a number or an array [sx, sy, sz]")]
 enum ScaleSpec {
     Uniform(f64),
-    PerAxis([f64; 3]),
+    PerAxis(#[serde(deserialize_with = "three_each")] [f64; 3]),
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -185,12 +186,15 @@ enum LightType {
 struct LightSpec {
     #[serde(rename = "type")]
     kind: LightType,
+    #[serde(default, deserialize_with = "three_each")]
     position: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "three_each")]
     direction: Option<[f64; 3]>,
+    #[serde(default, deserialize_with = "three_each")]
     vertices: Option<Vec<[f64; 3]>>,
     #[serde(default = "one")]
     intensity: f64,
-    #[serde(default = "white")]
+    #[serde(default = "white", deserialize_with = "three_each")]
     color: [f64; 3],
     falloff_start: Option<f64>,
     range: Option<f64>,
@@ -200,11 +204,11 @@ struct LightSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct CameraSpec {
-    #[serde(default = "default_eye")]
+    #[serde(default = "default_eye", deserialize_with = "three_each")]
     eye: [f64; 3],
-    #[serde(default)]
+    #[serde(default, deserialize_with = "three_each")]
     target: [f64; 3],
-    #[serde(default = "default_up")]
+    #[serde(default = "default_up", deserialize_with = "three_each")]
     up: [f64; 3],
     #[serde(default = "default_fov")]
     fov_deg: f64,
@@ -212,6 +216,65 @@ struct CameraSpec {
     width: u32,
     #[serde(default = "default_height")]
     height: u32,
+}
+
+/// Reads the vectors of `T` (`[f64; 3]`, or options and lists of them) as
+/// arrays of exactly three numbers: serde reads an array of four or more
+/// into a `[f64; 3]` and drops the rest without a word.
+fn three_each<'de, D, T>(deserializer: D) -> std::result::Result<T, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    T: OfThrees,
+    T::Given: Deserialize<'de>,
+{
+    T::Given::deserialize(deserializer).map(T::from_given)
+}
+
+/// Three numbers, exactly.
+#[derive(Deserialize)]
+#[serde(try_from = "Vec<f64>")]
+struct Three([f64; 3]);
+
+impl TryFrom<Vec<f64>> for Three {
+    type Error = String;
+
+    fn try_from(numbers: Vec<f64>) -> std::result::Result<Self, String> {
+        <[f64; 3]>::try_from(numbers.as_slice())
+            .map(Three)
+            .map_err(|_| {
+                format!(
+                    "invalid length {}, expected an array of 3 numbers",
+                    numbers.len()
+                )
+            })
+    }
+}
+
+/// A type made of `[f64; 3]`s, read through [`Three`]s.
+trait OfThrees: Sized {
+    type Given;
+    fn from_given(given: Self::Given) -> Self;
+}
+
+impl OfThrees for [f64; 3] {
+    type Given = Three;
+    fn from_given(given: Three) -> Self {
+        given.0
+    }
+}
+
+impl<T: OfThrees> OfThrees for Option<T> {
+    type Given = Option<T::Given>;
+    fn from_given(given: Self::Given) -> Self {
+        given.map(T::from_given)
+    }
+}
+
+impl<T: OfThrees> OfThrees for Vec<T> {
+    type Given = Vec<T::Given>;
+    fn from_given(given: Self::Given) -> Self {
+        given.into_iter().map(T::from_given).collect()
+    }
 }
 
 fn yes() -> bool {

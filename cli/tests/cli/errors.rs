@@ -256,3 +256,35 @@ fn zero_image_size_names_the_field() {
         "camera.height: image size must be positive",
     );
 }
+
+/// Every vector is three numbers: four were read as three, the last
+/// dropped without a word (an inline polygon's vertex, a translation, a
+/// light's position, a camera's eye); two were refused already.
+#[test]
+fn vectors_of_other_than_three_numbers_name_the_line() {
+    for (scene, line) in [
+        (
+            "[[object]]\nname = \"y\"\npolygons = [[[0,0,0],[1,0,0],[0,1,0,5]]]\n".to_string(),
+            "scene.toml:3:",
+        ),
+        (
+            "[[object]]\nname = \"y\"\npolygons = [[[0,0,0],[1,0,0],[0,1]]]\n".to_string(),
+            "scene.toml:3:",
+        ),
+        (
+            format!("{TRIANGLE}translate = [1, 2, 3, 4]\n"),
+            "scene.toml:4:",
+        ),
+        (format!("{TRIANGLE}scale = [1, 2, 3, 4]\n"), "scene.toml:4:"),
+        (
+            format!("{TRIANGLE}[[light]]\ntype = \"point\"\nposition = [0, 5, 0, 1]\n"),
+            "scene.toml:6:",
+        ),
+        (
+            format!("{TRIANGLE}[camera]\neye = [0, 2, 8, 1]\n"),
+            "scene.toml:5:",
+        ),
+    ] {
+        fails_with(&[("scene.toml", &scene)], line);
+    }
+}
