@@ -45,6 +45,11 @@ pub fn csg(
 /// close up (every directed edge matched by its reverse).
 fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexPolygon>> {
     let mut pieces = Vec::new();
+    // The faces' edges as snapped, before they are cut into convex pieces:
+    // a piece drops a corner in line with its neighbours, which a face
+    // beside it may share (a face split in two along a neighbour), and the
+    // edges would no longer pair.
+    let mut edges: HashMap<(GridPoint, GridPoint), i64> = HashMap::new();
     for face in &mesh.faces {
         let (snapped, _) = grid
             .snap_all(&face.vertices)
@@ -52,26 +57,28 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
                 path: path.to_path_buf(),
                 source,
             })?;
+        let n = snapped.len();
+        for i in 0..n {
+            let (p, q) = (snapped[i], snapped[(i + 1) % n]);
+            if p != q {
+                *edges.entry((p, q)).or_insert(0) += 1;
+                *edges.entry((q, p)).or_insert(0) -= 1;
+            }
+        }
         for piece in convex_pieces(&snapped) {
             let k = pieces.len() as u32;
             pieces.push(piece.with_source(k));
         }
     }
-    let mut edges: HashMap<(GridPoint, GridPoint), i64> = HashMap::new();
-    for piece in &pieces {
-        let n = piece.len();
-        for i in 0..n {
-            if let (Some(p), Some(q)) = (
-                piece.vertex_grid_point(i),
-                piece.vertex_grid_point((i + 1) % n),
-            ) {
-                *edges.entry((p, q)).or_insert(0) += 1;
-                *edges.entry((q, p)).or_insert(0) -= 1;
-            }
-        }
-    }
     let open = edges.values().filter(|&&c| c != 0).count() / 2;
-    if pieces.is_empty() || open > 0 {
+    if mesh.faces.is_empty() {
+        return Err(Error::Field {
+            path: path.to_path_buf(),
+            field: "faces".into(),
+            message: "the mesh has no faces; set operations need closed meshes".into(),
+        });
+    }
+    if open > 0 {
         return Err(Error::Field {
             path: path.to_path_buf(),
             field: "faces".into(),
@@ -80,12 +87,12 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
             ),
         });
     }
-    if six_volume(&pieces) == 0 {
+    if pieces.is_empty() || six_volume(&pieces) == 0 {
         return Err(Error::Field {
             path: path.to_path_buf(),
             field: "faces".into(),
             message: format!(
-                "the mesh encloses no volume once snapped to the grid (step {:e}): it is thinner than a step",
+                "the mesh encloses no volume once snapped to the grid (step {:e}): it is smaller or thinner than a step",
                 grid.cell_size()
             ),
         });

@@ -136,3 +136,54 @@ fn a_mesh_thinner_than_the_grid_is_refused() {
         }
     }
 }
+
+/// A unit cube whose top is two quads, its front and back faces carrying
+/// their shared corner in line with their own: every edge pairs, and the
+/// mesh is closed (it was refused: the convex pieces drop the in-line
+/// corner, and their edges no longer paired).
+#[test]
+fn a_face_split_along_its_neighbours_is_closed() {
+    let split = "v 0 0 0\nv 0 0 1\nv 0 1 1\nv 0 1 0\nv 1 0 0\nv 1 1 0\nv 1 1 1\nv 1 0 1\n\
+                 v 0.5 1 0\nv 0.5 1 1\n\
+                 f 1 2 3 4\nf 5 6 7 8\nf 1 5 8 2\nf 4 3 10 9\nf 9 10 7 6\nf 1 4 9 6 5\nf 2 8 7 10 3\n";
+    let dir = folder(&[("split.obj", split), ("b.obj", &cube([0.5; 3], [1.5; 3]))]);
+    for (op, expected) in [
+        ("--union", 1.875),
+        ("--intersect", 0.125),
+        ("--subtract", 0.875),
+    ] {
+        let run = umbra(
+            dir.path(),
+            &["csg", "split.obj", op, "b.obj", "-o", "out.obj"],
+        );
+        assert_eq!(run.code, 0, "{op}: {}", run.stderr);
+        let (volume, closed) = read(&dir.path().join("out.obj"));
+        assert!(closed, "{op} output is not closed");
+        assert!((volume - expected).abs() < 1e-9, "{op}: {volume}");
+    }
+}
+
+/// A unit cube beside one 1e9 away snaps to nothing (the grid's step is
+/// 32), and a file of vertices only has no face: each refused by name
+/// and reason (both were "not closed, 0 edges without a match").
+#[test]
+fn a_mesh_lost_to_the_grid_or_without_faces_is_refused_so() {
+    let dir = folder(&[
+        ("a.obj", &cube([0.0; 3], [1.0; 3])),
+        ("far.obj", &cube([1e9, 0.0, 0.0], [1e9 + 1.0, 1.0, 1.0])),
+        ("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"),
+    ]);
+    for (b, file, reason) in [
+        ("far.obj", "a.obj", "encloses no volume once snapped"),
+        ("points.obj", "points.obj", "has no faces"),
+    ] {
+        let run = umbra(dir.path(), &["csg", "a.obj", "--union", b, "-o", "out.obj"]);
+        assert_eq!(run.code, 2, "{}", run.stderr);
+        assert!(
+            run.stderr.contains(file) && run.stderr.contains(reason),
+            "{}",
+            run.stderr
+        );
+        assert!(!dir.path().join("out.obj").exists());
+    }
+}
