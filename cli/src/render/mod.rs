@@ -343,10 +343,11 @@ pub fn render_with(
     let projection = Projection::new(&camera);
     let n = SAMPLES_PER_SIDE;
     let (width, height) = (camera.width as usize * n, camera.height as usize * n);
-    let mut samples = match options.order {
+    let samples = match options.order {
         Order::ZBuffer => Samples::new(width, height, view == View::Shaded),
         Order::Bsp => Samples::painter(width, height, view == View::Shaded),
     };
+    let mut samples = samples.ok_or_else(|| too_big(scene, &camera))?;
     let exposed_albedo = ALBEDO * exposure(scene, shadows);
     let near = near_distance(&camera);
     let mesh = &shadows.mesh;
@@ -451,6 +452,20 @@ fn camera_of(scene: &Scene) -> Result<Camera> {
         }
     }
     Ok(camera)
+}
+
+/// The error for an image whose samples the memory cannot hold.
+fn too_big(scene: &Scene, camera: &Camera) -> Error {
+    Error::Field {
+        path: scene.path.clone(),
+        field: "camera.width".into(),
+        message: format!(
+            "{} x {} pixels: not enough memory for the image's {} samples a pixel",
+            camera.width,
+            camera.height,
+            SAMPLES_PER_SIDE * SAMPLES_PER_SIDE
+        ),
+    }
 }
 
 /// Nothing nearer to the eye than this is drawn: a thousandth of the

@@ -37,29 +37,31 @@ pub(crate) struct Samples {
 
 impl Samples {
     /// An empty grid; `values` says whether to keep interpolated values.
-    pub fn new(width: usize, height: usize, values: bool) -> Self {
-        let n = width * height;
-        Self {
+    /// `None` when the memory for it cannot be had (a big image: 20 bytes
+    /// a sample).
+    pub fn new(width: usize, height: usize, values: bool) -> Option<Self> {
+        let n = width.checked_mul(height)?;
+        Some(Self {
             width,
             height,
-            inverse_depth: vec![0.0; n],
-            id: vec![EMPTY; n],
+            inverse_depth: filled(n, 0.0)?,
+            id: filled(n, EMPTY)?,
             value: if values {
-                vec![[0.0; 3]; n]
+                filled(n, [0.0; 3])?
             } else {
                 Vec::new()
             },
             depth_test: true,
-        }
+        })
     }
 
     /// An empty grid for the painter's algorithm: every triangle drawn
     /// covers what was there, whatever its depth.
-    pub fn painter(width: usize, height: usize, values: bool) -> Self {
-        Self {
+    pub fn painter(width: usize, height: usize, values: bool) -> Option<Self> {
+        Some(Self {
             depth_test: false,
-            ..Self::new(width, height, values)
-        }
+            ..Self::new(width, height, values)?
+        })
     }
 
     /// Replaces the interpolated values, sample after sample (a grid made
@@ -133,6 +135,15 @@ fn edge(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> f64 {
     (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0])
 }
 
+/// `n` copies of `value`, or `None` if the memory cannot be had (rather
+/// than aborting the process).
+fn filled<T: Clone>(n: usize, value: T) -> Option<Vec<T>> {
+    let mut out = Vec::new();
+    out.try_reserve_exact(n).ok()?;
+    out.resize(n, value);
+    Some(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -147,7 +158,7 @@ mod tests {
 
     #[test]
     fn nearer_wins_and_values_are_perspective_correct() {
-        let mut s = Samples::new(4, 4, true);
+        let mut s = Samples::new(4, 4, true).unwrap();
         // A far square (two triangles, either orientation) over all samples.
         let far = [
             corner(0.0, 0.0, 10.0, 1.0),
@@ -181,7 +192,7 @@ mod tests {
         s.triangle(far.map(|c| Corner { depth: 20.0, ..c }), 9);
         assert!(!s.id.contains(&9));
         // Unless painted.
-        let mut p = Samples::painter(4, 4, false);
+        let mut p = Samples::painter(4, 4, false).unwrap();
         p.triangle(far, 7);
         p.triangle(far.map(|c| Corner { depth: 20.0, ..c }), 9);
         assert!(p.id.iter().all(|&i| i == 9 || i == EMPTY) && p.id.contains(&9));
@@ -189,7 +200,7 @@ mod tests {
         // Perspective: a value going from 0 at depth 1 to 1 at depth 3
         // across the screen. At the screen midpoint of such a segment
         // 1 / depth is the mean (2/3, depth 1.5), where the value is 0.25.
-        let mut s = Samples::new(2, 1, true);
+        let mut s = Samples::new(2, 1, true).unwrap();
         s.triangle(
             [
                 corner(0.0, -5.0, 1.0, 0.0),
@@ -202,5 +213,16 @@ mod tests {
         // 1/depth = 0.75 * 1 + 0.25 / 3 = 5/6; value = (0.25 / 3) / (5/6).
         let expected = (0.25 / 3.0) / (5.0 / 6.0);
         assert!((f64::from(s.value[0][0]) - expected).abs() < 1e-6);
+    }
+
+    /// A grid whose samples no memory holds is refused, not aborted on
+    /// (a 16384-pixel square image at 9 samples a pixel needs 48 GB).
+    #[test]
+    fn a_grid_beyond_memory_is_none() {
+        assert!(Samples::new(1 << 40, 1 << 30, true).is_none());
+        assert!(Samples::painter(usize::MAX, 2, false).is_none());
+        // (2^50 samples, 4 PB: the allocator refuses.)
+        assert!(Samples::new(1 << 30, 1 << 20, false).is_none());
+        assert!(Samples::new(3, 2, true).is_some());
     }
 }

@@ -28,7 +28,7 @@ use super::bsp_order::back_to_front;
 use super::raster::{EMPTY, Samples};
 use super::{
     FragmentClass, Image, Order, Projection, SAMPLES_PER_SIDE, View, camera_of, draw_polygon,
-    linear, near_distance, resolve,
+    linear, near_distance, resolve, too_big,
 };
 use crate::decompose::{Pieces, SnappedLight};
 use crate::error::{Error, Result};
@@ -52,7 +52,8 @@ pub(crate) fn render_volumes(scene: &Scene, view: View, order: Order) -> Result<
     let to_view = |v: &[f64; 3]| (projection.to_view(grid.grid_to_world(*v)), [0.0; 3]);
     let mut samples = match order {
         Order::ZBuffer => {
-            let mut samples = Samples::new(width, height, view == View::Shaded);
+            let mut samples = Samples::new(width, height, view == View::Shaded)
+                .ok_or_else(|| too_big(scene, &camera))?;
             for (id, piece) in corners.iter().enumerate() {
                 let polygon: Vec<_> = piece.iter().map(to_view).collect();
                 draw_polygon(&mut samples, &projection, &polygon, near, id as u32);
@@ -60,7 +61,8 @@ pub(crate) fn render_volumes(scene: &Scene, view: View, order: Order) -> Result<
             samples
         }
         Order::Bsp => {
-            let mut samples = Samples::painter(width, height, view == View::Shaded);
+            let mut samples = Samples::painter(width, height, view == View::Shaded)
+                .ok_or_else(|| too_big(scene, &camera))?;
             for (id, part) in back_to_front(scene, &pieces, camera.eye)? {
                 let polygon: Vec<_> = part.vertices_f64().iter().map(to_view).collect();
                 draw_polygon(&mut samples, &projection, &polygon, near, id as u32);
