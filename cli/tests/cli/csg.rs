@@ -91,17 +91,27 @@ fn an_open_mesh_is_refused() {
         ("a.obj", &cube([0.0; 3], [2.0; 3])),
         ("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
     ]);
-    let run = umbra(
+    refused(
         dir.path(),
-        &["csg", "a.obj", "--union", "open.obj", "-o", "out.obj"],
+        &["a.obj", "--union", "open.obj"],
+        &["open.obj", "not closed"],
     );
-    assert_eq!(run.code, 2);
+}
+
+/// Runs `umbra csg ARGS -o out.obj` in `dir`, expecting exit code 2, a
+/// message holding each of `words`, and no output file.
+fn refused(dir: &std::path::Path, args: &[&str], words: &[&str]) {
+    let mut all = vec!["csg"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["-o", "out.obj"]);
+    let run = umbra(dir, &all);
+    assert_eq!(run.code, 2, "{args:?}: {}", run.stderr);
     assert!(
-        run.stderr.contains("open.obj") && run.stderr.contains("not closed"),
-        "{}",
+        words.iter().all(|w| run.stderr.contains(w)),
+        "{args:?}: {}",
         run.stderr
     );
-    assert!(!dir.path().join("out.obj").exists());
+    assert!(!dir.join("out.obj").exists());
 }
 
 /// A slab thinner than a grid step (1e-8 across a unit cube, snapped to a
@@ -122,17 +132,11 @@ fn a_mesh_thinner_than_the_grid_is_refused() {
     ] {
         let dir = folder(&[("a.obj", &a), ("thin.obj", &b)]);
         for op in ["--union", "--intersect", "--subtract"] {
-            let run = umbra(
+            refused(
                 dir.path(),
-                &["csg", "a.obj", op, "thin.obj", "-o", "out.obj"],
+                &["a.obj", op, "thin.obj"],
+                &["thin.obj", "encloses no volume"],
             );
-            assert_eq!(run.code, 2, "{op}: {}", run.stderr);
-            assert!(
-                run.stderr.contains("thin.obj") && run.stderr.contains("encloses no volume"),
-                "{}",
-                run.stderr
-            );
-            assert!(!dir.path().join("out.obj").exists());
         }
     }
 }
@@ -177,13 +181,6 @@ fn a_mesh_lost_to_the_grid_or_without_faces_is_refused_so() {
         ("far.obj", "a.obj", "encloses no volume once snapped"),
         ("points.obj", "points.obj", "has no faces"),
     ] {
-        let run = umbra(dir.path(), &["csg", "a.obj", "--union", b, "-o", "out.obj"]);
-        assert_eq!(run.code, 2, "{}", run.stderr);
-        assert!(
-            run.stderr.contains(file) && run.stderr.contains(reason),
-            "{}",
-            run.stderr
-        );
-        assert!(!dir.path().join("out.obj").exists());
+        refused(dir.path(), &["a.obj", "--union", b], &[file, reason]);
     }
 }
