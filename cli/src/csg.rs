@@ -41,8 +41,9 @@ pub fn csg(
     Ok(mesh)
 }
 
-/// The mesh's faces as convex pieces on the grid; an error unless they
-/// close up (every directed edge matched by its reverse).
+/// The mesh's faces as convex pieces on the grid; an error unless the
+/// snapped faces close up (every directed edge matched by its reverse)
+/// around some volume.
 fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexPolygon>> {
     let mut pieces = Vec::new();
     // The faces' edges as snapped, before they are cut into convex pieces:
