@@ -65,6 +65,7 @@ mod mesh;
 mod obj;
 mod obj_out;
 mod ply;
+mod read;
 mod render;
 mod scene;
 mod shadow;

@@ -36,10 +36,7 @@ pub struct ObjMesh {
 impl ObjMesh {
     /// Reads an OBJ file.
     pub fn load(path: &Path) -> Result<Self> {
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::read::input_text(path)?;
         Self::parse(&text, path)
     }
 

@@ -142,10 +142,7 @@ pub fn stage_ply(
 /// endian) back into an [`OutputMesh`]. Extra elements and properties are
 /// skipped; `irradiance` defaults to 0 when absent.
 pub fn load_ply(path: &Path) -> Result<OutputMesh> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Read {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let bytes = crate::read::input_bytes(path)?;
     read_ply(&bytes).map_err(|message| Error::Ply {
         path: path.to_path_buf(),
         message,

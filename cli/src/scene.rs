@@ -308,10 +308,7 @@ impl Scene {
     /// Reads and validates a scene file and every mesh it names.
     pub fn load(path: impl AsRef<Path>) -> Result<Self> {
         let path = path.as_ref();
-        let text = std::fs::read_to_string(path).map_err(|source| Error::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text = crate::read::input_text(path)?;
         Self::from_toml_str(&text, path)
     }
 

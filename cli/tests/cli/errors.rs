@@ -288,3 +288,15 @@ fn vectors_of_other_than_three_numbers_name_the_line() {
         fails_with(&[("scene.toml", &scene)], line);
     }
 }
+
+#[test]
+fn a_mesh_that_is_a_device_is_refused() {
+    // `/dev/zero` reads for ever; it was read until memory ran out.
+    fails_with(
+        &[(
+            "scene.toml",
+            "[[object]]\nname = \"z\"\nmesh = \"/dev/zero\"\n",
+        )],
+        "/dev/zero: cannot read: not a regular file",
+    );
+}
