@@ -51,6 +51,7 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
     // beside it may share (a face split in two along a neighbour), and the
     // edges would no longer pair.
     let mut edges: HashMap<(GridPoint, GridPoint), i64> = HashMap::new();
+    let mut faces = Vec::with_capacity(mesh.faces.len());
     for face in &mesh.faces {
         let (snapped, _) = grid
             .snap_all(&face.vertices)
@@ -66,7 +67,10 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
                 *edges.entry((q, p)).or_insert(0) -= 1;
             }
         }
-        for piece in convex_pieces(&snapped) {
+        faces.push(snapped);
+    }
+    for face in without_sheets(faces) {
+        for piece in convex_pieces(&face) {
             let k = pieces.len() as u32;
             pieces.push(piece.with_source(k));
         }
@@ -99,6 +103,56 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
         });
     }
     Ok(pieces)
+}
+
+/// The faces without the pairs of a face and its reverse (the same
+/// corners the other way round: a two-sided sheet, inside a solid or
+/// made by snapping a slab thinner than a step). Such a pair bounds no
+/// volume, but its two faces would split the solid's BSP as a wall.
+fn without_sheets(faces: Vec<Vec<GridPoint>>) -> Vec<Vec<GridPoint>> {
+    // Each face's corner cycle, consecutive repeats dropped, from its
+    // least corner.
+    let cycle = |corners: &[GridPoint]| -> Vec<GridPoint> {
+        let mut c: Vec<GridPoint> = corners.to_vec();
+        c.dedup();
+        while c.len() > 1 && c.first() == c.last() {
+            c.pop();
+        }
+        let least = (0..c.len()).min_by_key(|&i| c[i]).unwrap_or(0);
+        c.rotate_left(least);
+        c
+    };
+    let cycles: Vec<Vec<GridPoint>> = faces.iter().map(|f| cycle(f)).collect();
+    let mut count: HashMap<&[GridPoint], usize> = HashMap::new();
+    for c in &cycles {
+        *count.entry(c).or_insert(0) += 1;
+    }
+    // Per cycle, how many of its faces go: as many as its reverse has.
+    let mut going: HashMap<&[GridPoint], usize> = HashMap::new();
+    let mut reversed = Vec::with_capacity(cycles.len());
+    for c in &cycles {
+        let mut r = c.clone();
+        r.reverse();
+        reversed.push(cycle(&r));
+    }
+    for (c, r) in cycles.iter().zip(&reversed) {
+        if c.len() >= 3 && c != r {
+            let pairs = count[c.as_slice()].min(count.get(r.as_slice()).copied().unwrap_or(0));
+            going.insert(c, pairs);
+        }
+    }
+    faces
+        .into_iter()
+        .zip(&cycles)
+        .filter(|(_, c)| match going.get_mut(c.as_slice()) {
+            Some(n) if *n > 0 => {
+                *n -= 1;
+                false
+            }
+            _ => true,
+        })
+        .map(|(f, _)| f)
+        .collect()
 }
 
 /// Six times the volume a closed surface of grid-point polygons encloses

@@ -184,3 +184,34 @@ fn a_mesh_lost_to_the_grid_or_without_faces_is_refused_so() {
         refused(dir.path(), &["a.obj", "--union", b], &[file, reason]);
     }
 }
+
+/// A unit cube with a two-sided sheet inside (a quad and its reverse at
+/// x = 0.5): the sheet bounds no volume and takes no part (its faces
+/// split the solid as a wall: the intersection with a box was 0.2656 of
+/// volume, open, instead of 0.4219).
+#[test]
+fn a_two_sided_sheet_inside_a_solid_takes_no_part() {
+    let sheet = "v 0.5 0 0\nv 0.5 0 1\nv 0.5 1 1\nv 0.5 1 0\nf 9 10 11 12\nf 12 11 10 9\n";
+    let with_sheet = cube([0.0; 3], [1.0; 3]) + sheet;
+    // (The sheet's corners are vertices 9-12, after the cube's eight.)
+    let dir = folder(&[
+        ("a.obj", &with_sheet),
+        ("b.obj", &cube([0.25; 3], [1.5; 3])),
+    ]);
+    let b = 1.25_f64.powi(3);
+    let i = 0.75_f64.powi(3);
+    for (op, expected) in [
+        ("--union", 1.0 + b - i),
+        ("--intersect", i),
+        ("--subtract", 1.0 - i),
+    ] {
+        let run = umbra(dir.path(), &["csg", "a.obj", op, "b.obj", "-o", "out.obj"]);
+        assert_eq!(run.code, 0, "{op}: {}", run.stderr);
+        let (volume, closed) = read(&dir.path().join("out.obj"));
+        assert!(closed, "{op} output is not closed");
+        assert!(
+            (volume - expected).abs() < 1e-9,
+            "{op}: {volume} vs {expected}"
+        );
+    }
+}
