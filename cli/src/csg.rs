@@ -1,6 +1,6 @@
 //! `umbra csg`: BSP set operations on closed OBJ meshes.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
 use bsp_core::{ConvexPolygon, Grid, GridPoint};
@@ -105,10 +105,12 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
     Ok(pieces)
 }
 
-/// The faces without the pairs of a face and its reverse (the same
-/// corners the other way round: a two-sided sheet, inside a solid or
-/// made by snapping a slab thinner than a step). Such a pair bounds no
-/// volume, but its two faces would split the solid's BSP as a wall.
+/// The faces as one layer of surface: a face written again the same way
+/// round counts once (a surface given twice bounds the same solid), and
+/// a face and its reverse (the same corners the other way round: a
+/// two-sided sheet, inside a solid or made by snapping a slab thinner
+/// than a step) both go. Such a pair bounds no volume, and a repeated
+/// face none more, but their faces would split the solid's BSP as walls.
 fn without_sheets(faces: Vec<Vec<GridPoint>>) -> Vec<Vec<GridPoint>> {
     // Each face's corner cycle, consecutive repeats dropped, from its
     // least corner.
@@ -122,36 +124,19 @@ fn without_sheets(faces: Vec<Vec<GridPoint>>) -> Vec<Vec<GridPoint>> {
         c.rotate_left(least);
         c
     };
-    let cycles: Vec<Vec<GridPoint>> = faces.iter().map(|f| cycle(f)).collect();
-    let mut count: HashMap<&[GridPoint], usize> = HashMap::new();
-    for c in &cycles {
-        *count.entry(c).or_insert(0) += 1;
-    }
-    // Per cycle, how many of its faces go: as many as its reverse has.
-    let mut going: HashMap<&[GridPoint], usize> = HashMap::new();
-    let mut reversed = Vec::with_capacity(cycles.len());
-    for c in &cycles {
-        let mut r = c.clone();
-        r.reverse();
-        reversed.push(cycle(&r));
-    }
-    for (c, r) in cycles.iter().zip(&reversed) {
-        if c.len() >= 3 && c != r {
-            let pairs = count[c.as_slice()].min(count.get(r.as_slice()).copied().unwrap_or(0));
-            going.insert(c, pairs);
-        }
-    }
-    faces
+    let mut seen = HashSet::new();
+    let once: Vec<(Vec<GridPoint>, Vec<GridPoint>)> = faces
         .into_iter()
-        .zip(&cycles)
-        .filter(|(_, c)| match going.get_mut(c.as_slice()) {
-            Some(n) if *n > 0 => {
-                *n -= 1;
-                false
-            }
-            _ => true,
+        .map(|face| (cycle(&face), face))
+        .filter(|(c, _)| c.len() < 3 || seen.insert(c.clone()))
+        .collect();
+    once.into_iter()
+        .filter(|(c, _)| {
+            let mut reverse = c.clone();
+            reverse.reverse();
+            c.len() < 3 || !seen.contains(&cycle(&reverse))
         })
-        .map(|(f, _)| f)
+        .map(|(_, face)| face)
         .collect()
 }
 

@@ -151,20 +151,16 @@ fn a_face_split_along_its_neighbours_is_closed() {
                  v 0.5 1 0\nv 0.5 1 1\n\
                  f 1 2 3 4\nf 5 6 7 8\nf 1 5 8 2\nf 4 3 10 9\nf 9 10 7 6\nf 1 4 9 6 5\nf 2 8 7 10 3\n";
     let dir = folder(&[("split.obj", split), ("b.obj", &cube([0.5; 3], [1.5; 3]))]);
-    for (op, expected) in [
-        ("--union", 1.875),
-        ("--intersect", 0.125),
-        ("--subtract", 0.875),
-    ] {
-        let run = umbra(
-            dir.path(),
-            &["csg", "split.obj", op, "b.obj", "-o", "out.obj"],
-        );
-        assert_eq!(run.code, 0, "{op}: {}", run.stderr);
-        let (volume, closed) = read(&dir.path().join("out.obj"));
-        assert!(closed, "{op} output is not closed");
-        assert!((volume - expected).abs() < 1e-9, "{op}: {volume}");
-    }
+    volumes_are(
+        dir.path(),
+        "split.obj",
+        "b.obj",
+        [
+            ("--union", 1.875),
+            ("--intersect", 0.125),
+            ("--subtract", 0.875),
+        ],
+    );
 }
 
 /// A unit cube beside one 1e9 away snaps to nothing (the grid's step is
@@ -200,18 +196,53 @@ fn a_two_sided_sheet_inside_a_solid_takes_no_part() {
     ]);
     let b = 1.25_f64.powi(3);
     let i = 0.75_f64.powi(3);
-    for (op, expected) in [
-        ("--union", 1.0 + b - i),
-        ("--intersect", i),
-        ("--subtract", 1.0 - i),
-    ] {
-        let run = umbra(dir.path(), &["csg", "a.obj", op, "b.obj", "-o", "out.obj"]);
+    volumes_are(
+        dir.path(),
+        "a.obj",
+        "b.obj",
+        [
+            ("--union", 1.0 + b - i),
+            ("--intersect", i),
+            ("--subtract", 1.0 - i),
+        ],
+    );
+}
+
+/// A cube whose every face is written twice, the same way round, is the
+/// cube: its intersection with a box was 0.1875 of volume and open, the
+/// doubled faces kept as walls.
+#[test]
+fn faces_written_twice_count_once() {
+    let twice = {
+        let once = cube([0.0; 3], [1.0; 3]);
+        let faces: String = once
+            .lines()
+            .filter(|l| l.starts_with("f "))
+            .map(|l| format!("{l}\n"))
+            .collect();
+        once + &faces
+    };
+    let dir = folder(&[("a.obj", &twice), ("b.obj", &cube([0.5; 3], [1.5; 3]))]);
+    volumes_are(
+        dir.path(),
+        "a.obj",
+        "b.obj",
+        [
+            ("--union", 1.875),
+            ("--intersect", 0.125),
+            ("--subtract", 0.875),
+        ],
+    );
+}
+
+/// Runs `umbra csg A OP B -o out.obj` in `dir` for each operation, and
+/// checks that each output is closed with the volume expected.
+fn volumes_are(dir: &std::path::Path, a: &str, b: &str, expected: [(&str, f64); 3]) {
+    for (op, volume) in expected {
+        let run = umbra(dir, &["csg", a, op, b, "-o", "out.obj"]);
         assert_eq!(run.code, 0, "{op}: {}", run.stderr);
-        let (volume, closed) = read(&dir.path().join("out.obj"));
+        let (found, closed) = read(&dir.join("out.obj"));
         assert!(closed, "{op} output is not closed");
-        assert!(
-            (volume - expected).abs() < 1e-9,
-            "{op}: {volume} vs {expected}"
-        );
+        assert!((found - volume).abs() < 1e-9, "{op}: {found} vs {volume}");
     }
 }
