@@ -38,7 +38,48 @@ pub fn csg(
     for v in &mut mesh.vertices {
         *v = grid.grid_to_world(*v);
     }
-    Ok(mesh)
+    Ok(merge_equal_positions(mesh))
+}
+
+/// The mesh with vertices of equal world coordinates made one: exact
+/// points a hair apart (1e-10 at a million units) round to one `f64`
+/// position, and a face between them had no area (two corners of a quad
+/// at one place). Each face keeps its corners once around, and a face
+/// left with fewer than three goes: its edges collapsed with its
+/// neighbours', which the surface stays closed along.
+fn merge_equal_positions(mesh: IndexedMesh) -> IndexedMesh {
+    let mut index: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut vertices = Vec::with_capacity(mesh.vertices.len());
+    let new_index: Vec<u32> = mesh
+        .vertices
+        .iter()
+        .map(|v| {
+            // (+ 0.0 makes -0.0 the same key as 0.0.)
+            let key = v.map(|c| (c + 0.0).to_bits());
+            *index.entry(key).or_insert_with(|| {
+                vertices.push(*v);
+                vertices.len() as u32 - 1
+            })
+        })
+        .collect();
+    let mut faces = Vec::with_capacity(mesh.faces.len());
+    let mut face_polygon = Vec::with_capacity(mesh.faces.len());
+    for (face, polygon) in mesh.faces.iter().zip(&mesh.face_polygon) {
+        let mut corners: Vec<u32> = face.iter().map(|&i| new_index[i as usize]).collect();
+        corners.dedup();
+        while corners.len() > 1 && corners.first() == corners.last() {
+            corners.pop();
+        }
+        if corners.len() >= 3 {
+            faces.push(corners);
+            face_polygon.push(*polygon);
+        }
+    }
+    IndexedMesh {
+        vertices,
+        faces,
+        face_polygon,
+    }
 }
 
 /// The mesh's faces as convex pieces on the grid; an error unless the

@@ -246,3 +246,70 @@ fn volumes_are(dir: &std::path::Path, a: &str, b: &str, expected: [(&str, f64); 
         assert!((found - volume).abs() < 1e-9, "{op}: {found} vs {volume}");
     }
 }
+
+/// A tetrahedron and a turned cube near (1e6, -1e6, 1e6): exact corners a
+/// hair apart round to one `f64` position there, and three faces of the
+/// union were quads with two corners at each of two places (no area).
+/// Vertices at one position are one now: every face has three corners
+/// apart or more and some area, and the surface is closed.
+#[test]
+fn far_from_the_origin_no_face_is_flat() {
+    let tetrahedron = "v 999998.8705519061 -1000002.3415546853 1000001.314375259\n\
+        v 999999.849150214 -1000002.2022225816 999999.892077148\n\
+        v 1000000.3742545167 -1000000.7357832222 999998.2877638754\n\
+        v 999998.9858401774 -1000001.722300221 1000000.0481870727\n\
+        f 2 3 1\nf 4 2 1\nf 3 4 1\nf 4 3 2\n";
+    let cube = "v 1000000.0 -1000000.0 1000000.0\n\
+        v 1000000.0000030152 -999999.1033398103 999999.5572805583\n\
+        v 999998.3525445461 -999999.6053644832 999998.5404955168\n\
+        v 999998.3525415309 -1000000.5020246729 999998.9832149586\n\
+        v 1000001.133966751 -1000000.7293649595 999998.5227910902\n\
+        v 999999.486508282 -1000001.2313896324 999997.5060060488\n\
+        v 999999.4865112972 -1000000.3347294426 999997.063286607\n\
+        v 1000001.1339697663 -999999.8327047697 999998.0800716485\n\
+        f 1 2 3 4\nf 5 6 7 8\nf 1 5 8 2\nf 4 3 7 6\nf 1 4 6 5\nf 2 8 7 3\n";
+    let dir = folder(&[("a.obj", tetrahedron), ("b.obj", cube)]);
+    let run = umbra(
+        dir.path(),
+        &["csg", "a.obj", "--union", "b.obj", "-o", "out.obj"],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let (_, closed) = read(&dir.path().join("out.obj"));
+    assert!(closed);
+    let text = std::fs::read_to_string(dir.path().join("out.obj")).unwrap();
+    let v: Vec<[f64; 3]> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("v "))
+        .map(|l| {
+            let c: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            [c[0], c[1], c[2]]
+        })
+        .collect();
+    for face in text.lines().filter_map(|l| l.strip_prefix("f ")) {
+        let corners: Vec<[f64; 3]> = face
+            .split_whitespace()
+            .map(|i| v[i.parse::<usize>().unwrap() - 1])
+            .collect();
+        let mut apart = corners.clone();
+        apart.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        apart.dedup();
+        assert!(apart.len() >= 3, "face {face}: {corners:?}");
+        // Twice its area, from the fan of cross products.
+        let n = (1..corners.len() - 1).fold([0.0; 3], |n, k| {
+            let (a, b, c) = (corners[0], corners[k], corners[k + 1]);
+            let (u, w) = (
+                [0, 1, 2].map(|i| b[i] - a[i]),
+                [0, 1, 2].map(|i| c[i] - a[i]),
+            );
+            [
+                n[0] + u[1] * w[2] - u[2] * w[1],
+                n[1] + u[2] * w[0] - u[0] * w[2],
+                n[2] + u[0] * w[1] - u[1] * w[0],
+            ]
+        });
+        assert!(
+            n.iter().map(|x| x * x).sum::<f64>().sqrt() > 1e-3,
+            "face {face}"
+        );
+    }
+}
