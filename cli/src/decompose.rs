@@ -24,7 +24,7 @@ use bsp_core::{ConvexPolygon, Grid, GridPoint};
 use crate::error::{Error, Result};
 use crate::input_frame::{InputFrames, planar_normal};
 use crate::scene::{LightKind, Scene};
-use crate::vec3::dot;
+use crate::vec3::{by_largest, dot};
 use crate::weld::{ON_EDGE, weld_t_junctions, welded_pieces};
 
 /// How much the grid's box is grown on every side, as a fraction of the
@@ -208,11 +208,10 @@ pub const DIRECTION_SCALE: i32 = 1 << 20;
 /// `±DIRECTION_SCALE`: the only rounding of a directional light, by at most
 /// about `2^-21` radians.
 pub fn integer_direction(d: [f64; 3]) -> [i32; 3] {
-    let largest = d.iter().fold(0.0_f64, |m, c| m.max(c.abs()));
-    if largest == 0.0 || !largest.is_finite() {
+    if !d.iter().all(|c| c.is_finite()) {
         return [0; 3];
     }
-    d.map(|c| ((c / largest) * f64::from(DIRECTION_SCALE)).round() as i32)
+    by_largest(d).map(|c| (c * f64::from(DIRECTION_SCALE)).round() as i32)
 }
 
 /// Convex planar pieces (with source 0) of one polygon given by grid points,

@@ -8,7 +8,7 @@ use serde::Deserialize;
 use crate::error::{Error, Result};
 use crate::obj::ObjMesh;
 use crate::transform::Transform;
-use crate::vec3::{cross, dot, norm, sub};
+use crate::vec3::{by_largest, cross, dot, norm, sub};
 
 /// Most lights a scene may have: one bit each in `lit_mask` / `umbra_mask`.
 pub const MAX_LIGHTS: usize = 32;
@@ -670,11 +670,7 @@ impl Checker<'_> {
         // Each scaled to a largest component of 1 first: the products
         // overflowed for huge vectors (an eye 1e200 away, an up of 1e300)
         // and underflowed for tiny ones.
-        let scaled = |v: [f64; 3]| {
-            let largest = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-            v.map(|x| if largest > 0.0 { x / largest } else { 0.0 })
-        };
-        let (view, up) = (scaled(view), scaled(c.up));
+        let (view, up) = (by_largest(view), by_largest(c.up));
         if norm(cross(view, up)) <= 1e-12 * norm(view) * norm(up) {
             return Err(self.field("camera.up", "must not be zero or parallel to the view"));
         }
