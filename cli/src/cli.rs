@@ -359,6 +359,7 @@ fn run_shadow(args: &ShadowArgs) -> Result<()> {
     }
     outputs.commit()?;
     progress.finish();
+    warn_dropped(&scene, &result.stats.dropped_polygons);
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
@@ -460,6 +461,7 @@ fn run_dm(args: &DmArgs) -> Result<()> {
     progress.say("writing");
     let s = save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
     progress.finish();
+    warn_dropped(&scene, &s.stats.dropped_polygons);
     let mut out = std::io::stdout().lock();
     let _ = writeln!(
         out,
@@ -507,8 +509,9 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
     run.refresh_figures();
     run.stats.update = Some(figures);
     progress.say("writing");
-    save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
+    let s = save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
     progress.finish();
+    warn_dropped(&scene, &s.stats.dropped_polygons);
     let mut out = std::io::stdout().lock();
     for line in lines {
         let _ = writeln!(out, "{line}");
@@ -522,6 +525,49 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
         run.stats.dm.cells
     );
     Ok(())
+}
+
+/// Where input polygon `input` was written: its mesh file and line, or its
+/// object's name for inline polygons.
+fn polygon_place(scene: &Scene, input: u32) -> String {
+    match scene.input_polygons().nth(input as usize) {
+        Some((object, polygon)) => {
+            let object = &scene.objects[object];
+            match (&object.mesh, polygon.line) {
+                (Some(mesh), Some(line)) => format!("{}:{line}", mesh.display()),
+                _ => format!("object `{}`", object.name),
+            }
+        }
+        None => "not in the scene".into(),
+    }
+}
+
+/// The most dropped polygons a warning names one by one.
+const NAMED_DROPS: usize = 5;
+
+/// Says on stderr that the output leaves out the `dropped` input polygons
+/// (no area once snapped: the output partitions every other polygon, not
+/// these), naming the first few; `umbra check` lists them all.
+fn warn_dropped(scene: &Scene, dropped: &[u32]) {
+    if dropped.is_empty() {
+        return;
+    }
+    let named: Vec<String> = dropped
+        .iter()
+        .take(NAMED_DROPS)
+        .map(|&input| format!("{input} ({})", polygon_place(scene, input)))
+        .collect();
+    let more = match dropped.len().saturating_sub(NAMED_DROPS) {
+        0 => String::new(),
+        n => format!(" and {n} more"),
+    };
+    eprintln!(
+        "umbra: warning: {} input polygon{} left out, with no area once snapped to the scene's grid \
+         (degenerate, or smaller than a grid step; `umbra check` shows the step): {}{more}",
+        dropped.len(),
+        if dropped.len() == 1 { "" } else { "s" },
+        named.join(", ")
+    );
 }
 
 /// Runs one command.
@@ -605,14 +651,8 @@ pub fn run(cli: Cli) -> Result<()> {
                 pieces.dropped.len()
             );
             for &input in &pieces.dropped {
-                if let Some((object, polygon)) = scene.input_polygons().nth(input as usize) {
-                    let object = &scene.objects[object];
-                    let at = match (&object.mesh, polygon.line) {
-                        (Some(mesh), Some(line)) => format!("{}:{line}", mesh.display()),
-                        _ => format!("object `{}`", object.name),
-                    };
-                    let _ = writeln!(out, "  dropped input polygon {input} ({at})");
-                }
+                let at = polygon_place(&scene, input);
+                let _ = writeln!(out, "  dropped input polygon {input} ({at})");
             }
             let _ = writeln!(out, "grid cell      {:e}", pieces.grid.cell_size());
             let _ = writeln!(out, "largest snap   {:e}", pieces.max_snap_distance);

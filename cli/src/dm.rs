@@ -615,6 +615,7 @@ impl DmRun {
         DmStats {
             stats: Stats {
                 input_polygons: self.pieces.input_polygons as u64,
+                dropped_polygons: self.pieces.dropped.clone(),
                 output_fragments: cells,
                 seconds: Seconds {
                     bsp: 0.0,

@@ -161,6 +161,7 @@ pub fn shadow_scene_with(scene: &Scene, options: &ShadowOptions) -> Result<Shado
     };
     let stats = Stats {
         input_polygons: pieces.input_polygons as u64,
+        dropped_polygons: pieces.dropped.clone(),
         output_fragments: mesh.faces.len() as u64,
         seconds: Seconds {
             bsp: out.bsp_seconds,

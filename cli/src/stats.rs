@@ -18,6 +18,11 @@ pub struct Stats {
     pub seconds: Seconds,
     /// One entry per light, in scene order.
     pub lights: Vec<LightStats>,
+    /// Input polygons (numbered as FORMATS.md §1) left out of the output:
+    /// they have no area once snapped to the scene's grid (degenerate, or
+    /// smaller than a grid step in a scene the grid must span far).
+    #[serde(default)]
+    pub dropped_polygons: Vec<u32>,
 }
 
 /// Seconds spent in each phase.
@@ -123,11 +128,13 @@ mod tests {
                     ..LightStats::default()
                 },
             ],
+            dropped_polygons: vec![7],
         };
         let v: serde_json::Value = serde_json::from_str(&stats.to_json()).unwrap();
         for key in ["input_polygons", "output_fragments", "seconds", "lights"] {
             assert!(v.get(key).is_some(), "{key}");
         }
+        assert_eq!(v["dropped_polygons"], serde_json::json!([7]));
         for key in ["bsp", "shadow", "grid", "illum", "total"] {
             assert!(v["seconds"].get(key).is_some(), "{key}");
         }

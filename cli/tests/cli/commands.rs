@@ -157,6 +157,64 @@ fn check_lists_dropped_faces_with_their_line() {
     );
 }
 
+/// Commands that write geometry warn on stderr about the input polygons
+/// their output leaves out (here a face in line, no area), name them with
+/// their line, and list them in the statistics; a run that drops nothing
+/// stays quiet and lists none.
+#[test]
+fn dropped_faces_are_warned_about_and_listed_in_the_statistics() {
+    let light = "[[light]]\ntype = \"area\"\nintensity = 1.0\n\
+                 vertices = [[0,3,0],[0.5,3,0],[0.5,3,0.5]]\n";
+    let dir = folder(&[
+        (
+            "scene.toml",
+            &format!("[[object]]\nname = \"m\"\nmesh = \"m.obj\"\n{light}"),
+        ),
+        (
+            "whole.toml",
+            &format!("[[object]]\nname = \"m\"\npolygons = [[[0,0,0],[1,0,0],[0,1,0]]]\n{light}"),
+        ),
+        (
+            "m.obj",
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\n",
+        ),
+    ]);
+    let runs: [&[&str]; 3] = [
+        &["shadow", "-o", "out.ply", "--stats", "s.json"],
+        &["dm", "-o", "out.ply", "--stats", "s.json"],
+        &[
+            "update", "--move", "m", "--by", "0,0.1,0", "-o", "out.ply", "--stats", "s.json",
+        ],
+    ];
+    for args in runs {
+        for (scene, dropped) in [("scene.toml", vec![1]), ("whole.toml", vec![])] {
+            let mut all = vec![args[0], scene];
+            all.extend(&args[1..]);
+            let run = umbra(dir.path(), &all);
+            assert_eq!(run.code, 0, "{all:?}: {}", run.stderr);
+            if dropped.is_empty() {
+                assert_eq!(run.stderr, "", "{all:?}");
+            } else {
+                assert!(
+                    run.stderr
+                        .starts_with("umbra: warning: 1 input polygon left out")
+                        && run.stderr.contains(": 1 (m.obj:6)\n"),
+                    "{all:?}: {}",
+                    run.stderr
+                );
+            }
+            let stats: serde_json::Value =
+                serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap())
+                    .unwrap();
+            assert_eq!(
+                stats["dropped_polygons"],
+                serde_json::json!(dropped),
+                "{all:?}"
+            );
+        }
+    }
+}
+
 /// A corner 1e17 units out makes the grid step 5e9: the other object's
 /// unit triangle snaps to nothing, and is dropped. The run ends (it once
 /// walked the buckets around that triangle's edges for ever, their count
