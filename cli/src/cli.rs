@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    Deletion, DemoFiles, DmOptions, DmRun, DmStats, Error, ObjMesh, Outputs, OverlapKind, Pieces,
+    Deletion, DemoFiles, DmOptions, DmRun, DmStats, ObjMesh, Outputs, OverlapKind, Pieces,
     PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene_moving, dm_scene_with,
     render_scene_with, save_csg_obj, shadow_scene, shadow_scene_with, stage_obj, stage_ply,
 };
@@ -480,16 +480,9 @@ fn run_dm(args: &DmArgs) -> Result<()> {
 fn run_update(args: &UpdateArgs) -> Result<()> {
     let progress = Progress::start("loading the scene");
     let scene = Scene::load(&args.scene)?;
-    if !scene.objects.iter().any(|o| o.name == args.object) {
-        return Err(Error::Field {
-            path: scene.path.clone(),
-            field: "object".into(),
-            message: format!("no object is named `{}` (from --move)", args.object),
-        });
-    }
     progress.say("building discontinuity meshes");
     let options = dm_options(args.outer_only, args.deletion, args.overlap);
-    let mut run = dm_scene_moving(&scene, options, &args.by)?;
+    let mut run = dm_scene_moving(&scene, options, &args.object, &args.by)?;
     progress.say("moving");
     let mut lines = Vec::new();
     let figures = run.move_steps(

@@ -109,17 +109,19 @@ struct FreshDm {
 }
 
 impl FreshDm {
-    /// Builds and illuminates `objects` under `lights`, timing both; light
-    /// falls on object `o`'s polygon `i` along `normals[o][i]`.
+    /// Builds and illuminates `objects` under `lights` (those at the
+    /// indices `movable` declared movable), timing both; light falls on
+    /// object `o`'s polygon `i` along `normals[o][i]`.
     fn build(
         lights: Vec<DmLight>,
         objects: Vec<(Vec<ConvexPolygon>, PieceFlags)>,
+        movable: &[usize],
         normals: &[Vec<[f64; 3]>],
         options: DmOptions,
     ) -> Result<Self> {
         let build_started = Instant::now();
-        let (mut dm, ids) =
-            DmScene::build_with(lights, objects, options).map_err(|e| Error::Dm(e.to_string()))?;
+        let (mut dm, ids) = DmScene::build_movable(lights, objects, movable, options)
+            .map_err(|e| Error::Dm(e.to_string()))?;
         for (&id, normals) in ids.iter().zip(normals) {
             let pieces = dm.object_pieces(id).unwrap_or_default().to_vec();
             for (piece, &normal) in pieces.into_iter().zip(normals) {
@@ -229,12 +231,41 @@ pub fn dm_scene(scene: &Scene) -> Result<DmRun> {
 
 /// Builds and illuminates the DM-trees of a loaded scene.
 pub fn dm_scene_with(scene: &Scene, options: DmOptions) -> Result<DmRun> {
-    dm_scene_moving(scene, options, &[])
+    dm_scene_for(scene, options, &[], None)
 }
 
-/// [`dm_scene_with`] for a scene whose objects will move by `lengths`
-/// (world units along an axis, [`Pieces::from_scene_moving`]).
-pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Result<DmRun> {
+/// [`dm_scene_with`] for a scene whose object named `object` will move by
+/// `by` (world units) one step after another: the grid is sized for the
+/// way ([`Pieces::from_scene_moving`]) and the object declared movable
+/// ([`DmScene::build_movable`]: even its first move deletes only its own
+/// nodes). Errors: those of a build, and no object of that name.
+pub fn dm_scene_moving(
+    scene: &Scene,
+    options: DmOptions,
+    object: &str,
+    by: &[f64],
+) -> Result<DmRun> {
+    let index = scene
+        .objects
+        .iter()
+        .position(|o| o.name == object)
+        .ok_or_else(|| Error::Field {
+            path: scene.path.clone(),
+            field: "object".into(),
+            message: format!("no object is named `{object}` (from --move)"),
+        })?;
+    dm_scene_for(scene, options, by, Some(index))
+}
+
+/// Builds and illuminates the DM-trees of a loaded scene, the grid sized
+/// for moves of `lengths` (world units along an axis), scene object
+/// `movable` (if any) declared movable.
+fn dm_scene_for(
+    scene: &Scene,
+    options: DmOptions,
+    lengths: &[f64],
+    movable: Option<usize>,
+) -> Result<DmRun> {
     let started = Instant::now();
     let pieces = Pieces::from_scene_moving(scene, lengths)?;
     let lights = area_lights(scene, &pieces)?;
@@ -250,7 +281,8 @@ pub fn dm_scene_moving(scene: &Scene, options: DmOptions, lengths: &[f64]) -> Re
         .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
         .collect();
     let normals = normals_of(&pieces, groups.iter().map(|(ks, _)| ks));
-    let fresh = FreshDm::build(lights, objects, &normals, options)?;
+    let movable: Vec<usize> = movable.into_iter().collect();
+    let fresh = FreshDm::build(lights, objects, &movable, &normals, options)?;
     let groups = groups.into_iter().map(|g| g.0).collect();
     Ok(DmRun::assemble(
         pieces,
@@ -770,9 +802,14 @@ impl DmRun {
             })
             .collect();
         let normals = normals_of(&self.pieces, self.objects.iter().map(|(_, ks)| ks));
+        let movable: Vec<usize> = (self.objects.iter().enumerate())
+            .filter(|(_, (id, _))| self.dm.is_movable(*id))
+            .map(|(k, _)| k)
+            .collect();
         FreshDm::build(
             self.dm.lights().to_vec(),
             objects,
+            &movable,
             &normals,
             self.dm.options(),
         )

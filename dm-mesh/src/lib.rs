@@ -30,7 +30,11 @@
 //! one thread still updates a big receiver, another illuminates the small
 //! ones), so vertex irradiance is current after every change.
 //! [`Deletion::Collapse`] instead collapses the subtrees the occluder grew
-//! and merges the later occluders there again. Re-illumination evaluates
+//! and merges the later occluders there again. A removal is cheapest for
+//! the occluders merged last, whose nodes lie at the bottom of the trees:
+//! a move leaves the moved object's there, and
+//! [`DmScene::build_movable`] puts the objects an application declares
+//! movable there from the start. Re-illumination evaluates
 //! only vertices whose covering occluders changed. A receiver that many
 //! occluders reach starts as a balanced tree of tiles (construction lines,
 //! about one tile per four units), so that every change stays within the

@@ -7,6 +7,15 @@
 //! merged into cells already in another's umbra. As in area-shadow's
 //! `AreaTrees::build`, units go nearest the light's centroid first, a
 //! stand-in for front-to-back that finds most of the culling.
+//!
+//! Occluders of objects declared movable ([`DmScene::build_movable`]) go
+//! after all the others, as a move leaves an object's units: removing
+//! them then deletes nodes at the bottom of the trees, not above the other
+//! occluders' (the first move of a box of the 10k hall placed by the
+//! build deleted its nodes from the floor's tree in 10-12 ms, later moves
+//! in 1.2-1.7 ms).
+//!
+//! [`DmScene::build_movable`]: crate::DmScene::build_movable
 
 use crate::scene::{DmLight, Piece, PieceId};
 use slotmap::SlotMap;
@@ -15,30 +24,84 @@ use slotmap::SlotMap;
 /// by light, each light's nearest first (ties by position in
 /// `candidates`), bodies that cast only their umbra after the rest (such a
 /// body hides the whole light only where its polygons hide it together;
-/// merged last, it culls none of them).
+/// merged last, it culls none of them); the static objects' units so, then
+/// the movable objects' units so.
 pub(crate) fn unit_order(
     lights: &[DmLight],
     pieces: &SlotMap<PieceId, Piece>,
     candidates: &[PieceId],
 ) -> Vec<(PieceId, u8)> {
     let mut out = Vec::new();
-    for (i, light) in lights.iter().enumerate() {
-        let centre = light.source.centroid();
-        let mut list: Vec<(bool, f64, usize)> = candidates
-            .iter()
-            .enumerate()
-            .filter(|(_, k)| !pieces[**k].volumes[i].volumes.penumbra.is_empty())
-            .map(|(n, k)| {
-                let piece = &pieces[*k];
-                (piece.umbra_only(i), distance2(piece.centre(), centre), n)
-            })
-            .collect();
-        list.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
-        out.extend(list.into_iter().map(|(_, _, n)| (candidates[n], i as u8)));
+    for movable in [false, true] {
+        for (i, light) in lights.iter().enumerate() {
+            let centre = light.source.centroid();
+            let mut list: Vec<(bool, f64, usize)> = candidates
+                .iter()
+                .enumerate()
+                .filter(|(_, k)| {
+                    let piece = &pieces[**k];
+                    piece.movable == movable && !piece.volumes[i].volumes.penumbra.is_empty()
+                })
+                .map(|(n, k)| {
+                    let piece = &pieces[*k];
+                    (piece.umbra_only(i), distance2(piece.centre(), centre), n)
+                })
+                .collect();
+            list.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+            out.extend(list.into_iter().map(|(_, _, n)| (candidates[n], i as u8)));
+        }
     }
     out
 }
 
 fn distance2(a: [f64; 3], b: [f64; 3]) -> f64 {
     (0..3).map(|i| (a[i] - b[i]) * (a[i] - b[i])).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::DmScene;
+    use crate::scene::testing::{boxes_on_a_floor_movable, moved};
+
+    /// Per receiver, whether each of its units (in the order merged) is of
+    /// one of the objects `of`.
+    fn units_of(scene: &DmScene, of: &[crate::ObjectId]) -> Vec<Vec<bool>> {
+        let object = |o| scene.pieces[o].object;
+        scene
+            .receivers
+            .values()
+            .map(|dm| {
+                dm.units()
+                    .map(|(_, (o, _))| of.contains(&object(o)))
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// Whether no `true` comes before a `false`.
+    fn last(units: &[bool]) -> bool {
+        units.windows(2).all(|w| w[0] <= w[1])
+    }
+
+    /// Objects declared movable are merged after the static ones (of both
+    /// lights) in every receiver, at the build and after their moves; in a
+    /// plain build the same boxes come before some static ones.
+    #[test]
+    fn movable_objects_are_merged_after_the_static_ones() {
+        let movable = [2, 6];
+        let (plain, ids) = boxes_on_a_floor_movable(&[]);
+        let chosen = movable.map(|k| ids[k]);
+        assert!(units_of(&plain, &chosen).iter().any(|u| !last(u)));
+        let (mut scene, ids) = boxes_on_a_floor_movable(&movable);
+        let chosen = movable.map(|k| ids[k]);
+        assert!(scene.is_movable(chosen[0]) && !scene.is_movable(ids[1]));
+        for step in 0..4_i64 {
+            let each = units_of(&scene, &chosen);
+            assert!(each.iter().all(|u| last(u)), "step {step}");
+            assert!(each.iter().any(|u| u.contains(&false) && u.contains(&true)));
+            let id = chosen[step as usize % 2];
+            let polygons = moved(&scene, id, [7 - 5 * step, 0, 3 * step - 4]);
+            scene.move_object(id, polygons).expect("a move");
+        }
+    }
 }

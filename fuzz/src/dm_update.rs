@@ -46,6 +46,9 @@ pub struct DmCase {
     pub ops: Vec<Op>,
     /// How removals take discontinuities out.
     pub deletion: Deletion,
+    /// Bit `k`: object `k` declared movable at the build
+    /// (`DmScene::build_movable`: its units merged after the static ones).
+    pub movable: u8,
 }
 
 fn coordinate(u: &mut Unstructured<'_>, lo: i8, hi: i8) -> arbitrary::Result<i64> {
@@ -154,11 +157,14 @@ impl<'a> Arbitrary<'a> for DmCase {
         } else {
             Deletion::Local
         };
+        // Past the end of the data: no object declared movable.
+        let movable = u.arbitrary::<u8>()?;
         Ok(Self {
             objects,
             light: (corner, size, rise),
             ops,
             deletion,
+            movable,
         })
     }
 }
@@ -464,8 +470,14 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
         deletion: case.deletion,
         ..DmOptions::default()
     };
-    let (mut scene, ids) = DmScene::build_with(vec![light.clone()], objects.clone(), options)
-        .map_err(|e| e.to_string())?;
+    // (Scene object 0 is the floor.)
+    let declared: Vec<usize> = (0..case.objects.len())
+        .filter(|k| case.movable >> k & 1 == 1)
+        .map(|k| k + 1)
+        .collect();
+    let (mut scene, ids) =
+        DmScene::build_movable(vec![light.clone()], objects.clone(), &declared, options)
+            .map_err(|e| e.to_string())?;
     // The model: per object its offset and whether it is present.
     let mut state: Vec<(Option<ObjectId>, [i64; 3])> =
         ids.iter().map(|id| (Some(*id), [0; 3])).collect();
@@ -612,7 +624,14 @@ mod tests {
     /// against a rebuild and area-shadow.
     #[test]
     fn touching_boxes_join_and_part() {
-        for deletion in [Deletion::Local, Deletion::Collapse] {
+        // (Declared movable: none, then the stacked box, whose joint with
+        // the one under it is then merged after the static units.)
+        for (deletion, movable) in [
+            (Deletion::Local, 0),
+            (Deletion::Collapse, 0),
+            (Deletion::Local, 0b100),
+            (Deletion::Collapse, 0b100),
+        ] {
             let case = DmCase {
                 objects: vec![
                     box_triangles([-3, 2, -2], [0, 5, 1]),
@@ -629,6 +648,7 @@ mod tests {
                     Op::Move(0, [0, 0, -1]),
                 ],
                 deletion,
+                movable,
             };
             check_dm_update(&case).unwrap();
         }
@@ -651,6 +671,7 @@ mod tests {
             light: ([-5, 12, 4], [4, 4], -1),
             ops: vec![],
             deletion: Deletion::Local,
+            movable: 0,
         };
         check_dm_update(&case).unwrap();
     }
@@ -677,6 +698,7 @@ mod tests {
                     Op::ReAdd(1),
                 ],
                 deletion,
+                movable: 0,
             };
             check_dm_update(&case).unwrap();
         }
@@ -708,6 +730,7 @@ mod tests {
                     Op::ReAdd(1),
                 ],
                 deletion,
+                movable: 0,
             };
             check_dm_update(&case).unwrap();
         }
@@ -737,6 +760,7 @@ mod tests {
                     Op::ReAdd(2),
                 ],
                 deletion,
+                movable: 0,
             };
             check_dm_update(&case).unwrap();
         }
@@ -766,6 +790,7 @@ mod tests {
                 Op::Move(0, [-3, -2, -3]),
             ],
             deletion: Deletion::Local,
+            movable: 0,
         };
         check_dm_update(&case).unwrap();
     }
@@ -789,6 +814,7 @@ mod tests {
             light: ([4, 10, -5], [4, 4], 3),
             ops: vec![Op::Move(26, [-1, -1, 3]), Op::Move(41, [0, -1, -3])],
             deletion: Deletion::Collapse,
+            movable: 0,
         };
         check_dm_update(&case).unwrap();
     }
@@ -811,6 +837,7 @@ mod tests {
             light: ([2, 10, 2], [2, 4], -3),
             ops: vec![Op::Move(227, [-1, 0, -1]), Op::Remove(56)],
             deletion: Deletion::Collapse,
+            movable: 0,
         };
         check_dm_update(&case).unwrap();
     }
@@ -837,6 +864,7 @@ mod tests {
             light: ([-3, 10, -1], [3, 5], 0),
             ops: vec![Op::Move(88, [1, 1, 0])],
             deletion: Deletion::Local,
+            movable: 0,
         };
         check_dm_update(&case).unwrap();
     }

@@ -174,6 +174,7 @@ impl DmScene {
                     whole: 0,
                     solid: false,
                     corners: None,
+                    movable: self.objects[id].movable,
                 };
                 (piece, receiver)
             })
@@ -434,6 +435,7 @@ impl DmScene {
             whole,
             solid,
             corners,
+            movable: self.objects[id].movable,
         }
     }
 

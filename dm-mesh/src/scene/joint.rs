@@ -325,7 +325,8 @@ impl DmScene {
         let mut made = Vec::with_capacity(count);
         for i in 0..count {
             let cast = BodyCast::umbra_part(outward.clone(), &listed, &parts, i);
-            let piece = self.body_piece(owner, flags, cast, &sources);
+            let mut piece = self.body_piece(owner, flags, cast, &sources);
+            piece.movable = objects.iter().any(|&o| self.objects[o].movable);
             let joint = self.insert_body(piece, members.iter().copied());
             for &o in &objects {
                 self.objects[o].joints.push(joint);

@@ -158,7 +158,19 @@ fn run(t: &TestScene, ops: &[Op]) -> Result<(), TestCaseError> {
 }
 
 fn run_with(t: &TestScene, ops: &[Op], options: DmOptions) -> Result<(), TestCaseError> {
-    let (mut scene, ids) = t.build_with(options);
+    run_movable(t, ops, options, &[])
+}
+
+/// [`run_with`], the objects at `movable` declared movable at the build.
+fn run_movable(
+    t: &TestScene,
+    ops: &[Op],
+    options: DmOptions,
+    movable: &[usize],
+) -> Result<(), TestCaseError> {
+    let light = DmLight::new(t.light.clone(), 1.0).unwrap();
+    let (mut scene, ids) =
+        DmScene::build_movable(vec![light], t.objects.clone(), movable, options).unwrap();
     scene.illuminate();
     check_all(&scene)?;
     let mut model = Model {
@@ -209,6 +221,33 @@ proptest! {
             }
         }
     }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// Objects declared movable at the build (merged after the static
+    /// ones) give the regions of a plain build, before and after updates.
+    #[test]
+    fn movable_objects_agree_with_a_rebuild(
+        t in scene_with(3..12),
+        chosen in prop::collection::vec(1_usize..12, 1..4),
+        ops in ops(),
+    ) {
+        let movable: Vec<usize> = chosen.into_iter().filter(|&k| k < t.objects.len()).collect();
+        run_movable(&t, &[], DmOptions::default(), &movable)?;
+        run_movable(&t, &ops, DmOptions::default(), &movable)?;
+    }
+}
+
+/// An index past the objects is not an object to declare movable.
+#[test]
+fn a_movable_index_past_the_objects_is_an_error() {
+    let t = plate_over_boxes();
+    let light = DmLight::new(t.light.clone(), 1.0).unwrap();
+    let n = t.objects.len();
+    let result = DmScene::build_movable(vec![light], t.objects, &[n], DmOptions::default());
+    assert!(matches!(result, Err(dm_mesh::Error::UnknownObject)));
 }
 
 proptest! {
