@@ -472,9 +472,10 @@ impl DmScene {
     /// nodes. An object the build places among the others (front to back
     /// from the light) has its nodes high in the trees, and its first
     /// removal must rebuild what lies under them (a box of the 10k-polygon
-    /// hall: 15 ms for its first move, 7-8 ms for the later ones; declared
-    /// movable, every move is a later one). The shadows are the same
-    /// either way; only the trees' shapes differ.
+    /// hall on 2 cores: 15-20 ms for its first move, 7-8 ms for the later
+    /// ones; declared movable, 8-13 ms and 6.5-7 ms, the first move's
+    /// extra now the first touch of memory the build left). The shadows
+    /// are the same either way; only the trees' shapes differ.
     ///
     /// Errors: those of [`Self::build_with`], and an index past `objects`
     /// ([`Error::UnknownObject`]).
