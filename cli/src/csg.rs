@@ -13,6 +13,13 @@ use crate::obj::ObjMesh;
 /// Computes `A op B` for two closed meshes read from `a_path` and
 /// `b_path` (named in errors): the closed, T-junction-free boundary, with
 /// its vertices in world coordinates.
+///
+/// Errors: a mesh that does not close or encloses no volume once snapped
+/// to the grid, and a result that does not close. The last comes of
+/// inputs whose snapped surfaces fold or cross themselves (features
+/// finer than a few grid steps: an earlier result fed back in, with
+/// corners a hair apart), which the solids' BSPs take for walls; such a
+/// result is refused rather than written open.
 pub fn csg(
     a: &ObjMesh,
     a_path: &Path,
@@ -38,7 +45,34 @@ pub fn csg(
     for v in &mut mesh.vertices {
         *v = grid.grid_to_world(*v);
     }
-    Ok(merge_equal_positions(mesh))
+    let mesh = merge_equal_positions(mesh);
+    let open = open_edges(&mesh);
+    if open > 0 {
+        return Err(Error::Csg {
+            a: a_path.to_path_buf(),
+            b: b_path.to_path_buf(),
+            message: format!(
+                "the result does not close ({open} edges without a matching opposite edge), so none is written: \
+                 an input's surface folds over or crosses itself once snapped to the grid (step {:e}), \
+                 where it has faces thinner than a few steps or corners closer than that",
+                grid.cell_size()
+            ),
+        });
+    }
+    Ok(mesh)
+}
+
+/// The directed edges of `mesh` (by vertex index) that no face runs the
+/// other way, counted with multiplicity: zero for a closed surface.
+fn open_edges(mesh: &IndexedMesh) -> usize {
+    let mut edges: HashMap<(u32, u32), i64> = HashMap::new();
+    for face in &mesh.faces {
+        for (i, &p) in face.iter().enumerate() {
+            let q = face[(i + 1) % face.len()];
+            *edges.entry((p.min(q), p.max(q))).or_insert(0) += if p < q { 1 } else { -1 };
+        }
+    }
+    edges.values().map(|c| c.unsigned_abs() as usize).sum()
 }
 
 /// The mesh with vertices of equal world coordinates made one: exact

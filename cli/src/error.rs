@@ -93,6 +93,17 @@ pub enum Error {
         /// What cannot be written.
         message: String,
     },
+    /// A set operation whose result would not be a closed surface (the
+    /// inputs' snapped surfaces fold or cross themselves).
+    #[error("{} and {}: {message}", a.display(), b.display())]
+    Csg {
+        /// The first mesh.
+        a: PathBuf,
+        /// The second mesh.
+        b: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
     /// A demo scene name that does not exist.
     #[error("unknown demo scene `{name}` (known: {known})")]
     UnknownDemo {
