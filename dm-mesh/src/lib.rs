@@ -89,16 +89,20 @@
 //! ```
 //! use area_shadow::AreaSource;
 //! use bsp_core::{ConvexPolygon, GridPoint};
-//! use dm_mesh::{CellClass, DmLight, DmScene};
+//! use dm_mesh::{CellClass, DmLight, DmOptions, DmScene};
 //! use svbsp::PieceFlags;
 //!
 //! let g = |x, y, z| GridPoint { x, y, z };
 //! let floor = ConvexPolygon::from_grid_points(&[g(-40, 0, 40), g(40, 0, 40), g(40, 0, -40), g(-40, 0, -40)], 0).unwrap();
 //! let square = |x: i32| ConvexPolygon::from_grid_points(&[g(x - 4, 5, 4), g(x + 4, 5, 4), g(x + 4, 5, -4), g(x - 4, 5, -4)], 1).unwrap();
 //! let light = AreaSource::from_grid_points(&[g(-1, 10, -1), g(1, 10, -1), g(1, 10, 1), g(-1, 10, 1)]).unwrap();
-//! let (mut scene, ids) = DmScene::build(
+//! // The square (object 1) will move: declared movable, its shadow's
+//! // nodes go to the bottom of the floor's tree.
+//! let (mut scene, ids) = DmScene::build_movable(
 //!     vec![DmLight::new(light, 1.0).unwrap()],
 //!     vec![(vec![floor], PieceFlags::default()), (vec![square(0)], PieceFlags::default())],
+//!     &[1],
+//!     DmOptions::default(),
 //! ).unwrap();
 //! let floor_id = scene.object_pieces(ids[0]).unwrap()[0];
 //! let area = |scene: &DmScene, class| -> f64 {
