@@ -87,7 +87,7 @@ pub use error::Error;
 pub use gridding::{GridClass, grid_fragments, grid_polygon, halve, subdivide_adaptive};
 pub use groups::{
     Blocker, ConvexGroup, FlatUnion, MAX_SOLID_WORK, convex_groups, convex_unions, edge_contact,
-    flat_joints, flat_unions, holed_shells, one_way, section_unions,
+    flat_joints, flat_unions, holed_shells, one_way, section_unions, winding_number,
 };
 pub use merge_pieces::{merge_pair, merge_same_class};
 pub use pass::{

@@ -67,7 +67,7 @@ pub use plane::{NORMAL_LIMIT, OFFSET_LIMIT, Plane};
 pub use polygon::{Behind, ConvexPolygon, Edges, Facing, PolygonSide, Split};
 pub use predicates::{ImplicitPoint, Side};
 pub use scene_bsp::{Location, SceneBsp, SceneChild, SceneNode, Traversal, Viewpoint};
-pub use solid::{BspSolid, Containment, PointClass, Region, SolidChild, SolidNode};
+pub use solid::{BspSolid, Containment, LeafLabel, PointClass, Region, SolidChild, SolidNode};
 pub use winged_edge::{
     Edge, EdgeKey, Face, FaceKey, FaceSide, FaceSplit, Vertex, VertexKey, VertexPosition,
     WingedMesh,

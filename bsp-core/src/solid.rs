@@ -78,6 +78,23 @@ pub struct BspSolid {
     root: SolidChild,
 }
 
+/// A node still to visit in [`BspSolid::from_boundary_labelled`]'s walk:
+/// its number, the length of its path from the root, and the last step
+/// of that path (the side of its parent's plane it lies on; none for the
+/// root).
+struct Visit {
+    node: u32,
+    depth: usize,
+    step: Option<(Plane, Side)>,
+}
+
+/// Labels an empty region of [`BspSolid::from_boundary_labelled`] from
+/// the planes that bound it, root first (each with the side the region
+/// lies on; the last is the plane of the node above it), and the
+/// boundary's pieces lying in that last plane there; `None` keeps the
+/// last plane's label.
+pub type LeafLabel<'a> = &'a dyn Fn(&[(Plane, Side)], &[ConvexPolygon]) -> Option<Region>;
+
 impl BspSolid {
     /// The empty set.
     pub fn empty() -> Self {
@@ -123,6 +140,18 @@ impl BspSolid {
     /// is inside (just behind the splitting face), one in front is outside.
     /// The result is meaningful only if the faces close up.
     pub fn from_boundary(boundary: Vec<ConvexPolygon>, options: &BuildOptions) -> Self {
+        Self::from_boundary_labelled(boundary, options, &|_, _| None)
+    }
+
+    /// [`Self::from_boundary`], each empty region labelled by `label` where
+    /// it answers ([`LeafLabel`]). The last plane's side is right for a
+    /// surface that bounds a solid; for one that folds or crosses itself
+    /// (faces snapped to a grid), a winding number in the region is.
+    pub fn from_boundary_labelled(
+        boundary: Vec<ConvexPolygon>,
+        options: &BuildOptions,
+        label: LeafLabel<'_>,
+    ) -> Self {
         // Leaves are labelled by the side of the last face plane: every
         // splitter must be a face.
         let options = BuildOptions {
@@ -130,22 +159,67 @@ impl BspSolid {
             ..*options
         };
         let built = autopartition::build(boundary, &options, false);
+        let leaf = |front: bool| SolidChild::Leaf(if front { Region::Out } else { Region::In });
         let link = |l: Link| match l {
             Link::Node(i) => SolidChild::Node(i),
-            Link::EmptyFront => SolidChild::Leaf(Region::Out),
-            Link::EmptyBack => SolidChild::Leaf(Region::In),
+            Link::EmptyFront => leaf(true),
+            Link::EmptyBack => leaf(false),
         };
+        let mut nodes: Vec<SolidNode> = built
+            .nodes
+            .iter()
+            .map(|n| SolidNode {
+                plane: n.plane,
+                front: link(n.front),
+                back: link(n.back),
+            })
+            .collect();
+        // Each empty region asked about with the planes that bound it: a
+        // walk down the tree, the path to each node kept.
+        let mut path: Vec<(Plane, Side)> = Vec::new();
+        let mut stack: Vec<Visit> = match built.root {
+            Link::Node(node) => vec![Visit {
+                node,
+                depth: 0,
+                step: None,
+            }],
+            _ => Vec::new(),
+        };
+        while let Some(Visit {
+            node: i,
+            depth,
+            step,
+        }) = stack.pop()
+        {
+            path.truncate(depth.saturating_sub(1));
+            path.extend(step);
+            let n = &built.nodes[i as usize];
+            for (child, side) in [(n.front, Side::Front), (n.back, Side::Back)] {
+                match child {
+                    Link::Node(c) => stack.push(Visit {
+                        node: c,
+                        depth: depth + 1,
+                        step: Some((n.plane, side)),
+                    }),
+                    Link::EmptyFront | Link::EmptyBack => {
+                        path.push((n.plane, side));
+                        let labelled = label(&path, &n.polygons);
+                        path.pop();
+                        if let Some(region) = labelled {
+                            let slot = &mut nodes[i as usize];
+                            *(if side == Side::Front {
+                                &mut slot.front
+                            } else {
+                                &mut slot.back
+                            }) = SolidChild::Leaf(region);
+                        }
+                    }
+                }
+            }
+        }
         Self {
             root: link(built.root),
-            nodes: built
-                .nodes
-                .iter()
-                .map(|n| SolidNode {
-                    plane: n.plane,
-                    front: link(n.front),
-                    back: link(n.back),
-                })
-                .collect(),
+            nodes,
         }
     }
 

@@ -3,23 +3,32 @@
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
-use bsp_core::{ConvexPolygon, Grid, GridPoint};
-use svbsp::{BalancedOptions, IndexedMesh, SetOp, balanced_solid, boundary};
+use bsp_core::{BspSolid, ConvexPolygon, Grid, GridPoint, Plane, Region, Side};
+use svbsp::{
+    BalancedOptions, IndexedMesh, SetOp, balanced_solid, balanced_solid_labelled, boundary,
+};
 
 use crate::decompose::{GRID_MARGIN, convex_pieces};
 use crate::error::{Error, Result};
 use crate::obj::ObjMesh;
+use crate::winding::Surface;
 
 /// Computes `A op B` for two closed meshes read from `a_path` and
 /// `b_path` (named in errors): the closed, T-junction-free boundary, with
 /// its vertices in world coordinates.
 ///
+/// Inputs whose snapped surfaces fold or cross themselves (features finer
+/// than a few grid steps: an earlier result fed back in, with corners a
+/// hair apart) mislead the solids' BSPs, whose empty cells take the side
+/// of their last plane: a fold's plane puts the wrong side in, and the
+/// result does not close. Then the cells are labelled again by the
+/// surfaces' winding numbers (module `winding`) and the result made
+/// anew.
+///
 /// Errors: a mesh that does not close or encloses no volume once snapped
-/// to the grid, and a result that does not close. The last comes of
-/// inputs whose snapped surfaces fold or cross themselves (features
-/// finer than a few grid steps: an earlier result fed back in, with
-/// corners a hair apart), which the solids' BSPs take for walls; such a
-/// result is refused rather than written open.
+/// to the grid, and a result that still does not close (cells too small
+/// to hold a grid point keep their last plane's side); it is refused
+/// rather than written open.
 pub fn csg(
     a: &ObjMesh,
     a_path: &Path,
@@ -39,13 +48,24 @@ pub fn csg(
     let a_faces = closed_pieces(a, a_path, &grid)?;
     let b_faces = closed_pieces(b, b_path, &grid)?;
     let options = BalancedOptions::default();
+    let result = |a_solid: &BspSolid, b_solid: &BspSolid| {
+        let mut mesh = boundary(a_solid, &a_faces, b_solid, &b_faces, op).mesh;
+        for v in &mut mesh.vertices {
+            *v = grid.grid_to_world(*v);
+        }
+        merge_equal_positions(mesh)
+    };
     let a_solid = balanced_solid(a_faces.clone(), &options);
     let b_solid = balanced_solid(b_faces.clone(), &options);
-    let mut mesh = boundary(&a_solid, &a_faces, &b_solid, &b_faces, op).mesh;
-    for v in &mut mesh.vertices {
-        *v = grid.grid_to_world(*v);
+    let mut mesh = result(&a_solid, &b_solid);
+    if open_edges(&mesh) > 0 {
+        // A surface that folds or crosses itself once snapped: the cells
+        // just off a fold are not what the last plane's side says. Their
+        // winding numbers are.
+        let a_solid = winding_solid(&a_faces, &options);
+        let b_solid = winding_solid(&b_faces, &options);
+        mesh = result(&a_solid, &b_solid);
     }
-    let mesh = merge_equal_positions(mesh);
     let open = open_edges(&mesh);
     if open > 0 {
         return Err(Error::Csg {
@@ -60,6 +80,20 @@ pub fn csg(
         });
     }
     Ok(mesh)
+}
+
+/// The solid of the closed surface `faces` as a balanced tree whose cells
+/// are inside where the surface winds around them (a positive winding
+/// number just off the pieces above them), and by their last plane's side
+/// where no ray from those pieces counts cleanly.
+fn winding_solid(faces: &[ConvexPolygon], options: &BalancedOptions) -> BspSolid {
+    let surface = Surface::new(faces);
+    let label = |path: &[(Plane, Side)], pieces: &[ConvexPolygon]| {
+        surface
+            .winding_in(path, pieces)
+            .map(|w| if w > 0 { Region::In } else { Region::Out })
+    };
+    balanced_solid_labelled(faces.to_vec(), options, &label)
 }
 
 /// The directed edges of `mesh` (by vertex index) that no face runs the

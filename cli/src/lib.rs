@@ -75,6 +75,7 @@ mod svg;
 mod transform;
 mod vec3;
 mod weld;
+mod winding;
 
 pub use atomic::{Outputs, write_atomic};
 pub use bsp_core;

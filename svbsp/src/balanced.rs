@@ -20,7 +20,8 @@
 //! label) and lies in no face's plane.
 
 use bsp_core::{
-    BspSolid, BuildOptions, ConvexPolygon, Plane, PolygonSide, Region, SolidChild, SolidNode, Split,
+    BspSolid, BuildOptions, ConvexPolygon, LeafLabel, Plane, PolygonSide, Region, Side, SolidChild,
+    SolidNode, Split,
 };
 
 /// How [`balanced_solid`] divides the faces.
@@ -52,6 +53,17 @@ impl Default for BalancedOptions {
 /// balanced tree. Meaningful only if the faces close up, like
 /// [`BspSolid::from_boundary`].
 pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> BspSolid {
+    balanced_solid_labelled(faces, options, &|_, _| None)
+}
+
+/// [`balanced_solid`], its empty regions labelled by `label` where it
+/// answers ([`BspSolid::from_boundary_labelled`]; the planes bounding a
+/// region start with the axis splits above its cell).
+pub fn balanced_solid_labelled(
+    faces: Vec<ConvexPolygon>,
+    options: &BalancedOptions,
+    label: LeafLabel<'_>,
+) -> BspSolid {
     let mut nodes: Vec<SolidNode> = Vec::new();
     let mut root = SolidChild::Leaf(Region::Out);
     // (faces of the cell, where its subtree hangs).
@@ -65,8 +77,9 @@ pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> B
             (f, c)
         })
         .collect();
-    let mut stack: Vec<(Faces, Hang)> = vec![(faces, None)];
-    while let Some((list, slot)) = stack.pop() {
+    // (Each cell with the axis planes that bound it, for `label`.)
+    let mut stack: Vec<(Faces, Hang, Bounds)> = vec![(faces, None, Vec::new())];
+    while let Some((list, slot, bounds)) = stack.pop() {
         let link = match axis_split(list, options.leaf_faces) {
             Ok((plane, back, front)) => {
                 let id = nodes.len() as u32;
@@ -75,15 +88,19 @@ pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> B
                     front: SolidChild::Leaf(Region::Out),
                     back: SolidChild::Leaf(Region::Out),
                 });
-                stack.push((back, Some((id, false))));
-                stack.push((front, Some((id, true))));
+                let within = |side| [bounds.as_slice(), &[(plane, side)]].concat();
+                stack.push((back, Some((id, false)), within(Side::Back)));
+                stack.push((front, Some((id, true)), within(Side::Front)));
                 SolidChild::Node(id)
             }
             Err(list) => {
                 let list = list.into_iter().map(|(f, _)| f).collect();
+                let in_cell = |path: &[(Plane, Side)], pieces: &[ConvexPolygon]| {
+                    label(&[bounds.as_slice(), path].concat(), pieces)
+                };
                 graft(
                     &mut nodes,
-                    BspSolid::from_boundary(list, &options.autopartition),
+                    BspSolid::from_boundary_labelled(list, &options.autopartition, &in_cell),
                 )
             }
         };
@@ -95,6 +112,9 @@ pub fn balanced_solid(faces: Vec<ConvexPolygon>, options: &BalancedOptions) -> B
     }
     BspSolid::from_nodes(nodes, root).expect("the builder makes a tree")
 }
+
+/// The axis planes around a cell, each with the side the cell lies on.
+type Bounds = Vec<(Plane, Side)>;
 
 /// Where a subtree hangs: `None` for the root, else `(parent, is front
 /// child)`.

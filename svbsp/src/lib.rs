@@ -68,7 +68,7 @@ mod tree;
 mod union;
 mod volume;
 
-pub use balanced::{BalancedOptions, balanced_solid};
+pub use balanced::{BalancedOptions, balanced_solid, balanced_solid_labelled};
 pub use bsp_core;
 pub use csg::{CsgBoundary, IndexedMesh, boundary, boundary_pieces, weld};
 pub use error::Error;

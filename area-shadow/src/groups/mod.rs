@@ -94,6 +94,7 @@ mod winding;
 
 pub use flat_union::FlatUnion;
 pub use joint::{convex_unions, edge_contact, flat_joints, one_way};
+pub use winding::winding_number;
 
 /// The most side tests (pieces times vertices) spent checking that one
 /// closed surface is convex; bigger surfaces form no group. About a

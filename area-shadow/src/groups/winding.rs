@@ -28,11 +28,7 @@ const DIRECTIONS: [[i32; 3]; 6] = [
 /// `faces`: each outline's plane facing out): at least 1 inside, 0
 /// outside. `None` when `point` lies in a face's plane (it may be on the
 /// surface) or every direction tried meets an edge or a corner.
-pub(super) fn winding_number(
-    point: GridPoint,
-    outlines: &[&[GridPoint]],
-    faces: &[Plane],
-) -> Option<i64> {
+pub fn winding_number(point: GridPoint, outlines: &[&[GridPoint]], faces: &[Plane]) -> Option<i64> {
     let sides: Vec<Side> = faces.iter().map(|f| side_of_point(f, point)).collect();
     if sides.contains(&Side::On) {
         return None;

@@ -326,9 +326,10 @@ fn turned_cube(corners: [[f64; 3]; 8]) -> String {
 /// Three turned cubes intersected, the result fed back in (an adversarial
 /// sweep's chain): it has corners 2.7e-9 apart, and snapped to a step of
 /// 1.2e-7 its surface folds, which the solid's BSP takes for walls (`A -
-/// A` was written open, of volume -0.17). Each operation with itself is
-/// closed with the right volume, or refused by name with nothing written:
-/// never an open surface.
+/// A` was written open, of volume -0.17). With a tetrahedron apart every
+/// operation is closed and right; each with itself is closed with the
+/// right volume, or refused by name with nothing written: never an open
+/// surface.
 #[test]
 fn a_surface_that_snapping_folds_gives_no_open_output() {
     let half = |c: [[f64; 3]; 4]| -> [[f64; 3]; 8] {
@@ -380,10 +381,17 @@ fn a_surface_that_snapping_folds_gives_no_open_output() {
             [-1.3705705210903074, 0.7898699357856416, -0.7054374042111954],
         ]),
     ];
+    // A tetrahedron 1.22 away from their intersection.
+    let tetrahedron = "v -3.27267602979005 0.458923972317024 -1.84052632714059\n\
+                       v -0.7582986125516564 1.7409073019143988 -1.6549867186576204\n\
+                       v -3.835876623865679 1.4408506838190531 -0.992808789235617\n\
+                       v -2.9157451457744985 2.504774597312929 0.7454155833128795\n\
+                       f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
     let dir = folder(&[
         ("m0.obj", &turned_cube(cubes[0])),
         ("m1.obj", &turned_cube(cubes[1])),
         ("m2.obj", &turned_cube(cubes[2])),
+        ("b.obj", tetrahedron),
     ]);
     for args in [
         ["m0.obj", "--intersect", "m1.obj", "-o", "m01.obj"],
@@ -394,6 +402,20 @@ fn a_surface_that_snapping_folds_gives_no_open_output() {
     }
     let (whole, closed) = read(&dir.path().join("a.obj"));
     assert!(closed && whole > 1.0, "{whole}");
+    // With the tetrahedron apart: the folds' cells labelled by winding
+    // number (their last planes' sides put the tetrahedron inside, and
+    // the union came out open), each result closed and right.
+    let (tetra, _) = read(&dir.path().join("b.obj"));
+    for (op, expected) in [
+        ("--union", whole + tetra),
+        ("--intersect", 0.0),
+        ("--subtract", whole),
+    ] {
+        let run = umbra(dir.path(), &["csg", "a.obj", op, "b.obj", "-o", "ab.obj"]);
+        assert_eq!(run.code, 0, "{op}: {}", run.stderr);
+        let (volume, closed) = read(&dir.path().join("ab.obj"));
+        assert!(closed && (volume - expected).abs() < 1e-6, "{op}: {volume}");
+    }
     for (op, expected) in [
         ("--union", whole),
         ("--intersect", whole),

@@ -3,8 +3,9 @@
 
 use crate::common::*;
 use bsp_core::PointClass;
+use bsp_core::{ConvexPolygon, Plane, Region, Side};
 use rand::SeedableRng;
-use svbsp::{BalancedOptions, SetOp, balanced_solid, boundary, merge};
+use svbsp::{BalancedOptions, SetOp, balanced_solid, balanced_solid_labelled, boundary, merge};
 
 #[test]
 fn balanced_trees_classify_like_autopartitions() {
@@ -62,5 +63,65 @@ fn set_operations_on_balanced_trees() {
         assert!((union + inter - va - vb).abs() <= 1e-9 * (va + vb));
         assert!((diff + inter - va).abs() <= 1e-9 * (va + vb));
         let _ = SetOp::Union;
+    }
+}
+
+/// A labelled balanced tree asks about each empty region with the planes
+/// that bound it, the axis splits' included: the pieces in the last plane
+/// lie within all the others; its answers are the leaves' labels, and
+/// answering as the last plane's side does gives the plain tree.
+#[test]
+fn labels_are_asked_with_each_cell_and_kept() {
+    let mut rng = rand_pcg::Pcg64::seed_from_u64(5);
+    let faces = random_star(&mut rng, [0, 0, 0], 5, 300.0, 900.0);
+    let options = BalancedOptions {
+        leaf_faces: 4,
+        ..Default::default()
+    };
+    let asked = std::cell::Cell::new(0);
+    let longest = std::cell::Cell::new(0);
+    let axis_bounded = std::cell::Cell::new(0);
+    let by_side = |path: &[(Plane, Side)], pieces: &[ConvexPolygon]| {
+        let (last, bounds) = path.split_last().expect("a plane above");
+        for piece in pieces {
+            assert!(piece.support().is_coincident(&last.0) || piece.support().is_opposite(&last.0));
+            for (plane, side) in bounds {
+                for v in 0..piece.len() {
+                    let at = piece.vertex_side(v, plane);
+                    assert!(at == *side || at == Side::On, "a piece outside its cell");
+                }
+            }
+        }
+        asked.set(asked.get() + 1);
+        longest.set(longest.get().max(path.len()));
+        // (The star's faces lie in no axis plane: these are the splits'.)
+        let axis = |p: &Plane| p.normal().iter().filter(|&&c| c == 0).count() == 2;
+        axis_bounded.set(axis_bounded.get() + usize::from(bounds.iter().any(|(p, _)| axis(p))));
+        Some(if last.1 == Side::Front {
+            Region::Out
+        } else {
+            Region::In
+        })
+    };
+    let labelled = balanced_solid_labelled(faces.clone(), &options, &by_side);
+    let plain = balanced_solid(faces.clone(), &options);
+    assert!(
+        asked.get() > 50 && longest.get() > 6,
+        "{} {}",
+        asked.get(),
+        longest.get()
+    );
+    assert!(
+        axis_bounded.get() > asked.get() / 2,
+        "{}",
+        axis_bounded.get()
+    );
+    for p in random_points(&mut rng, 400, 1000) {
+        assert_eq!(labelled.classify_point(p), plain.classify_point(p));
+    }
+    let inside = |_: &[(Plane, Side)], _: &[ConvexPolygon]| Some(Region::In);
+    let full = balanced_solid_labelled(faces, &options, &inside);
+    for p in random_points(&mut rng, 100, 1000) {
+        assert_ne!(full.classify_point(p), PointClass::Out);
     }
 }

@@ -1,0 +1,388 @@
+//! Winding numbers of a closed surface of convex grid polygons, exactly,
+//! just off a polygon: what labels a solid's cells when its snapped
+//! surface folds or crosses itself (`umbra csg`).
+//!
+//! The count runs along a ray parallel to a coordinate axis, from a point
+//! inside the polygon: the ray is the line where two axis planes through
+//! grid coordinates meet, and each point it meets a plane at is the
+//! kernel's implicit point of three planes, so that every decision (is the
+//! start inside the polygon, does a face's crossing lie on the ray and
+//! inside the face) is an exact side test. A ray that grazes a face's edge
+//! or meets a face at its start is not counted: another start is tried.
+//! A cell too narrow on its plane for a start is asked at a grid point
+//! inside it ([`area_shadow::winding_number`]).
+
+use area_shadow::winding_number;
+use bsp_core::predicates::side_of_point;
+use bsp_core::{ConvexPolygon, GRID_LIMIT, GridPoint, ImplicitPoint, Plane, Side, Split};
+use svbsp::ConvexPolyhedron;
+
+/// A closed surface's faces, each with its grid-coordinate bounding box,
+/// to count crossings along axis-parallel rays.
+pub(crate) struct Surface<'a> {
+    faces: &'a [ConvexPolygon],
+    /// Per face, its corners' least and greatest grid coordinates.
+    boxes: Vec<([i32; 3], [i32; 3])>,
+    /// Per face, its corners and its plane (for
+    /// [`area_shadow::winding_number`] at grid points).
+    outlines: Vec<Vec<GridPoint>>,
+    planes: Vec<Plane>,
+}
+
+/// Grid coordinates (along axes `across`) of starts to try near `piece`:
+/// its centroid's, points between the centroid and each corner (a long
+/// thin piece holds grid points along its middle, seldom at its
+/// centroid), and points past its corners (the cell's side may be wider
+/// than a piece too thin to hold one), each once.
+fn starts(piece: &ConvexPolygon, across: [usize; 2]) -> Vec<[i64; 2]> {
+    let corners = piece.vertices_f64();
+    let n = corners.len() as f64;
+    let centre = across.map(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
+    let mut out: Vec<[i64; 2]> = Vec::new();
+    let mut push = |p: [f64; 2]| {
+        let g = p.map(|x| x.round() as i64);
+        if !out.contains(&g) {
+            out.push(g);
+        }
+    };
+    push(centre);
+    for t in [0.5, 0.25, 0.75, 0.9, 1.5, 3.0] {
+        for c in &corners {
+            let corner = across.map(|k| c[k]);
+            push([0, 1].map(|i| centre[i] + t * (corner[i] - centre[i])));
+        }
+    }
+    out
+}
+
+impl<'a> Surface<'a> {
+    /// The surface of `faces` (convex polygons with grid-point corners,
+    /// counter-clockwise seen from outside).
+    pub(crate) fn new(faces: &'a [ConvexPolygon]) -> Self {
+        let boxes = faces
+            .iter()
+            .map(|f| {
+                (0..f.len()).filter_map(|i| f.vertex_grid_point(i)).fold(
+                    ([i32::MAX; 3], [i32::MIN; 3]),
+                    |(lo, hi), g| {
+                        let g = g.to_array();
+                        (
+                            std::array::from_fn(|k| lo[k].min(g[k])),
+                            std::array::from_fn(|k| hi[k].max(g[k])),
+                        )
+                    },
+                )
+            })
+            .collect();
+        let outlines = faces
+            .iter()
+            .map(|f| {
+                (0..f.len())
+                    .filter_map(|i| f.vertex_grid_point(i))
+                    .collect()
+            })
+            .collect();
+        let planes = faces.iter().map(|f| *f.support()).collect();
+        Self {
+            faces,
+            boxes,
+            outlines,
+            planes,
+        }
+    }
+
+    /// The winding number in a cell bounded by `path` (planes root first,
+    /// each with the side the cell lies on; the cell lies against the
+    /// last, where `pieces` lie in it): 1 inside a solid the surface
+    /// bounds, 0 outside. Counted along a ray into the cell from a point
+    /// of the last plane inside the other planes, near the pieces; `None`
+    /// if no start tried ([`starts`]) gives a ray clear of every face's
+    /// edges.
+    pub(crate) fn winding_in(
+        &self,
+        path: &[(Plane, Side)],
+        pieces: &[ConvexPolygon],
+    ) -> Option<i64> {
+        let (&(plane, side), bounds) = path.split_last()?;
+        let axis = plane.dominant_axis();
+        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+        // The ray runs along the axis into the cell.
+        let up = (plane.normal()[axis] > 0) == (side == Side::Front);
+        // Starts near the pieces, then in the cell's side on the plane
+        // (wider than the pieces where they are slivers).
+        let section = section(&plane, bounds);
+        for piece in pieces.iter().chain(&section) {
+            for [cu, cv] in starts(piece, [u, v]) {
+                let Some(ray) = Ray::new(axis, [u, v], [cu, cv], up) else {
+                    continue;
+                };
+                let Ok(start) = ImplicitPoint::new(plane, ray.planes[0], ray.planes[1]) else {
+                    continue;
+                };
+                if bounds.iter().any(|(p, s)| start.side(p) != *s) {
+                    continue;
+                }
+                if let Some(count) = self.count(&ray, &plane, side) {
+                    return Some(count);
+                }
+            }
+        }
+        // A cell whose side on the plane holds no start (a wedge that
+        // widens away from it): grid points inside the cell, around its
+        // corners' centroid.
+        let outward: Vec<Plane> = path
+            .iter()
+            .map(|(p, s)| if *s == Side::Back { *p } else { p.flipped() })
+            .collect();
+        let cell = ConvexPolyhedron::from_planes(&outward)?;
+        let corners: Vec<[f64; 3]> = cell
+            .facets()
+            .iter()
+            .flat_map(|f| f.vertices_f64())
+            .collect();
+        let n = corners.len() as f64;
+        let centre: [f64; 3] =
+            std::array::from_fn(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
+        let mut tried: Vec<GridPoint> = Vec::new();
+        for t in [0.0, 0.5, 0.25, 0.75] {
+            for corner in &corners {
+                let at = |k: usize| (centre[k] + t * (corner[k] - centre[k])).round() as i64;
+                let Ok(g) = GridPoint::new(at(0), at(1), at(2)) else {
+                    continue;
+                };
+                if tried.contains(&g) {
+                    continue;
+                }
+                tried.push(g);
+                if path.iter().any(|(p, s)| side_of_point(p, g) != *s) {
+                    continue;
+                }
+                let outlines: Vec<&[GridPoint]> = self.outlines.iter().map(Vec::as_slice).collect();
+                if let Some(w) = winding_number(g, &outlines, &self.planes) {
+                    return Some(w);
+                }
+            }
+        }
+        None
+    }
+
+    /// The signed crossings of the faces by `ray`, which starts in `plane`
+    /// and runs to its `side`; `None` if the ray grazes a face (meets its
+    /// edge, runs in its plane across its box, or meets it at the start).
+    /// Faces in `plane` are not met past the start.
+    fn count(&self, ray: &Ray, plane: &Plane, side: Side) -> Option<i64> {
+        let mut winding = 0;
+        for (face, (lo, hi)) in self.faces.iter().zip(&self.boxes) {
+            let [u, v] = ray.across;
+            let [cu, cv] = ray.at;
+            if i64::from(lo[u]) > cu
+                || i64::from(hi[u]) < cu
+                || i64::from(lo[v]) > cv
+                || i64::from(hi[v]) < cv
+            {
+                continue;
+            }
+            let support = face.support();
+            if support.is_coincident(plane) || support.is_opposite(plane) {
+                continue;
+            }
+            let along = support.normal()[ray.axis];
+            if along == 0 {
+                // The ray is parallel to the face's plane: it misses the
+                // face unless it lies in that plane (then it may run along
+                // the face).
+                let normal = support.normal();
+                let value = i128::from(normal[u]) * i128::from(cu)
+                    + i128::from(normal[v]) * i128::from(cv)
+                    + support.offset();
+                if value == 0 {
+                    return None;
+                }
+                continue;
+            }
+            let Ok(hit) = ImplicitPoint::new(*support, ray.planes[0], ray.planes[1]) else {
+                return None;
+            };
+            match hit.side(plane) {
+                Side::On => return None,
+                s if s != side => continue,
+                _ => {}
+            }
+            let mut inside = true;
+            for edge in face.edges() {
+                match hit.side(edge) {
+                    Side::Back => {}
+                    Side::On => return None,
+                    Side::Front => {
+                        inside = false;
+                        break;
+                    }
+                }
+            }
+            if inside {
+                // Leaving through a face's front (outward) counts one out
+                // of the solid.
+                winding += if (along > 0) == ray.up { 1 } else { -1 };
+            }
+        }
+        Some(winding)
+    }
+}
+
+/// The part of `plane` inside the grid's box and on the given side of
+/// each of `bounds`; `None` if it is empty.
+fn section(plane: &Plane, bounds: &[(Plane, Side)]) -> Option<ConvexPolygon> {
+    let axis = plane.dominant_axis();
+    let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+    let limit = i64::from(GRID_LIMIT);
+    let wall = |k: usize, sign: i64| {
+        let mut normal = [0_i64; 3];
+        normal[k] = sign;
+        let mut point = [0_i64; 3];
+        point[k] = sign * limit;
+        Plane::with_normal_through(normal, GridPoint::new(point[0], point[1], point[2]).ok()?)
+    };
+    // Counter-clockwise around the axis: v low, u high, v high, u low.
+    let mut walls = [wall(v, -1)?, wall(u, 1)?, wall(v, 1)?, wall(u, -1)?];
+    if plane.normal()[axis] < 0 {
+        walls.reverse();
+    }
+    let mut part = ConvexPolygon::from_planes(*plane, &walls, 0).ok()?;
+    for (bound, side) in bounds {
+        part = match (part.split(bound), side) {
+            (Split::Back, Side::Back) | (Split::Front, Side::Front) => part,
+            (Split::Both(back, _), Side::Back) => back,
+            (Split::Both(_, front), Side::Front) => front,
+            _ => return None,
+        };
+    }
+    Some(part)
+}
+
+/// A line parallel to a coordinate axis, through grid coordinates on the
+/// other two, directed up or down the axis.
+struct Ray {
+    axis: usize,
+    across: [usize; 2],
+    at: [i64; 2],
+    /// The planes `across[0] = at[0]` and `across[1] = at[1]`.
+    planes: [Plane; 2],
+    up: bool,
+}
+
+impl Ray {
+    fn new(axis: usize, across: [usize; 2], at: [i64; 2], up: bool) -> Option<Self> {
+        let plane = |k: usize, value: i64| {
+            let mut normal = [0_i64; 3];
+            normal[k] = 1;
+            let mut point = [0_i64; 3];
+            point[k] = value;
+            let through = GridPoint::new(point[0], point[1], point[2]).ok()?;
+            Plane::with_normal_through(normal, through)
+        };
+        Some(Self {
+            axis,
+            across,
+            at,
+            planes: [plane(across[0], at[0])?, plane(across[1], at[1])?],
+            up,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn g(x: i64, y: i64, z: i64) -> GridPoint {
+        GridPoint::new(x, y, z).expect("a grid point")
+    }
+
+    /// A box `[lo, hi]` as six quads, counter-clockwise seen from outside.
+    fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
+        let corner = |i: usize| {
+            let at = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
+            g(at(0), at(1), at(2))
+        };
+        [
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+        ]
+        .into_iter()
+        .map(|f| ConvexPolygon::from_grid_points(&f.map(corner), 0).expect("a face"))
+        .collect()
+    }
+
+    /// The winding number just off `face` on its `side` (a cell bounded by
+    /// its plane alone).
+    fn off(surface: &Surface<'_>, face: &ConvexPolygon, side: Side) -> Option<i64> {
+        surface.winding_in(&[(*face.support(), side)], std::slice::from_ref(face))
+    }
+
+    /// Just behind a box's faces the winding number is 1, just in front 0;
+    /// with a second box inside the first (both wound out), 2 between the
+    /// inner box's faces and 1 outside them; a face turned inside out
+    /// counts the other way.
+    #[test]
+    fn boxes_wind_once_inside_and_nested_twice() {
+        let outer = cuboid([-40, -40, -40], [40, 40, 40]);
+        let surface = Surface::new(&outer);
+        for face in &outer {
+            assert_eq!(off(&surface, face, Side::Back), Some(1));
+            assert_eq!(off(&surface, face, Side::Front), Some(0));
+        }
+        let mut nested = outer.clone();
+        nested.extend(cuboid([-10, -10, -10], [10, 10, 10]));
+        let surface = Surface::new(&nested);
+        for face in &nested[6..] {
+            assert_eq!(off(&surface, face, Side::Back), Some(2));
+            assert_eq!(off(&surface, face, Side::Front), Some(1));
+        }
+        let mut turned = outer.clone();
+        turned.extend(
+            cuboid([-10, -10, -10], [10, 10, 10])
+                .iter()
+                .map(|f| f.flipped()),
+        );
+        let surface = Surface::new(&turned);
+        for face in &turned[6..] {
+            assert_eq!(off(&surface, face, Side::Front), Some(0));
+            assert_eq!(off(&surface, face, Side::Back), Some(1));
+        }
+    }
+
+    /// A cell whose side is too narrow to hold a start on the grid gives
+    /// no count; one wider than its piece, a start past the piece.
+    #[test]
+    fn a_start_must_lie_in_the_cell() {
+        let outer = cuboid([-40, -40, -40], [40, 40, 40]);
+        let surface = Surface::new(&outer);
+        let sliver =
+            ConvexPolygon::from_grid_points(&[g(-30, 0, 5), g(30, 0, 5), g(30, 1, 5)], 0).unwrap();
+        let plane = *sliver.support();
+        // The cell: z > 5, between y = 0 and y = 1.
+        let slab = |y: i64, normal: i64| Plane::with_normal_through([0, normal, 0], g(0, y, 0));
+        let narrow = [
+            (slab(0, 1).unwrap(), Side::Front),
+            (slab(1, 1).unwrap(), Side::Back),
+            (plane, Side::Front),
+        ];
+        assert_eq!(
+            surface.winding_in(&narrow, std::slice::from_ref(&sliver)),
+            None
+        );
+        let wide = [
+            (slab(-5, 1).unwrap(), Side::Front),
+            (slab(5, 1).unwrap(), Side::Back),
+            (plane, Side::Front),
+        ];
+        assert_eq!(
+            surface.winding_in(&wide, std::slice::from_ref(&sliver)),
+            Some(1)
+        );
+    }
+}
