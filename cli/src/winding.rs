@@ -9,8 +9,10 @@
 //! start inside the polygon, does a face's crossing lie on the ray and
 //! inside the face) is an exact side test. A ray that grazes a face's edge
 //! or meets a face at its start is not counted: another start is tried.
-//! A cell too narrow on its plane for a start is asked at a grid point
-//! inside it ([`area_shadow::winding_number`]).
+//! A cell too narrow on its plane for a start there is counted along a
+//! steep line through grid points that crosses the plane near its side's
+//! centroid, or asked at a grid point inside it
+//! ([`area_shadow::winding_number`]).
 
 use area_shadow::winding_number;
 use bsp_core::predicates::side_of_point;
@@ -113,7 +115,7 @@ impl<'a> Surface<'a> {
         let section = section(&plane, bounds);
         for piece in pieces.iter().chain(&section) {
             for [cu, cv] in starts(piece, [u, v]) {
-                let Some(ray) = Ray::new(axis, [u, v], [cu, cv], up) else {
+                let Some(ray) = Ray::along_axis(axis, [u, v], [cu, cv], up) else {
                     continue;
                 };
                 let Ok(start) = ImplicitPoint::new(plane, ray.planes[0], ray.planes[1]) else {
@@ -126,6 +128,15 @@ impl<'a> Surface<'a> {
                     return Some(count);
                 }
             }
+        }
+        // A side on the plane narrower than a grid step: lines through
+        // grid points that cross the plane a small fraction of a step
+        // from the side's centroid.
+        if let Some(count) = section
+            .as_ref()
+            .and_then(|section| self.fine_count(&plane, side, bounds, section))
+        {
+            return Some(count);
         }
         // A cell whose side on the plane holds no start (a wedge that
         // widens away from it): grid points inside the cell, around its
@@ -166,36 +177,93 @@ impl<'a> Surface<'a> {
         None
     }
 
+    /// The count along a steep line into the cell from its side
+    /// `section` on `plane` (the cell on `side`, within `bounds`): from a
+    /// grid point two or three steps off the plane through one `2^k`
+    /// times as far, aimed at the section's centroid, the line crosses the
+    /// plane within about `2^-k` of a step from it.
+    fn fine_count(
+        &self,
+        plane: &Plane,
+        side: Side,
+        bounds: &[(Plane, Side)],
+        section: &ConvexPolygon,
+    ) -> Option<i64> {
+        let corners = section.vertices_f64();
+        let n = corners.len() as f64;
+        let centre: [f64; 3] =
+            std::array::from_fn(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
+        let normal = plane.unit_normal_f64();
+        let facing: [i128; 3] = plane.normal().map(i128::from);
+        for off in [2.0, -2.0, 3.0, -3.0] {
+            let from: [i64; 3] =
+                std::array::from_fn(|k| (centre[k] + off * normal[k]).round() as i64);
+            for scale in [1_i64 << 8, 1 << 12, 1 << 16] {
+                let aim: [i64; 3] = std::array::from_fn(|k| {
+                    (scale as f64 * (centre[k] - from[k] as f64)).round() as i64
+                });
+                let into: i128 = (0..3).map(|k| facing[k] * i128::from(aim[k])).sum();
+                if into == 0 {
+                    continue;
+                }
+                // Into the cell: along the aim if it heads to the cell's
+                // side of the plane.
+                let direction = if (into > 0) == (side == Side::Front) {
+                    aim
+                } else {
+                    aim.map(|c| -c)
+                };
+                let Some(ray) = Ray::through(from, direction) else {
+                    continue;
+                };
+                let Ok(start) = ImplicitPoint::new(*plane, ray.planes[0], ray.planes[1]) else {
+                    continue;
+                };
+                if bounds.iter().any(|(p, s)| start.side(p) != *s) {
+                    continue;
+                }
+                if let Some(count) = self.count(&ray, plane, side) {
+                    return Some(count);
+                }
+            }
+        }
+        None
+    }
+
     /// The signed crossings of the faces by `ray`, which starts in `plane`
     /// and runs to its `side`; `None` if the ray grazes a face (meets its
-    /// edge, runs in its plane across its box, or meets it at the start).
-    /// Faces in `plane` are not met past the start.
+    /// edge, runs in its plane, or meets it at the start). Faces in
+    /// `plane` are not met past the start.
     fn count(&self, ray: &Ray, plane: &Plane, side: Side) -> Option<i64> {
         let mut winding = 0;
         for (face, (lo, hi)) in self.faces.iter().zip(&self.boxes) {
-            let [u, v] = ray.across;
-            let [cu, cv] = ray.at;
-            if i64::from(lo[u]) > cu
-                || i64::from(hi[u]) < cu
-                || i64::from(lo[v]) > cv
-                || i64::from(hi[v]) < cv
-            {
-                continue;
+            if let Some(([u, v], [cu, cv])) = ray.column {
+                // An axis-parallel ray meets only faces whose boxes hold
+                // its column.
+                if i64::from(lo[u]) > cu
+                    || i64::from(hi[u]) < cu
+                    || i64::from(lo[v]) > cv
+                    || i64::from(hi[v]) < cv
+                {
+                    continue;
+                }
             }
             let support = face.support();
             if support.is_coincident(plane) || support.is_opposite(plane) {
                 continue;
             }
-            let along = support.normal()[ray.axis];
+            let normal = support.normal();
+            let along: i128 = (0..3)
+                .map(|k| i128::from(normal[k]) * i128::from(ray.direction[k]))
+                .sum();
             if along == 0 {
-                // The ray is parallel to the face's plane: it misses the
-                // face unless it lies in that plane (then it may run along
-                // the face).
-                let normal = support.normal();
-                let value = i128::from(normal[u]) * i128::from(cu)
-                    + i128::from(normal[v]) * i128::from(cv)
-                    + support.offset();
-                if value == 0 {
+                // Parallel to the face's plane: it misses the face unless
+                // it lies in that plane (then it may run along the face).
+                if ray
+                    .points
+                    .iter()
+                    .all(|&p| side_of_point(support, p) == Side::On)
+                {
                     return None;
                 }
                 continue;
@@ -222,7 +290,7 @@ impl<'a> Surface<'a> {
             if inside {
                 // Leaving through a face's front (outward) counts one out
                 // of the solid.
-                winding += if (along > 0) == ray.up { 1 } else { -1 };
+                winding += if along > 0 { 1 } else { -1 };
             }
         }
         Some(winding)
@@ -259,33 +327,51 @@ fn section(plane: &Plane, bounds: &[(Plane, Side)]) -> Option<ConvexPolygon> {
     Some(part)
 }
 
-/// A line parallel to a coordinate axis, through grid coordinates on the
-/// other two, directed up or down the axis.
+/// A directed line through two grid points, as the two planes that hold
+/// it (each crossing is the implicit point of a face's plane and these).
 struct Ray {
-    axis: usize,
-    across: [usize; 2],
-    at: [i64; 2],
-    /// The planes `across[0] = at[0]` and `across[1] = at[1]`.
     planes: [Plane; 2],
-    up: bool,
+    /// Two of its grid points, `points[1] - points[0] = direction`.
+    points: [GridPoint; 2],
+    direction: [i64; 3],
+    /// Of a ray parallel to an axis: the other two axes and its
+    /// coordinates on them (a face's box must hold them to be met).
+    column: Option<([usize; 2], [i64; 2])>,
 }
 
 impl Ray {
-    fn new(axis: usize, across: [usize; 2], at: [i64; 2], up: bool) -> Option<Self> {
-        let plane = |k: usize, value: i64| {
-            let mut normal = [0_i64; 3];
-            normal[k] = 1;
-            let mut point = [0_i64; 3];
-            point[k] = value;
-            let through = GridPoint::new(point[0], point[1], point[2]).ok()?;
-            Plane::with_normal_through(normal, through)
+    /// The ray parallel to `axis` through `at` on the axes `across`, up or
+    /// down the axis.
+    fn along_axis(axis: usize, across: [usize; 2], at: [i64; 2], up: bool) -> Option<Self> {
+        let mut from = [0_i64; 3];
+        from[across[0]] = at[0];
+        from[across[1]] = at[1];
+        let mut direction = [0_i64; 3];
+        direction[axis] = if up { 1 } else { -1 };
+        let mut ray = Self::through(from, direction)?;
+        ray.column = Some((across, at));
+        Some(ray)
+    }
+
+    /// The ray from grid point `from` along the integer `direction`.
+    fn through(from: [i64; 3], direction: [i64; 3]) -> Option<Self> {
+        let point = |p: [i64; 3]| GridPoint::new(p[0], p[1], p[2]).ok();
+        let a = point(from)?;
+        let b = point(std::array::from_fn(|k| from[k] + direction[k]))?;
+        // Two planes through the line, each holding a unit step off it
+        // along an axis the direction leans least on.
+        let mut axes = [0, 1, 2];
+        axes.sort_by_key(|&k| direction[k].unsigned_abs());
+        let plane = |k: usize| {
+            let mut off = from;
+            off[k] += 1;
+            Plane::through(a, b, point(off)?)
         };
         Some(Self {
-            axis,
-            across,
-            at,
-            planes: [plane(across[0], at[0])?, plane(across[1], at[1])?],
-            up,
+            planes: [plane(axes[0])?, plane(axes[1])?],
+            points: [a, b],
+            direction,
+            column: None,
         })
     }
 }
@@ -355,8 +441,10 @@ mod tests {
         }
     }
 
-    /// A cell whose side is too narrow to hold a start on the grid gives
-    /// no count; one wider than its piece, a start past the piece.
+    /// Starts lie in the cell: one a grid step wide on the plane is
+    /// counted along a steep line (no axis-parallel start fits), one
+    /// wider from a start past its piece; a cell outside the box and one
+    /// inside it are told apart.
     #[test]
     fn a_start_must_lie_in_the_cell() {
         let outer = cuboid([-40, -40, -40], [40, 40, 40]);
@@ -364,25 +452,34 @@ mod tests {
         let sliver =
             ConvexPolygon::from_grid_points(&[g(-30, 0, 5), g(30, 0, 5), g(30, 1, 5)], 0).unwrap();
         let plane = *sliver.support();
-        // The cell: z > 5, between y = 0 and y = 1.
-        let slab = |y: i64, normal: i64| Plane::with_normal_through([0, normal, 0], g(0, y, 0));
+        let slab = |y: i64| Plane::with_normal_through([0, 1, 0], g(0, y, 0)).unwrap();
+        let pieces = std::slice::from_ref(&sliver);
+        // The cell z > 5, 0 < y < 1: no grid point inside it.
         let narrow = [
-            (slab(0, 1).unwrap(), Side::Front),
-            (slab(1, 1).unwrap(), Side::Back),
+            (slab(0), Side::Front),
+            (slab(1), Side::Back),
             (plane, Side::Front),
         ];
-        assert_eq!(
-            surface.winding_in(&narrow, std::slice::from_ref(&sliver)),
-            None
-        );
+        assert_eq!(surface.winding_in(&narrow, pieces), Some(1));
         let wide = [
-            (slab(-5, 1).unwrap(), Side::Front),
-            (slab(5, 1).unwrap(), Side::Back),
+            (slab(-5), Side::Front),
+            (slab(5), Side::Back),
             (plane, Side::Front),
         ];
+        assert_eq!(surface.winding_in(&wide, pieces), Some(1));
+        // Past the box's side x = 40: outside.
+        let beyond = Plane::with_normal_through([1, 0, 0], g(41, 0, 0)).unwrap();
+        let outside = [
+            (beyond, Side::Front),
+            (slab(0), Side::Front),
+            (slab(1), Side::Back),
+            (plane, Side::Front),
+        ];
+        let far =
+            ConvexPolygon::from_grid_points(&[g(50, 0, 5), g(90, 0, 5), g(90, 1, 5)], 0).unwrap();
         assert_eq!(
-            surface.winding_in(&wide, std::slice::from_ref(&sliver)),
-            Some(1)
+            surface.winding_in(&outside, std::slice::from_ref(&far)),
+            Some(0)
         );
     }
 }
