@@ -275,3 +275,41 @@ pub fn save_csg_obj(path: &Path, mesh: &IndexedMesh) -> Result<()> {
         .expect("writing to a String cannot fail");
     crate::atomic::write_atomic(path, |w| w.write_all(text.as_bytes()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit cube's six quads (counter-clockwise seen from outside).
+    fn cube() -> IndexedMesh {
+        let faces: Vec<Vec<u32>> = vec![
+            vec![0, 2, 3, 1],
+            vec![4, 5, 7, 6],
+            vec![0, 1, 5, 4],
+            vec![2, 6, 7, 3],
+            vec![0, 4, 6, 2],
+            vec![1, 3, 7, 5],
+        ];
+        IndexedMesh {
+            vertices: (0..8)
+                .map(|i| [i & 1, i >> 1 & 1, i >> 2 & 1].map(f64::from))
+                .collect(),
+            face_polygon: (0..faces.len() as u32).collect(),
+            faces,
+        }
+    }
+
+    /// A closed cube has no open edge; a face given twice leaves its four
+    /// edges open once each (used twice one way, once the other); without
+    /// its top, the top's four edges are open.
+    #[test]
+    fn open_edges_are_counted_with_their_multiplicity() {
+        let mut mesh = cube();
+        assert_eq!(open_edges(&mesh), 0);
+        mesh.faces.push(mesh.faces[0].clone());
+        assert_eq!(open_edges(&mesh), 4);
+        mesh.faces.pop();
+        mesh.faces.remove(1);
+        assert_eq!(open_edges(&mesh), 4);
+    }
+}
