@@ -1,26 +1,27 @@
-//! Winding numbers of a closed surface of convex grid polygons, exactly,
-//! just off a polygon: what labels a solid's cells when its snapped
-//! surface folds or crosses itself (`umbra csg`).
+//! Winding numbers of a closed surface of convex grid polygons in a solid
+//! BSP's empty cell, exactly: what labels a solid's cells when its
+//! snapped surface folds or crosses itself (`umbra csg`).
 //!
-//! The count runs along a ray parallel to a coordinate axis, from a point
-//! inside the polygon: the ray is the line where two axis planes through
-//! grid coordinates meet, and each point it meets a plane at is the
-//! kernel's implicit point of three planes, so that every decision (is the
-//! start inside the polygon, does a face's crossing lie on the ray and
-//! inside the face) is an exact side test. A ray that grazes a face's edge
-//! or meets a face at its start is not counted: another start is tried.
-//! A cell too narrow on its plane for a start there is counted along a
-//! steep line through grid points that crosses the plane near its side's
-//! centroid, or asked at a grid point inside it
-//! ([`area_shadow::winding_number`]).
+//! The count runs along a ray from a point of the cell's side on its last
+//! plane, mostly parallel to a coordinate axis: the ray is a line through
+//! two grid points, held by two planes through grid points, and each
+//! point it meets a plane at is the kernel's implicit point of three
+//! planes, so that every decision (is the start inside the cell, does a
+//! face's crossing lie on the ray and inside the face) is an exact side
+//! test. A ray that grazes a face's edge or meets a face at its start is
+//! not counted: another start is tried. A cell too narrow on its plane for
+//! an axis-parallel start there is counted along a steep line that
+//! crosses the plane near its side's centroid, or asked at a grid point
+//! inside it ([`area_shadow::winding_number`]).
 
 use area_shadow::winding_number;
 use bsp_core::predicates::side_of_point;
 use bsp_core::{ConvexPolygon, GRID_LIMIT, GridPoint, ImplicitPoint, Plane, Side, Split};
 use svbsp::ConvexPolyhedron;
 
-/// A closed surface's faces, each with its grid-coordinate bounding box,
-/// to count crossings along axis-parallel rays.
+/// A closed surface's faces, each with its grid-coordinate bounding box
+/// (an axis-parallel ray meets only faces whose boxes hold its column),
+/// to count crossings along rays.
 pub(crate) struct Surface<'a> {
     faces: &'a [ConvexPolygon],
     /// Per face, its corners' least and greatest grid coordinates.
