@@ -32,6 +32,12 @@ pub(crate) struct Surface<'a> {
     planes: Vec<Plane>,
 }
 
+/// The mean of `points`.
+fn centroid(points: &[[f64; 3]]) -> [f64; 3] {
+    let n = points.len() as f64;
+    std::array::from_fn(|k| points.iter().map(|p| p[k]).sum::<f64>() / n)
+}
+
 /// Grid coordinates (along axes `across`) of starts to try near `piece`:
 /// its centroid's, points between the centroid and each corner (a long
 /// thin piece holds grid points along its middle, seldom at its
@@ -39,8 +45,8 @@ pub(crate) struct Surface<'a> {
 /// than a piece too thin to hold one), each once.
 fn starts(piece: &ConvexPolygon, across: [usize; 2]) -> Vec<[i64; 2]> {
     let corners = piece.vertices_f64();
-    let n = corners.len() as f64;
-    let centre = across.map(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
+    let mean = centroid(&corners);
+    let centre = across.map(|k| mean[k]);
     let mut out: Vec<[i64; 2]> = Vec::new();
     let mut push = |p: [f64; 2]| {
         let g = p.map(|x| x.round() as i64);
@@ -112,23 +118,24 @@ impl<'a> Surface<'a> {
         // The ray runs along the axis into the cell.
         let up = (plane.normal()[axis] > 0) == (side == Side::Front);
         // Starts near the pieces, then in the cell's side on the plane
-        // (wider than the pieces where they are slivers).
-        let section = section(&plane, bounds);
-        for piece in pieces.iter().chain(&section) {
-            for [cu, cv] in starts(piece, [u, v]) {
-                let Some(ray) = Ray::along_axis(axis, [u, v], [cu, cv], up) else {
-                    continue;
-                };
-                let Ok(start) = ImplicitPoint::new(plane, ray.planes[0], ray.planes[1]) else {
-                    continue;
-                };
+        // (wider than the pieces where they are slivers), found only if
+        // the pieces give none.
+        let try_starts = |piece: &ConvexPolygon| {
+            starts(piece, [u, v]).into_iter().find_map(|[cu, cv]| {
+                let ray = Ray::along_axis(axis, [u, v], [cu, cv], up)?;
+                let start = ImplicitPoint::new(plane, ray.planes[0], ray.planes[1]).ok()?;
                 if bounds.iter().any(|(p, s)| start.side(p) != *s) {
-                    continue;
+                    return None;
                 }
-                if let Some(count) = self.count(&ray, &plane, side) {
-                    return Some(count);
-                }
-            }
+                self.count(&ray, &plane, side)
+            })
+        };
+        if let Some(count) = pieces.iter().find_map(try_starts) {
+            return Some(count);
+        }
+        let section = section(&plane, bounds);
+        if let Some(count) = section.as_ref().and_then(try_starts) {
+            return Some(count);
         }
         // A side on the plane narrower than a grid step: lines through
         // grid points that cross the plane a small fraction of a step
@@ -152,9 +159,8 @@ impl<'a> Surface<'a> {
             .iter()
             .flat_map(|f| f.vertices_f64())
             .collect();
-        let n = corners.len() as f64;
-        let centre: [f64; 3] =
-            std::array::from_fn(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
+        let centre = centroid(&corners);
+        let outlines: Vec<&[GridPoint]> = self.outlines.iter().map(Vec::as_slice).collect();
         let mut tried: Vec<GridPoint> = Vec::new();
         for t in [0.0, 0.5, 0.25, 0.75] {
             for corner in &corners {
@@ -169,7 +175,6 @@ impl<'a> Surface<'a> {
                 if path.iter().any(|(p, s)| side_of_point(p, g) != *s) {
                     continue;
                 }
-                let outlines: Vec<&[GridPoint]> = self.outlines.iter().map(Vec::as_slice).collect();
                 if let Some(w) = winding_number(g, &outlines, &self.planes) {
                     return Some(w);
                 }
@@ -191,9 +196,7 @@ impl<'a> Surface<'a> {
         section: &ConvexPolygon,
     ) -> Option<i64> {
         let corners = section.vertices_f64();
-        let n = corners.len() as f64;
-        let centre: [f64; 3] =
-            std::array::from_fn(|k| corners.iter().map(|c| c[k]).sum::<f64>() / n);
+        let centre = centroid(&corners);
         let normal = plane.unit_normal_f64();
         let facing: [i128; 3] = plane.normal().map(i128::from);
         for off in [2.0, -2.0, 3.0, -3.0] {
