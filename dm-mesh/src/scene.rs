@@ -615,7 +615,26 @@ impl DmScene {
     /// it looks at every cell and unit.
     pub fn check_invariants(&self) -> Result<(), String> {
         let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
+        // The receivers each occluder's removal would look at.
+        let mut overlap = self.overlap.clone();
+        overlap.refresh(&self.pieces);
+        let mut reach: KeyMap<PieceId, Vec<PieceId>> = KeyMap::default();
         for (piece, dm) in self.receivers() {
+            for (u, (occluder, light)) in dm.units() {
+                if !self.pieces.contains_key(occluder) {
+                    return Err(format!(
+                        "receiver {piece:?}: unit {u} ({occluder:?}, light {light}) is of a piece no longer in the scene"
+                    ));
+                }
+                let near = reach
+                    .entry(occluder)
+                    .or_insert_with(|| overlap.receivers_near(occluder, &self.pieces));
+                if near.binary_search(&piece).is_err() {
+                    return Err(format!(
+                        "receiver {piece:?}: unit {u} ({occluder:?}, light {light}) is where its occluder's removal would not look"
+                    ));
+                }
+            }
             let units = dm.units().map(|(_, unit)| unit);
             let contact =
                 ContactPlanes::new(&self.pieces[piece], &sources, units, |o| &self.pieces[o]);

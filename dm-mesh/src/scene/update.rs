@@ -29,7 +29,7 @@ use bsp_core::ConvexPolygon;
 use illum::VisiblePart;
 use rayon::prelude::*;
 use slotmap::SlotMap;
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use svbsp::PieceFlags;
 
 /// Polygons of an object from which on a change makes its pieces beside
@@ -298,41 +298,38 @@ impl DmScene {
     fn insertions(&mut self, added: &[PieceId], parked: Option<PieceId>) -> Insertions {
         self.overlap.refresh(&self.pieces);
         let new: BTreeSet<PieceId> = added.iter().copied().collect();
-        // Old receivers the new occluders may reach.
-        let mut touched: BTreeSet<PieceId> = BTreeSet::new();
+        // Old receivers the new occluders may reach, each with those
+        // occluders (in the order of `added`). The very pairs a removal
+        // finds (`Self::removals_of`): a unit that entered a receiver the
+        // occluder's removal would not look at would stay there, of a
+        // piece gone (a body under a floor passes the floor's box test,
+        // but its shadow's tiles miss the floor).
+        let mut touched: BTreeMap<PieceId, Vec<PieceId>> = BTreeMap::new();
         for &o in added {
-            touched.extend(
-                self.overlap
-                    .receivers_near(o, &self.pieces)
-                    .into_iter()
-                    .filter(|r| !new.contains(r)),
-            );
+            for r in self.overlap.receivers_near(o, &self.pieces) {
+                if !new.contains(&r) {
+                    touched.entry(r).or_default().push(o);
+                }
+            }
         }
-        let targets: Vec<(PieceId, bool)> = added
+        let targets: Vec<(PieceId, Option<Vec<PieceId>>)> = added
             .iter()
-            .map(|&r| (r, true))
-            .chain(touched.into_iter().map(|r| (r, false)))
-            .filter(|&(r, _)| {
+            .map(|&r| (r, None))
+            .chain(touched.into_iter().map(|(r, near)| (r, Some(near))))
+            .filter(|(r, _)| {
                 self.receivers
-                    .get(r)
-                    .map_or(parked == Some(r), |dm| !dm.in_the_dark())
+                    .get(*r)
+                    .map_or(parked == Some(*r), |dm| !dm.in_the_dark())
             })
             .collect();
         let (lights, pieces, overlap) = (&self.lights, &self.pieces, &self.overlap);
         targets
-            .par_iter()
-            .map(|&(r, fresh)| {
+            .into_par_iter()
+            .map(|(r, near)| {
                 // New receivers: every occluder the overlap structure pairs
                 // them with. Old ones: the new occluders, appended.
-                let candidates: Vec<PieceId> = if fresh {
-                    overlap.occluders_near(r, pieces)
-                } else {
-                    added
-                        .iter()
-                        .copied()
-                        .filter(|o| overlap.may_shadow(*o, r, pieces))
-                        .collect()
-                };
+                let fresh = near.is_none();
+                let candidates = near.unwrap_or_else(|| overlap.occluders_near(r, pieces));
                 let order = unit_order(lights, pieces, &candidates);
                 // A new receiver that many units reach starts as a
                 // balanced tree of tiles, about one per TILE_UNITS units.
