@@ -17,12 +17,13 @@
 //!
 //! [`DmScene::build_movable`]: crate::DmScene::build_movable
 
-use crate::scene::{DmLight, Piece, PieceId};
+use crate::scene::{DmLight, Piece, PieceId, PieceKind};
 use slotmap::SlotMap;
+use std::cmp::Ordering;
 
 /// The units (occluder, light) of `candidates` that cast any shadow, light
-/// by light, each light's nearest first (ties by position in
-/// `candidates`), bodies that cast only their umbra after the rest (such a
+/// by light, each light's nearest first (ties by shape: [`by_shape`]),
+/// bodies that cast only their umbra after the rest (such a
 /// body hides the whole light only where its polygons hide it together;
 /// merged last, it culls none of them); the static objects' units so, then
 /// the movable objects' units so.
@@ -47,11 +48,41 @@ pub(crate) fn unit_order(
                     (piece.umbra_only(i), distance2(piece.centre(), centre), n)
                 })
                 .collect();
-            list.sort_by(|a, b| a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then(a.2.cmp(&b.2)));
+            list.sort_by(|a, b| {
+                a.0.cmp(&b.0).then(a.1.total_cmp(&b.1)).then_with(|| {
+                    let (p, q) = (&pieces[candidates[a.2]], &pieces[candidates[b.2]]);
+                    by_shape(p, q).then(a.2.cmp(&b.2))
+                })
+            });
             out.extend(list.into_iter().map(|(_, _, n)| (candidates[n], i as u8)));
         }
     }
     out
+}
+
+/// Occluders equally near the light, in an order of their shapes alone:
+/// polygons before bodies, then by centre, then by outline. Keys would
+/// order them as they were made, so the same occluders made in another
+/// order (a scene's closed parts as objects of their own, or in one
+/// object) would merge in another order and give other trees.
+fn by_shape(p: &Piece, q: &Piece) -> Ordering {
+    let rank = |p: &Piece| p.kind == PieceKind::Body;
+    let coordinates = |p: &Piece| -> Vec<f64> {
+        p.centre()
+            .into_iter()
+            .chain(p.outline.iter().flatten().copied())
+            .collect()
+    };
+    rank(p).cmp(&rank(q)).then_with(|| {
+        let (a, b) = (coordinates(p), coordinates(q));
+        a.len().cmp(&b.len()).then_with(|| {
+            a.iter()
+                .zip(&b)
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .unwrap_or(Ordering::Equal)
+        })
+    })
 }
 
 fn distance2(a: [f64; 3], b: [f64; 3]) -> f64 {
