@@ -91,8 +91,10 @@ fn distance2(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use crate::scene::DmScene;
-    use crate::scene::testing::{boxes_on_a_floor_movable, moved};
+    use super::{distance2, unit_order};
+    use crate::scene::testing::{boxes_on_a_floor_movable, closed, cuboid, gp, moved, quad};
+    use crate::scene::{DmLight, DmScene, PieceId};
+    use area_shadow::AreaSource;
 
     /// Per receiver, whether each of its units (in the order merged) is of
     /// one of the objects `of`.
@@ -134,5 +136,38 @@ mod tests {
             let polygons = moved(&scene, id, [7 - 5 * step, 0, 3 * step - 4]);
             scene.move_object(id, polygons).expect("a move");
         }
+    }
+
+    /// Occluders equally near the light merge in one order whichever
+    /// order they come in (as their keys give it): two boxes mirrored
+    /// through the light's axis, listed forwards and backwards.
+    #[test]
+    fn equally_near_occluders_merge_in_an_order_of_their_shapes() {
+        let light = quad([
+            gp(-60, 500, -45),
+            gp(60, 500, -45),
+            gp(60, 500, 45),
+            gp(-60, 500, 45),
+        ]);
+        let light = AreaSource::new(light).expect("a light facing down");
+        let light = DmLight::new(light, 1.0).expect("a light");
+        let objects = vec![
+            (cuboid([-100, 0, -30], [-40, 50, 30]), closed()),
+            (cuboid([40, 0, -30], [100, 50, 30]), closed()),
+        ];
+        let (scene, _) = DmScene::build(vec![light], objects).expect("a scene");
+        let centre = scene.lights()[0].source().centroid();
+        let keys: Vec<PieceId> = scene.pieces.keys().collect();
+        let near = |k: &PieceId| distance2(scene.pieces[*k].centre(), centre);
+        let mut distances: Vec<f64> = keys.iter().map(near).collect();
+        distances.sort_by(f64::total_cmp);
+        assert!(distances.windows(2).any(|w| w[0] == w[1]), "no tie");
+        let forwards = unit_order(scene.lights(), &scene.pieces, &keys);
+        let backwards: Vec<PieceId> = keys.iter().rev().copied().collect();
+        assert!(!forwards.is_empty());
+        assert_eq!(
+            forwards,
+            unit_order(scene.lights(), &scene.pieces, &backwards)
+        );
     }
 }

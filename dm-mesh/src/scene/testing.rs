@@ -10,7 +10,7 @@ pub(crate) fn gp(x: i64, y: i64, z: i64) -> GridPoint {
     GridPoint::new(x, y, z).expect("a grid point")
 }
 
-fn quad(points: [GridPoint; 4]) -> ConvexPolygon {
+pub(crate) fn quad(points: [GridPoint; 4]) -> ConvexPolygon {
     ConvexPolygon::from_grid_points(&points, 0).expect("a quad")
 }
 
@@ -42,7 +42,7 @@ pub(crate) fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
     .collect()
 }
 
-fn closed() -> PieceFlags {
+pub(crate) fn closed() -> PieceFlags {
     PieceFlags {
         closed_surface: true,
         ..PieceFlags::default()
