@@ -3,7 +3,7 @@
 use std::collections::{HashMap, HashSet};
 use std::path::Path;
 
-use bsp_core::{BspSolid, ConvexPolygon, Grid, GridPoint, Plane, Region, Side};
+use bsp_core::{BspSolid, Containment, ConvexPolygon, Grid, GridPoint, Plane, Region, Side};
 use svbsp::{
     BalancedOptions, IndexedMesh, SetOp, balanced_solid, balanced_solid_labelled, boundary,
 };
@@ -23,7 +23,9 @@ use crate::winding::Surface;
 /// of their last plane: a fold's plane puts the wrong side in, and the
 /// result does not close. Then the cells are labelled again by the
 /// surfaces' winding numbers (module `winding`) and the result made
-/// anew.
+/// anew; if that does not close either, from the inputs' regularized
+/// surfaces ([`regularized`]: a fold's sheet inside the solid, which the
+/// result kept where it lay outside the other solid, is gone).
 ///
 /// Errors: a mesh that does not close or encloses no volume once snapped
 /// to the grid, and a result that still does not close (cells too small
@@ -65,6 +67,15 @@ pub fn csg(
         let a_solid = winding_solid(&a_faces, &options);
         let b_solid = winding_solid(&b_faces, &options);
         mesh = result(&a_solid, &b_solid);
+        if open_edges(&mesh) > 0 {
+            let a_faces = regularized(&a_solid, &a_faces);
+            let b_faces = regularized(&b_solid, &b_faces);
+            let mut again = boundary(&a_solid, &a_faces, &b_solid, &b_faces, op).mesh;
+            for v in &mut again.vertices {
+                *v = grid.grid_to_world(*v);
+            }
+            mesh = merge_equal_positions(again);
+        }
     }
     let open = open_edges(&mesh);
     if open > 0 {
@@ -94,6 +105,27 @@ fn winding_solid(faces: &[ConvexPolygon], options: &BalancedOptions) -> BspSolid
             .map(|w| if w > 0 { Region::In } else { Region::Out })
     };
     balanced_solid_labelled(faces.to_vec(), options, &label)
+}
+
+/// The boundary of the region a solid's winding labels put inside, cut
+/// from its own surface `faces`: the pieces with the solid behind them,
+/// those with it in front turned over, none of those with the same
+/// region on both sides (a fold's sheet inside the solid, or a flap
+/// outside it).
+fn regularized(solid: &BspSolid, faces: &[ConvexPolygon]) -> Vec<ConvexPolygon> {
+    faces
+        .iter()
+        .enumerate()
+        .flat_map(|(i, face)| {
+            solid.partition_polygon(face).into_iter().filter_map(
+                move |(piece, class)| match class {
+                    Containment::BoundarySame => Some(piece.with_source(i as u32)),
+                    Containment::BoundaryOpposite => Some(piece.flipped().with_source(i as u32)),
+                    Containment::Inside | Containment::Outside => None,
+                },
+            )
+        })
+        .collect()
 }
 
 /// The directed edges of `mesh` (by vertex index) that no face runs the
@@ -311,5 +343,37 @@ mod tests {
         mesh.faces.pop();
         mesh.faces.remove(1);
         assert_eq!(open_edges(&mesh), 4);
+    }
+
+    /// The volume the pieces enclose, welded (and whether they close).
+    fn enclosed(pieces: &[ConvexPolygon]) -> (f64, bool) {
+        let mesh = svbsp::weld(pieces);
+        (mesh.volume(), open_edges(&mesh) == 0)
+    }
+
+    /// A surface of two boxes that overlap, both wound out (winding number
+    /// 2 where they do), and of a box with a smaller one inside it wound
+    /// in (0 inside that): their winding solids' regularized surfaces are
+    /// the union's (the faces inside the other box gone) and the hollow
+    /// box's, closed. As given, they would enclose 80 and 56.
+    #[test]
+    fn a_regularized_surface_bounds_what_its_winding_number_puts_inside() {
+        use crate::winding::tests::cuboid;
+        let options = BalancedOptions::default();
+        let mut overlapping = cuboid([0, 0, 0], [4, 4, 4]);
+        overlapping.extend(cuboid([2, 1, 1], [6, 3, 3]));
+        let mut hollow = cuboid([0, 0, 0], [4, 4, 4]);
+        hollow.extend(
+            cuboid([1, 1, 1], [3, 3, 3])
+                .iter()
+                .map(ConvexPolygon::flipped),
+        );
+        for (faces, given, regular) in [(overlapping, 80.0, 72.0), (hollow, 56.0, 56.0)] {
+            let (volume, _) = enclosed(&faces);
+            assert!((volume - given).abs() < 1e-9, "{volume}");
+            let solid = winding_solid(&faces, &options);
+            let (volume, closed) = enclosed(&regularized(&solid, &faces));
+            assert!(closed && (volume - regular).abs() < 1e-9, "{volume}");
+        }
     }
 }

@@ -381,7 +381,7 @@ impl Ray {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     fn g(x: i64, y: i64, z: i64) -> GridPoint {
@@ -389,7 +389,7 @@ mod tests {
     }
 
     /// A box `[lo, hi]` as six quads, counter-clockwise seen from outside.
-    fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
+    pub(crate) fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
         let corner = |i: usize| {
             let at = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
             g(at(0), at(1), at(2))
