@@ -24,7 +24,7 @@ use crate::winding::Surface;
 /// result does not close. Then the cells are labelled again by the
 /// surfaces' winding numbers (module `winding`) and the result made
 /// anew; if that does not close either, from the inputs' regularized
-/// surfaces ([`regularized`]: a fold's sheet inside the solid, which the
+/// surfaces (`regularized`: a fold's sheet inside the solid, which the
 /// result kept where it lay outside the other solid, is gone).
 ///
 /// Errors: a mesh that does not close or encloses no volume once snapped
