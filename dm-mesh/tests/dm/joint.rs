@@ -162,23 +162,14 @@ fn joint_umbra_and_moves(
     points: &[[i64; 2]],
     away: [i64; 3],
 ) -> Result<(), TestCaseError> {
-    let CutBox {
-        lo,
-        size,
-        axis,
-        at,
-        again,
-        cuts,
-        light_at,
-    } = case.clone();
-    let lo = [lo[0], lo[1] + 20, lo[2]];
-    let hi = [lo[0] + size[0], lo[1] + size[1], lo[2] + size[2]];
-    let boxes = cut_box(lo, hi, axis, at, again);
-    let (x0, z0, w, d, y) = light_at;
+    let lo = [case.lo[0], case.lo[1] + 20, case.lo[2]];
+    let hi: [i64; 3] = std::array::from_fn(|a| lo[a] + case.size[a]);
+    let boxes = cut_box(lo, hi, case.axis, case.at, case.again);
+    let (x0, z0, w, d, y) = case.light_at;
     let mut objects = vec![(vec![floor(400)], PieceFlags::default())];
     objects.extend(boxes.iter().enumerate().map(|(k, (lo, hi))| {
         (
-            triangulated_cuboid(*lo, *hi, cuts.rotate_left(5 * k as u32)),
+            triangulated_cuboid(*lo, *hi, case.cuts.rotate_left(5 * k as u32)),
             PieceFlags::default(),
         )
     }));
