@@ -50,8 +50,11 @@ pub fn csg(
     let a_faces = closed_pieces(a, a_path, &grid)?;
     let b_faces = closed_pieces(b, b_path, &grid)?;
     let options = BalancedOptions::default();
-    let result = |a_solid: &BspSolid, b_solid: &BspSolid| {
-        let mut mesh = boundary(a_solid, &a_faces, b_solid, &b_faces, op).mesh;
+    let result = |a_solid: &BspSolid,
+                  a_faces: &[ConvexPolygon],
+                  b_solid: &BspSolid,
+                  b_faces: &[ConvexPolygon]| {
+        let mut mesh = boundary(a_solid, a_faces, b_solid, b_faces, op).mesh;
         for v in &mut mesh.vertices {
             *v = grid.grid_to_world(*v);
         }
@@ -59,22 +62,18 @@ pub fn csg(
     };
     let a_solid = balanced_solid(a_faces.clone(), &options);
     let b_solid = balanced_solid(b_faces.clone(), &options);
-    let mut mesh = result(&a_solid, &b_solid);
+    let mut mesh = result(&a_solid, &a_faces, &b_solid, &b_faces);
     if open_edges(&mesh) > 0 {
         // A surface that folds or crosses itself once snapped: the cells
         // just off a fold are not what the last plane's side says. Their
         // winding numbers are.
         let a_solid = winding_solid(&a_faces, &options);
         let b_solid = winding_solid(&b_faces, &options);
-        mesh = result(&a_solid, &b_solid);
+        mesh = result(&a_solid, &a_faces, &b_solid, &b_faces);
         if open_edges(&mesh) > 0 {
             let a_faces = regularized(&a_solid, &a_faces);
             let b_faces = regularized(&b_solid, &b_faces);
-            let mut again = boundary(&a_solid, &a_faces, &b_solid, &b_faces, op).mesh;
-            for v in &mut again.vertices {
-                *v = grid.grid_to_world(*v);
-            }
-            mesh = merge_equal_positions(again);
+            mesh = result(&a_solid, &a_faces, &b_solid, &b_faces);
         }
     }
     let open = open_edges(&mesh);

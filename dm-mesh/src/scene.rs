@@ -611,8 +611,10 @@ impl DmScene {
     /// (a cell lists an occluder only if it lies in its penumbra, wholly in
     /// or out of its umbra as marked, crossed by none of its internal
     /// discontinuities; a cell that meets an occluder's penumbra lists it,
-    /// unless another's umbra culled it there). For tests and fuzz targets:
-    /// it looks at every cell and unit.
+    /// unless another's umbra culled it there), and every unit as one of
+    /// a piece in the scene, on a receiver its occluder's removal looks
+    /// at (the overlap structure's). For tests and fuzz targets: it looks
+    /// at every cell and unit.
     pub fn check_invariants(&self) -> Result<(), String> {
         let sources: Vec<AreaSource> = self.lights.iter().map(|l| l.source.clone()).collect();
         // The receivers each occluder's removal would look at.
