@@ -390,21 +390,9 @@ pub(crate) mod tests {
 
     /// A box `[lo, hi]` as six quads, counter-clockwise seen from outside.
     pub(crate) fn cuboid(lo: [i64; 3], hi: [i64; 3]) -> Vec<ConvexPolygon> {
-        let corner = |i: usize| {
-            let at = |k: usize| if i >> k & 1 == 0 { lo[k] } else { hi[k] };
-            g(at(0), at(1), at(2))
-        };
-        [
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-        ]
-        .into_iter()
-        .map(|f| ConvexPolygon::from_grid_points(&f.map(corner), 0).expect("a face"))
-        .collect()
+        let (lo, hi) = (g(lo[0], lo[1], lo[2]), g(hi[0], hi[1], hi[2]));
+        let solid = svbsp::ConvexPolyhedron::axis_box(lo, hi).expect("a box with volume");
+        solid.facets().to_vec()
     }
 
     /// The winding number just off `face` on its `side` (a cell bounded by
