@@ -17,6 +17,10 @@
 //! grid; `DM_COST_FACES=1` has each polygon of a convex body cast its
 //! own unit (the body only its umbra); `DM_COST_MOVABLE=1` declares OBJECT
 //! movable at the build (`DmScene::build_movable`).
+//!
+//! To profile one move (move M, 0 by default: `DM_COST_PERF_MOVE=M`):
+//! `mkfifo ctl ack; perf record -D -1 --control fifo:ctl,ack -- env
+//! DM_COST_PERF_CTL=ctl,ack dm-cost ...` samples that move alone.
 
 use std::process::ExitCode;
 
@@ -102,13 +106,20 @@ fn main() -> ExitCode {
         100.0 * own as f64 / cells_before as f64,
         100.0 * listing as f64 / cells_before as f64
     );
+    // The move a profiler sees (DM_COST_PERF_MOVE, the first by default).
+    let profiled: u32 = std::env::var("DM_COST_PERF_MOVE")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(0);
     let mut evaluated = 0;
     for m in 0..moves {
         let to = if m % 2 == 0 { &there } else { &here };
         let started = std::time::Instant::now();
+        profile_move(m == profiled, "enable");
         run.dm.move_object(id, to.clone()).expect("moves");
         let moved = started.elapsed().as_secs_f64();
         let stats = run.dm.illuminate();
+        profile_move(m == profiled, "disable");
         eprintln!(
             "move {m}: {:.2} ms ({:.2} ms before illumination), {} vertices looked at, {} re-evaluated",
             1e3 * started.elapsed().as_secs_f64(),
@@ -147,4 +158,26 @@ fn main() -> ExitCode {
     }
     println!("{moves} moves ({evaluated} vertices re-evaluated), {rebuilds} rebuilds");
     ExitCode::SUCCESS
+}
+
+/// With `DM_COST_PERF_CTL=CTL,ACK` set (two FIFOs), tells `perf record
+/// --control fifo:CTL,ACK -D -1` to sample (`enable`) or stop
+/// (`disable`) around one move alone (the first one's cost, for instance,
+/// a count over many moves hides). It waits for perf's acknowledgement,
+/// so the window holds that move and nothing else.
+fn profile_move(chosen: bool, command: &str) {
+    use std::io::{Read, Write};
+    let Some(fifos) = std::env::var("DM_COST_PERF_CTL").ok().filter(|_| chosen) else {
+        return;
+    };
+    let Some((ctl, ack)) = fifos.split_once(',') else {
+        return;
+    };
+    if let Ok(mut f) = std::fs::OpenOptions::new().write(true).open(ctl) {
+        let _ = writeln!(f, "{command}");
+    }
+    if let Ok(mut f) = std::fs::File::open(ack) {
+        let mut reply = [0u8; 5];
+        let _ = f.read(&mut reply);
+    }
 }
