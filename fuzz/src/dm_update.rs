@@ -686,22 +686,7 @@ mod tests {
         let polygons = triangles(&dented, [0, 0, 0]);
         let groups = area_shadow::convex_groups(&polygons, &vec![Some(0); polygons.len()]);
         assert!(groups.len() == 1 && !groups[0].is_closed_convex());
-        for deletion in [Deletion::Local, Deletion::Collapse] {
-            let case = DmCase {
-                objects: vec![dented.clone(), box_triangles([1, 3, -2], [3, 5, 2])],
-                light: ([-4, 11, -3], [3, 3], 0),
-                ops: vec![
-                    Op::Move(0, [1, 0, 1]),
-                    Op::Move(0, [1, -1, 0]),
-                    Op::Remove(1),
-                    Op::Move(0, [-2, 1, -1]),
-                    Op::ReAdd(1),
-                ],
-                deletion,
-                movable: 0,
-            };
-            check_dm_update(&case).unwrap();
-        }
+        moved_beside_a_box(dented, ([-4, 11, -3], [3, 3], 0));
     }
 
     /// A square frame (no kernel: cores of local kernels stand for it
@@ -718,21 +703,35 @@ mod tests {
                 .iter()
                 .all(|g| g.pieces.len() == 32 && !g.is_closed_convex())
         );
+        moved_beside_a_box(frame, ([-5, 11, -3], [2, 2], 0));
+    }
+
+    /// `shape` (object 0) beside a box: moved under the light and against
+    /// the box, the box removed and added back, both ways of deleting.
+    fn moved_beside_a_box(shape: Vec<[[i64; 3]; 3]>, light: ([i64; 3], [i64; 2], i64)) {
+        check_both_deletions(DmCase {
+            objects: vec![shape, box_triangles([1, 3, -2], [3, 5, 2])],
+            light,
+            ops: vec![
+                Op::Move(0, [1, 0, 1]),
+                Op::Move(0, [1, -1, 0]),
+                Op::Remove(1),
+                Op::Move(0, [-2, 1, -1]),
+                Op::ReAdd(1),
+            ],
+            deletion: Deletion::Local,
+            movable: 0,
+        });
+    }
+
+    /// `case` checked with each way of deleting.
+    fn check_both_deletions(case: DmCase) {
         for deletion in [Deletion::Local, Deletion::Collapse] {
-            let case = DmCase {
-                objects: vec![frame.clone(), box_triangles([1, 3, -2], [3, 5, 2])],
-                light: ([-5, 11, -3], [2, 2], 0),
-                ops: vec![
-                    Op::Move(0, [1, 0, 1]),
-                    Op::Move(0, [1, -1, 0]),
-                    Op::Remove(1),
-                    Op::Move(0, [-2, 1, -1]),
-                    Op::ReAdd(1),
-                ],
+            check_dm_update(&DmCase {
                 deletion,
-                movable: 0,
-            };
-            check_dm_update(&case).unwrap();
+                ..case.clone()
+            })
+            .unwrap();
         }
     }
 
@@ -743,27 +742,24 @@ mod tests {
     #[test]
     fn tetrahedra_move_through_each_other_and_the_light() {
         let tetra = |[a, b, c, d]: [[i64; 3]; 4]| vec![[a, b, c], [a, c, d], [a, d, b], [b, d, c]];
-        for deletion in [Deletion::Local, Deletion::Collapse] {
-            let case = DmCase {
-                objects: vec![
-                    tetra([[-4, 3, -3], [3, 4, -2], [0, 6, 4], [-1, 8, 0]]),
-                    tetra([[2, 2, 1], [6, 3, 2], [4, 5, -3], [3, 7, 2]]),
-                    vec![[[-6, 1, 6], [6, 1, 6], [0, 2, -7]]],
-                ],
-                light: ([-3, 11, -3], [4, 5], 1),
-                ops: vec![
-                    Op::Move(0, [2, 0, 1]),
-                    Op::Move(1, [-3, 2, 0]),
-                    Op::Move(0, [0, 2, 0]),
-                    Op::Remove(2),
-                    Op::Move(0, [1, 2, -1]),
-                    Op::ReAdd(2),
-                ],
-                deletion,
-                movable: 0,
-            };
-            check_dm_update(&case).unwrap();
-        }
+        check_both_deletions(DmCase {
+            objects: vec![
+                tetra([[-4, 3, -3], [3, 4, -2], [0, 6, 4], [-1, 8, 0]]),
+                tetra([[2, 2, 1], [6, 3, 2], [4, 5, -3], [3, 7, 2]]),
+                vec![[[-6, 1, 6], [6, 1, 6], [0, 2, -7]]],
+            ],
+            light: ([-3, 11, -3], [4, 5], 1),
+            ops: vec![
+                Op::Move(0, [2, 0, 1]),
+                Op::Move(1, [-3, 2, 0]),
+                Op::Move(0, [0, 2, 0]),
+                Op::Remove(2),
+                Op::Move(0, [1, 2, -1]),
+                Op::ReAdd(2),
+            ],
+            deletion: Deletion::Local,
+            movable: 0,
+        });
     }
 
     /// Found by libFuzzer: a cell split after it culled a unit keeps the
