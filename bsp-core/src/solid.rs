@@ -294,30 +294,73 @@ impl BspSolid {
     /// subtree on its front side and then, piece by piece, down the subtree
     /// on its back side: the two answers say what lies on either side of it.
     pub fn partition_polygon(&self, polygon: &ConvexPolygon) -> Vec<(ConvexPolygon, Containment)> {
+        self.partition(polygon, |c| c, false)
+    }
+
+    /// [`partition_polygon`](Self::partition_polygon) with each piece
+    /// labelled by `key`, and the cuts that separate nothing `key` tells
+    /// apart undone: wherever all the pieces a node and the nodes below it
+    /// cut from a part of the polygon have one key, that part comes back
+    /// whole. The pieces still tile the polygon, exactly; a tree's planes
+    /// that cross the polygon away from anything the caller distinguishes
+    /// (another face's plane, a balancing split) leave no seam in it.
+    pub fn partition_polygon_by<K: Copy + Eq>(
+        &self,
+        polygon: &ConvexPolygon,
+        key: impl Fn(Containment) -> K,
+    ) -> Vec<(ConvexPolygon, K)> {
+        self.partition(polygon, key, true)
+    }
+
+    /// The partition, with each split's two sides joined again when `join`
+    /// is set and all their pieces' keys agree.
+    fn partition<K: Copy + Eq>(
+        &self,
+        polygon: &ConvexPolygon,
+        key: impl Fn(Containment) -> K,
+        join: bool,
+    ) -> Vec<(ConvexPolygon, K)> {
         let mut out = Vec::new();
         let mut continuations: Vec<Continuation> = Vec::new();
-        let mut stack: Vec<(SolidChild, ConvexPolygon, Option<u32>)> =
-            vec![(self.root, polygon.clone(), None)];
-        while let Some((child, piece, cont)) = stack.pop() {
+        let mut stack = vec![Step::Descend(self.root, polygon.clone(), None)];
+        while let Some(step) = stack.pop() {
+            let (child, piece, cont) = match step {
+                Step::Descend(child, piece, cont) => (child, piece, cont),
+                Step::Join { start, whole } => {
+                    // Depth first: everything cut from `whole` has gone to
+                    // `out[start..]`, and nothing else has.
+                    let first = out.get(start).map(|&(_, k)| k);
+                    if let Some(k) = first.filter(|&k| out[start..].iter().all(|&(_, j)| j == k)) {
+                        out.truncate(start);
+                        out.push((whole, k));
+                    }
+                    continue;
+                }
+            };
             match child {
                 SolidChild::Leaf(region) => {
-                    self.resolve(
-                        piece,
-                        (region, region),
-                        cont,
-                        &mut continuations,
-                        &mut stack,
-                        &mut out,
-                    );
+                    let sides = (region, region);
+                    if let Some((piece, class)) =
+                        self.resolve(piece, sides, cont, &mut continuations, &mut stack)
+                    {
+                        out.push((piece, key(class)));
+                    }
                 }
                 SolidChild::Node(i) => {
                     let node = &self.nodes[i as usize];
                     match piece.split(&node.plane) {
-                        Split::Front => stack.push((node.front, piece, cont)),
-                        Split::Back => stack.push((node.back, piece, cont)),
+                        Split::Front => stack.push(Step::Descend(node.front, piece, cont)),
+                        Split::Back => stack.push(Step::Descend(node.back, piece, cont)),
                         Split::Both(back, front) => {
-                            stack.push((node.back, back, cont));
-                            stack.push((node.front, front, cont));
+                            if join {
+                                let start = out.len();
+                                stack.push(Step::Join {
+                                    start,
+                                    whole: piece,
+                                });
+                            }
+                            stack.push(Step::Descend(node.back, back, cont));
+                            stack.push(Step::Descend(node.front, front, cont));
                         }
                         Split::Coplanar(facing) => {
                             // The piece's front side looks into `first`.
@@ -330,7 +373,7 @@ impl BspSolid {
                                 parent: cont,
                             });
                             let k = continuations.len() as u32 - 1;
-                            stack.push((first, piece, Some(k)));
+                            stack.push(Step::Descend(first, piece, Some(k)));
                         }
                     }
                 }
@@ -341,19 +384,19 @@ impl BspSolid {
 
     /// A piece reached a leaf (or finished a coplanar descent) with the
     /// regions `(front side, back side)`; pass them up the continuations.
+    /// Returns the piece with its containment once every continuation is
+    /// answered, or `None` when it goes on down another subtree.
     fn resolve(
         &self,
         piece: ConvexPolygon,
         mut sides: (Region, Region),
         mut cont: Option<u32>,
         continuations: &mut Vec<Continuation>,
-        stack: &mut Vec<(SolidChild, ConvexPolygon, Option<u32>)>,
-        out: &mut Vec<(ConvexPolygon, Containment)>,
-    ) {
+        stack: &mut Vec<Step>,
+    ) -> Option<(ConvexPolygon, Containment)> {
         loop {
             let Some(k) = cont else {
-                out.push((piece, Containment::from_sides(sides.0, sides.1)));
-                return;
+                return Some((piece, Containment::from_sides(sides.0, sides.1)));
             };
             match continuations[k as usize] {
                 Continuation::First { second, parent } => {
@@ -362,8 +405,8 @@ impl BspSolid {
                         parent,
                     });
                     let next = continuations.len() as u32 - 1;
-                    stack.push((second, piece, Some(next)));
-                    return;
+                    stack.push(Step::Descend(second, piece, Some(next)));
+                    return None;
                 }
                 Continuation::Second { front_side, parent } => {
                     sides = (front_side, sides.1);
@@ -396,6 +439,13 @@ impl BspSolid {
             None => Ok(()),
         }
     }
+}
+
+/// Work of [`BspSolid::partition`]: a piece to filter down a subtree, or
+/// the two sides of a split to join again if their pieces agree.
+enum Step {
+    Descend(SolidChild, ConvexPolygon, Option<u32>),
+    Join { start: usize, whole: ConvexPolygon },
 }
 
 /// What to do with a piece of a coplanar polygon when its descent ends.

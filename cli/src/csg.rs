@@ -116,13 +116,19 @@ fn regularized(solid: &BspSolid, faces: &[ConvexPolygon]) -> Vec<ConvexPolygon> 
         .iter()
         .enumerate()
         .flat_map(|(i, face)| {
-            solid.partition_polygon(face).into_iter().filter_map(
-                move |(piece, class)| match class {
-                    Containment::BoundarySame => Some(piece.with_source(i as u32)),
-                    Containment::BoundaryOpposite => Some(piece.flipped().with_source(i as u32)),
-                    Containment::Inside | Containment::Outside => None,
-                },
-            )
+            // Keyed by whether the piece is kept, and turned over.
+            let kept = |class| match class {
+                Containment::BoundarySame => Some(false),
+                Containment::BoundaryOpposite => Some(true),
+                Containment::Inside | Containment::Outside => None,
+            };
+            solid
+                .partition_polygon_by(face, kept)
+                .into_iter()
+                .filter_map(move |(piece, kept)| {
+                    let piece = if kept? { piece.flipped() } else { piece };
+                    Some(piece.with_source(i as u32))
+                })
         })
         .collect()
 }

@@ -139,6 +139,12 @@ impl IndexedMesh {
 
 /// The pieces of `A op B`'s boundary, from the faces of `A` and `B` (closed,
 /// outward) and their solids.
+///
+/// Each face's kept part comes in as few pieces as the other solid's tree
+/// allows ([`BspSolid::partition_polygon_by`], keyed by whether a piece is
+/// kept): a tree's cut with kept pieces alone on both sides leaves no
+/// seam. Seams would be slivers wherever a plane passes near a corner, and
+/// a result fed back in would fold along them once snapped.
 pub fn boundary_pieces(
     a: &BspSolid,
     a_faces: &[ConvexPolygon],
@@ -146,22 +152,31 @@ pub fn boundary_pieces(
     b_faces: &[ConvexPolygon],
     op: SetOp,
 ) -> Vec<ConvexPolygon> {
+    let keeps_a = |class| {
+        matches!(
+            (op, class),
+            (
+                SetOp::Union,
+                Containment::Outside | Containment::BoundarySame
+            ) | (
+                SetOp::Intersection,
+                Containment::Inside | Containment::BoundarySame
+            ) | (
+                SetOp::Difference,
+                Containment::Outside | Containment::BoundaryOpposite
+            )
+        )
+    };
+    let keeps_b = |class| {
+        matches!(
+            (op, class),
+            (SetOp::Union, Containment::Outside)
+                | (SetOp::Intersection | SetOp::Difference, Containment::Inside)
+        )
+    };
     let mut out = Vec::new();
     for (i, face) in a_faces.iter().enumerate() {
-        for (piece, class) in pieces_of(b, face) {
-            let keep = matches!(
-                (op, class),
-                (
-                    SetOp::Union,
-                    Containment::Outside | Containment::BoundarySame
-                ) | (
-                    SetOp::Intersection,
-                    Containment::Inside | Containment::BoundarySame
-                ) | (
-                    SetOp::Difference,
-                    Containment::Outside | Containment::BoundaryOpposite
-                )
-            );
+        for (piece, keep) in b.partition_polygon_by(face, keeps_a) {
             if keep {
                 out.push(piece.with_source(i as u32));
             }
@@ -169,31 +184,17 @@ pub fn boundary_pieces(
     }
     let offset = a_faces.len() as u32;
     for (j, face) in b_faces.iter().enumerate() {
-        for (piece, class) in pieces_of(a, face) {
-            let piece = match (op, class) {
-                (SetOp::Union, Containment::Outside) => piece,
-                (SetOp::Intersection, Containment::Inside) => piece,
-                (SetOp::Difference, Containment::Inside) => piece.flipped(),
-                _ => continue,
-            };
-            out.push(piece.with_source(offset + j as u32));
+        for (piece, keep) in a.partition_polygon_by(face, keeps_b) {
+            if keep {
+                let piece = match op {
+                    SetOp::Difference => piece.flipped(),
+                    SetOp::Union | SetOp::Intersection => piece,
+                };
+                out.push(piece.with_source(offset + j as u32));
+            }
         }
     }
     out
-}
-
-/// `face` partitioned by `solid`, or `face` whole when every piece has the
-/// same containment: a tree's cuts that do not separate inside from outside
-/// (planes of faces elsewhere, axis-aligned splits) would only fragment the
-/// output.
-fn pieces_of(solid: &BspSolid, face: &ConvexPolygon) -> Vec<(ConvexPolygon, Containment)> {
-    let mut pieces = solid.partition_polygon(face);
-    if pieces.len() > 1 && pieces.iter().all(|(_, c)| *c == pieces[0].1) {
-        let class = pieces[0].1;
-        pieces.clear();
-        pieces.push((face.clone(), class));
-    }
-    pieces
 }
 
 /// The boundary of `A op B`: exact pieces ([`boundary_pieces`]) and the

@@ -183,6 +183,39 @@ proptest! {
             }
         }
     }
+
+    /// Keyed, the partition has the same regions in no more pieces, fewer
+    /// still for a coarser key, and the polygon whole for one key.
+    #[test]
+    fn a_keyed_partition_joins_what_its_key_does_not_tell_apart(
+        radii in radii(),
+        tri in prop::collection::vec(prop::array::uniform3(-1200_i64..1200), 3),
+    ) {
+        let mesh = star_mesh([0, 0, 0], &radii);
+        let solid = solid_of(&mesh);
+        let pts: Vec<GridPoint> = tri.iter().map(|p| gp(p[0], p[1], p[2])).collect();
+        let Ok(polygon) = ConvexPolygon::from_grid_points(&pts, 0) else { return Ok(()) };
+        let plain = solid.partition_polygon(&polygon);
+        let keyed = solid.partition_polygon_by(&polygon, |c| c);
+        prop_assert!(keyed.len() <= plain.len());
+        let area = |pieces: &[(ConvexPolygon, Containment)], class: Containment| -> f64 {
+            pieces.iter().filter(|(_, c)| *c == class).map(|(p, _)| p.area()).sum()
+        };
+        for class in [Containment::Inside, Containment::Outside] {
+            let (a, b) = (area(&plain, class), area(&keyed, class));
+            prop_assert!((a - b).abs() <= 1e-9 * polygon.area(), "{:?}: {} != {}", class, a, b);
+        }
+        for (piece, class) in &keyed {
+            piece.check_invariants().map_err(TestCaseError::fail)?;
+            let inside = inside_by_parity(&mesh, piece.centroid());
+            prop_assert_eq!(*class == Containment::Inside, inside);
+        }
+        let inside_or_not = solid.partition_polygon_by(&polygon, |c| c == Containment::Inside);
+        prop_assert!(inside_or_not.len() <= keyed.len());
+        let whole = solid.partition_polygon_by(&polygon, |_| ());
+        prop_assert_eq!(whole.len(), 1);
+        prop_assert_eq!(&whole[0].0, &polygon);
+    }
 }
 
 #[test]
