@@ -116,17 +116,17 @@ fn regularized(solid: &BspSolid, faces: &[ConvexPolygon]) -> Vec<ConvexPolygon> 
         .iter()
         .enumerate()
         .flat_map(|(i, face)| {
-            // Keyed by whether the piece is kept, and turned over.
-            let kept = |class| match class {
+            // Kept pieces keyed by whether they are turned over.
+            let turn = |class| match class {
                 Containment::BoundarySame => Some(false),
                 Containment::BoundaryOpposite => Some(true),
                 Containment::Inside | Containment::Outside => None,
             };
             solid
-                .partition_polygon_by(face, kept)
+                .partition_polygon_by(face, turn)
                 .into_iter()
-                .filter_map(move |(piece, kept)| {
-                    let piece = if kept? { piece.flipped() } else { piece };
+                .filter_map(move |(piece, turn)| {
+                    let piece = if turn? { piece.flipped() } else { piece };
                     Some(piece.with_source(i as u32))
                 })
         })

@@ -135,6 +135,42 @@ fn radii() -> impl Strategy<Value = [i64; 18]> {
     prop::array::uniform18(200_i64..1000)
 }
 
+/// Three corners of a triangle through and around a star mesh.
+fn triangle() -> impl Strategy<Value = Vec<[i64; 3]>> {
+    prop::collection::vec(prop::array::uniform3(-1200_i64..1200), 3)
+}
+
+/// The star mesh of `radii`, its solid, and the triangle of `corners`
+/// (`None` when they are in line).
+fn star_and_triangle(
+    radii: &[i64; 18],
+    corners: &[[i64; 3]],
+) -> Option<(Vec<[GridPoint; 3]>, BspSolid, ConvexPolygon)> {
+    let mesh = star_mesh([0, 0, 0], radii);
+    let solid = solid_of(&mesh);
+    let points: Vec<GridPoint> = corners.iter().map(|p| gp(p[0], p[1], p[2])).collect();
+    let polygon = ConvexPolygon::from_grid_points(&points, 0).ok()?;
+    Some((mesh, solid, polygon))
+}
+
+/// Each piece is sound and inside the mesh exactly when it says so (a
+/// random triangle has no piece on the boundary).
+fn pieces_agree_with_parity(
+    mesh: &[[GridPoint; 3]],
+    pieces: &[(ConvexPolygon, Containment)],
+) -> Result<(), TestCaseError> {
+    for (piece, class) in pieces {
+        piece.check_invariants().map_err(TestCaseError::fail)?;
+        let inside = inside_by_parity(mesh, piece.centroid());
+        match class {
+            Containment::Inside => prop_assert!(inside),
+            Containment::Outside => prop_assert!(!inside),
+            _ => prop_assert!(false, "a random triangle is not on the boundary"),
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(40))]
 
@@ -162,26 +198,14 @@ proptest! {
     }
 
     #[test]
-    fn polygon_partition_agrees_with_parity(
-        radii in radii(),
-        tri in prop::collection::vec(prop::array::uniform3(-1200_i64..1200), 3),
-    ) {
-        let mesh = star_mesh([0, 0, 0], &radii);
-        let solid = solid_of(&mesh);
-        let pts: Vec<GridPoint> = tri.iter().map(|p| gp(p[0], p[1], p[2])).collect();
-        let Ok(polygon) = ConvexPolygon::from_grid_points(&pts, 0) else { return Ok(()) };
+    fn polygon_partition_agrees_with_parity(radii in radii(), corners in triangle()) {
+        let Some((mesh, solid, polygon)) = star_and_triangle(&radii, &corners) else {
+            return Ok(());
+        };
         let pieces = solid.partition_polygon(&polygon);
         let total: f64 = pieces.iter().map(|(p, _)| p.area()).sum();
         prop_assert!((total - polygon.area()).abs() <= 1e-9 * polygon.area());
-        for (piece, class) in &pieces {
-            piece.check_invariants().map_err(TestCaseError::fail)?;
-            let inside = inside_by_parity(&mesh, piece.centroid());
-            match class {
-                Containment::Inside => prop_assert!(inside),
-                Containment::Outside => prop_assert!(!inside),
-                _ => prop_assert!(false, "a random triangle is not on the boundary"),
-            }
-        }
+        pieces_agree_with_parity(&mesh, &pieces)?;
     }
 
     /// Keyed, the partition has the same regions in no more pieces, fewer
@@ -189,12 +213,11 @@ proptest! {
     #[test]
     fn a_keyed_partition_joins_what_its_key_does_not_tell_apart(
         radii in radii(),
-        tri in prop::collection::vec(prop::array::uniform3(-1200_i64..1200), 3),
+        corners in triangle(),
     ) {
-        let mesh = star_mesh([0, 0, 0], &radii);
-        let solid = solid_of(&mesh);
-        let pts: Vec<GridPoint> = tri.iter().map(|p| gp(p[0], p[1], p[2])).collect();
-        let Ok(polygon) = ConvexPolygon::from_grid_points(&pts, 0) else { return Ok(()) };
+        let Some((mesh, solid, polygon)) = star_and_triangle(&radii, &corners) else {
+            return Ok(());
+        };
         let plain = solid.partition_polygon(&polygon);
         let keyed = solid.partition_polygon_by(&polygon, |c| c);
         prop_assert!(keyed.len() <= plain.len());
@@ -205,11 +228,7 @@ proptest! {
             let (a, b) = (area(&plain, class), area(&keyed, class));
             prop_assert!((a - b).abs() <= 1e-9 * polygon.area(), "{:?}: {} != {}", class, a, b);
         }
-        for (piece, class) in &keyed {
-            piece.check_invariants().map_err(TestCaseError::fail)?;
-            let inside = inside_by_parity(&mesh, piece.centroid());
-            prop_assert_eq!(*class == Containment::Inside, inside);
-        }
+        pieces_agree_with_parity(&mesh, &keyed)?;
         let inside_or_not = solid.partition_polygon_by(&polygon, |c| c == Containment::Inside);
         prop_assert!(inside_or_not.len() <= keyed.len());
         let whole = solid.partition_polygon_by(&polygon, |_| ());
