@@ -58,9 +58,7 @@ proptest! {
             t.light.side_of_point(f.vertex_grid_point(k).unwrap()) == bsp_core::Side::Front
         }));
         prop_assume!(below);
-        let (mut scene, ids) = t.build();
-        scene.check_invariants().map_err(TestCaseError::fail)?;
-        let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+        let (mut scene, ids, floor_piece) = t.build_over_floor()?;
         check_vertices(&t, &mut scene)?;
         check_against_area_shadow_with(&t, DmOptions::default())?;
         // Each polygon casting its own unit: the same classes.

@@ -69,6 +69,16 @@ impl TestScene {
         DmScene::build_with(vec![light], self.objects.clone(), options).unwrap()
     }
 
+    /// Built and checked, with the first object's first piece (the floor).
+    pub fn build_over_floor(
+        &self,
+    ) -> Result<(DmScene, Vec<dm_mesh::ObjectId>, PieceId), TestCaseError> {
+        let (scene, ids) = self.build();
+        scene.check_invariants().map_err(TestCaseError::fail)?;
+        let floor = scene.object_pieces(ids[0]).unwrap()[0];
+        Ok((scene, ids, floor))
+    }
+
     /// Every polygon of the scene.
     pub fn polygons(&self) -> Vec<ConvexPolygon> {
         self.objects.iter().flat_map(|o| o.0.clone()).collect()
@@ -515,4 +525,12 @@ pub fn plate_over_boxes() -> TestScene {
         objects,
         light: light(-60, -40, 160, 120, 420, 10),
     }
+}
+
+/// The cells of `piece`'s DM-tree with their classes under light 0.
+pub fn floor_cells(scene: &DmScene, piece: PieceId) -> Vec<(ConvexPolygon, CellClass)> {
+    let dm = scene.receiver(piece).unwrap();
+    dm.cells()
+        .map(|(f, c)| (dm.mesh().face_polygon(f, 0).unwrap(), dm.class(c, 0)))
+        .collect()
 }

@@ -5,7 +5,7 @@
 //! points; vertex irradiance against the visible part of the light; a move
 //! against a fresh build.
 
-use crate::common::{TestScene, class_areas, floor, gp, light};
+use crate::common::{TestScene, class_areas, floor, floor_cells, gp, light};
 use crate::illumination::check_vertices;
 use bsp_core::predicates::{Side, side_of_point};
 use bsp_core::{ConvexPolygon, GridPoint};
@@ -112,14 +112,8 @@ proptest! {
             objects,
             light: light(x0, z0, w, d, y, 0),
         };
-        let (mut scene, ids) = t.build();
-        scene.check_invariants().map_err(TestCaseError::fail)?;
-        let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
-        let dm = scene.receiver(floor_piece).unwrap();
-        let cells: Vec<(ConvexPolygon, CellClass)> = dm
-            .cells()
-            .map(|(f, c)| (dm.mesh().face_polygon(f, 0).unwrap(), dm.class(c, 0)))
-            .collect();
+        let (mut scene, ids, floor_piece) = t.build_over_floor()?;
+        let cells = floor_cells(&scene, floor_piece);
         for c in points {
             let p = gp(c[0], 0, c[1]);
             let Some((_, class)) = cells.iter().find(|(polygon, _)| {

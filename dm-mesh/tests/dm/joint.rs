@@ -3,10 +3,10 @@
 //! floor points, and against fresh builds as one box moves into contact
 //! and away again.
 
-use crate::common::{TestScene, class_areas, floor, gp, light, triangulated_cuboid};
+use crate::common::{TestScene, class_areas, floor, floor_cells, gp, light, triangulated_cuboid};
 use bsp_core::ConvexPolygon;
 use bsp_core::predicates::{Side, side_of_point};
-use dm_mesh::{CellClass, DmScene, PieceId};
+use dm_mesh::CellClass;
 use proptest::prelude::*;
 use svbsp::PieceFlags;
 
@@ -73,14 +73,6 @@ fn cut_box(
         }
         None => vec![low, high],
     }
-}
-
-/// The floor's cells with their classes.
-fn floor_cells(scene: &DmScene, floor: PieceId) -> Vec<(ConvexPolygon, CellClass)> {
-    let dm = scene.receiver(floor).unwrap();
-    dm.cells()
-        .map(|(f, c)| (dm.mesh().face_polygon(f, 0).unwrap(), dm.class(c, 0)))
-        .collect()
 }
 
 /// A box of corner `lo` (raised by 20) and size `size`, cut across
@@ -177,9 +169,7 @@ fn joint_umbra_and_moves(
         objects,
         light: light(x0, z0, w, d, y, 0),
     };
-    let (mut scene, ids) = t.build();
-    scene.check_invariants().map_err(TestCaseError::fail)?;
-    let floor_piece = scene.object_pieces(ids[0]).unwrap()[0];
+    let (mut scene, ids, floor_piece) = t.build_over_floor()?;
     let cells = floor_cells(&scene, floor_piece);
     let corners = [
         [x0, y, z0],
