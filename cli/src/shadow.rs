@@ -388,8 +388,7 @@ pub(crate) fn illum_lights(scene: &Scene, pieces: &Pieces) -> Result<Vec<IllumLi
                 let mut point = illum::PointLight::new(pieces.grid.to_world(*g), light.intensity)
                     .map_err(|e| field(e.to_string()))?;
                 if let Some(f) = light.falloff {
-                    let falloff = illum::Falloff::new(f.start, f.range, f.exponent)
-                        .map_err(|e| field(e.to_string()))?;
+                    let falloff = f.to_illum().map_err(|e| field(e.to_string()))?;
                     point = point.with_falloff(falloff);
                 }
                 IllumLight::Point(point)

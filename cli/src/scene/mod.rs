@@ -106,16 +106,11 @@ pub struct Falloff {
 }
 
 impl Falloff {
-    /// The factor at distance `r`: 1 up to `start`,
-    /// `((range - r) / (range - start))^exponent` between, 0 from `range` on.
-    pub fn factor(&self, r: f64) -> f64 {
-        if r <= self.start {
-            1.0
-        } else if r >= self.range {
-            0.0
-        } else {
-            ((self.range - r) / (self.range - self.start)).powf(self.exponent)
-        }
+    /// The falloff the illumination applies ([`illum::Falloff`], whose
+    /// `factor` is 1 up to `start`, `((range - r) / (range - start))^exponent`
+    /// between, 0 from `range` on); an error for figures it refuses.
+    pub fn to_illum(&self) -> std::result::Result<illum::Falloff, illum::IllumError> {
+        illum::Falloff::new(self.start, self.range, self.exponent)
     }
 }
 

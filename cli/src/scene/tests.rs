@@ -140,7 +140,9 @@ fn falloff_factor() {
         start: 1.0,
         range: 3.0,
         exponent: 2.0,
-    };
+    }
+    .to_illum()
+    .unwrap();
     assert_eq!(f.factor(0.5), 1.0);
     assert!((f.factor(2.0) - 0.25).abs() < 1e-15);
     assert_eq!(f.factor(3.5), 0.0);
