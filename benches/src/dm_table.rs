@@ -275,7 +275,7 @@ pub fn print() {
         };
         let start = Instant::now();
         let mut run = if movable {
-            dm_scene_moving(&hall, options, "box0", &[0.05])
+            dm_scene_moving(&hall, options, "box0", [0.05, 0.0, 0.0], 1)
         } else {
             dm_scene_with(&hall, options)
         }

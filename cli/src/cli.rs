@@ -8,9 +8,10 @@ use std::path::{Path, PathBuf};
 use clap::{ArgGroup, Args, Parser, Subcommand, ValueEnum};
 use svbsp::SetOp;
 use umbra::{
-    Deletion, DemoFiles, DmOptions, DmRun, DmStats, ObjMesh, Outputs, OverlapKind, Pieces,
+    Deletion, DemoFiles, DmOptions, DmRun, DmStats, Motion, ObjMesh, Outputs, OverlapKind, Pieces,
     PlyEncoding, Result, Scene, ShadowOptions, csg, dm_scene_moving, dm_scene_with,
-    render_scene_with, save_csg_obj, shadow_scene, shadow_scene_with, stage_obj, stage_ply,
+    render_scene_with, save_csg_obj, scene_grid, shadow_scene, shadow_scene_with, stage_obj,
+    stage_ply,
 };
 
 /// Exact object-space shadows: splits every receiving polygon into lit,
@@ -192,7 +193,9 @@ pub struct UpdateArgs {
     /// Displacement of each step. After step s the object is s times this
     /// away, rounded to whole grid steps (exact for decimals such as 0.1
     /// when the scene is written in decimals: its grid step is then a power
-    /// of ten, or twice or five times one).
+    /// of ten, or twice or five times one). The grid holds the object's
+    /// whole way: a way out of the scene's box makes its step coarser (a
+    /// warning says by how much).
     #[arg(long, value_name = "DX,DY,DZ", value_parser = parse_vector, allow_hyphen_values = true)]
     pub by: [f64; 3],
     /// Number of steps.
@@ -482,7 +485,7 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
     let scene = Scene::load(&args.scene)?;
     progress.say("building discontinuity meshes");
     let options = dm_options(args.outer_only, args.deletion, args.overlap);
-    let mut run = dm_scene_moving(&scene, options, &args.object, &args.by)?;
+    let mut run = dm_scene_moving(&scene, options, &args.object, args.by, args.steps)?;
     progress.say("moving");
     let mut lines = Vec::new();
     let figures = run.move_steps(
@@ -505,6 +508,7 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
     let s = save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
     progress.finish();
     warn_dropped(&scene, &s.stats.dropped_polygons);
+    warn_coarser(&scene, args, run.pieces.grid.cell_size());
     let mut out = std::io::stdout().lock();
     for line in lines {
         let _ = writeln!(out, "{line}");
@@ -518,6 +522,34 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
         run.stats.dm.cells
     );
     Ok(())
+}
+
+/// Says on stderr when the moved object's way took the grid past the
+/// scene's own box, so that its step (`cell`, world units) grew: every
+/// vertex of the output then snapped to the coarser grid.
+fn warn_coarser(scene: &Scene, args: &UpdateArgs, cell: f64) {
+    let Some(object) = scene.objects.iter().position(|o| o.name == args.object) else {
+        return;
+    };
+    let still = Motion {
+        object,
+        by: args.by,
+        steps: 0,
+    };
+    let Ok(own) = scene_grid(scene, Some(still)) else {
+        return;
+    };
+    if cell > own.cell_size() {
+        eprintln!(
+            "umbra: warning: `{}`'s way ({} steps of {:?}) leaves the scene's box: the grid grew \
+             to hold it, its step from {} to {}",
+            args.object,
+            args.steps,
+            args.by,
+            own.cell_size(),
+            cell
+        );
+    }
 }
 
 /// Where input polygon `input` was written: its mesh file and line, or its

@@ -63,6 +63,24 @@ pub struct Pieces {
     pub frames: InputFrames,
 }
 
+/// An object that will move in equal straight steps (`umbra update`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Motion {
+    /// The scene object's index.
+    pub object: usize,
+    /// One step (world units).
+    pub by: [f64; 3],
+    /// How many steps.
+    pub steps: u32,
+}
+
+impl Motion {
+    /// The whole way: `steps` times `by`.
+    pub fn way(&self) -> [f64; 3] {
+        self.by.map(|x| x * f64::from(self.steps))
+    }
+}
+
 /// A light placed on the grid.
 #[derive(Debug, Clone)]
 pub enum SnappedLight {
@@ -78,34 +96,63 @@ pub enum SnappedLight {
     Area(ConvexPolygon),
 }
 
+/// The grid [`Pieces::from_scene_moving`] lays for `scene` and `motion`:
+/// over the box of every scene vertex, point-light position and area-light
+/// vertex, and of the moving object at the end of its way, grown by
+/// [`GRID_MARGIN`]; its step holds one step's lengths exactly when it can
+/// ([`Grid::fitted`]). (With `steps` 0 the box is the scene's own.)
+pub fn scene_grid(scene: &Scene, motion: Option<Motion>) -> Result<Grid> {
+    let mut points: Vec<&[f64; 3]> = scene
+        .input_polygons()
+        .flat_map(|(_, p)| p.vertices.iter())
+        .collect();
+    let way_end: Vec<[f64; 3]> = match motion {
+        Some(m) => {
+            let way = m.way();
+            scene
+                .input_polygons()
+                .filter(|&(o, _)| o == m.object)
+                .flat_map(|(_, p)| p.vertices.iter())
+                .map(|v| [0, 1, 2].map(|a| v[a] + way[a]))
+                .collect()
+        }
+        None => Vec::new(),
+    };
+    points.extend(way_end.iter());
+    for light in &scene.lights {
+        match &light.kind {
+            LightKind::Point { position } => points.push(position),
+            LightKind::Area { vertices } => points.extend(vertices.iter()),
+            LightKind::Directional { .. } => {}
+        }
+    }
+    let step = motion.map(|m| m.by);
+    let lengths = step.as_ref().map_or(&[][..], |by| by.as_slice());
+    Grid::fitted(points, GRID_MARGIN, lengths).map_err(|source| Error::Grid {
+        path: scene.path.clone(),
+        source,
+    })
+}
+
 impl Pieces {
     /// Cuts the scene into pieces on a grid over the bounding box of every
     /// scene vertex, point-light position and area-light vertex, grown by
     /// [`GRID_MARGIN`].
     pub fn from_scene(scene: &Scene) -> Result<Self> {
-        Self::from_scene_moving(scene, &[])
+        Self::from_scene_moving(scene, None)
     }
 
-    /// [`Self::from_scene`] for a scene whose objects will move by
-    /// `lengths` (world units along an axis): the grid's step is chosen to
-    /// hold those exactly too when it can ([`Grid::fitted`]).
-    pub fn from_scene_moving(scene: &Scene, lengths: &[f64]) -> Result<Self> {
+    /// [`Self::from_scene`] for a scene whose object will move
+    /// (`motion`): the grid's box holds the object at the end of its way
+    /// too (the steps are straight, so every place between), and its step
+    /// is chosen to hold one step's lengths exactly when it can
+    /// ([`Grid::fitted`]).
+    pub fn from_scene_moving(scene: &Scene, motion: Option<Motion>) -> Result<Self> {
         let grid_error = |source| Error::Grid {
             path: scene.path.clone(),
             source,
         };
-        let mut points: Vec<&[f64; 3]> = scene
-            .input_polygons()
-            .flat_map(|(_, p)| p.vertices.iter())
-            .collect();
-        for light in &scene.lights {
-            match &light.kind {
-                LightKind::Point { position } => points.push(position),
-                LightKind::Area { vertices } => points.extend(vertices.iter()),
-                LightKind::Directional { .. } => {}
-            }
-        }
-        let grid = Grid::fitted(points, GRID_MARGIN, lengths).map_err(grid_error)?;
+        let grid = scene_grid(scene, motion)?;
 
         let mut out = Self {
             grid,

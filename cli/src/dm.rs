@@ -18,7 +18,7 @@ use svbsp::{Fragment, PieceFlags};
 use crate::atomic::Outputs;
 use crate::closed_surface::{Surfaces, surfaces};
 use crate::dark::{Occluders, proven_dark_past};
-use crate::decompose::{Pieces, SnappedLight};
+use crate::decompose::{Motion, Pieces, SnappedLight};
 use crate::dm_lights::{LightMap, cut_by_other_lights};
 use crate::error::{Error, Result};
 use crate::mesh::{OutputFace, OutputMesh, irradiance_f32};
@@ -231,43 +231,75 @@ pub fn dm_scene(scene: &Scene) -> Result<DmRun> {
 
 /// Builds and illuminates the DM-trees of a loaded scene.
 pub fn dm_scene_with(scene: &Scene, options: DmOptions) -> Result<DmRun> {
-    dm_scene_for(scene, options, &[], None)
+    dm_scene_for(scene, options, None)
 }
 
 /// [`dm_scene_with`] for a scene whose object named `object` will move by
-/// `by` (world units) one step after another: the grid is sized for the
-/// way ([`Pieces::from_scene_moving`]) and the object declared movable
+/// `by` (world units) `steps` times, one step after another: the grid
+/// holds the object's whole way and one step's lengths
+/// ([`Pieces::from_scene_moving`]), and the object is declared movable
 /// ([`DmScene::build_movable`]: even its first move deletes only its own
-/// nodes). Errors: those of a build, and no object of that name.
+/// nodes). Errors: those of a build, no object of that name, and a way
+/// beyond finite numbers.
 pub fn dm_scene_moving(
     scene: &Scene,
     options: DmOptions,
     object: &str,
-    by: &[f64],
+    by: [f64; 3],
+    steps: u32,
 ) -> Result<DmRun> {
+    let field = |field: &str, message: String| Error::Field {
+        path: scene.path.clone(),
+        field: field.into(),
+        message,
+    };
     let index = scene
         .objects
         .iter()
         .position(|o| o.name == object)
-        .ok_or_else(|| Error::Field {
-            path: scene.path.clone(),
-            field: "object".into(),
-            message: format!("no object is named `{object}` (from --move)"),
+        .ok_or_else(|| {
+            field(
+                "object",
+                format!("no object is named `{object}` (from --move)"),
+            )
         })?;
-    dm_scene_for(scene, options, by, Some(index))
+    let motion = Motion {
+        object: index,
+        by,
+        steps,
+    };
+    if motion.way().iter().any(|x| !x.is_finite()) {
+        return Err(field(
+            "--by",
+            format!("{steps} steps of {by:?} go beyond finite numbers"),
+        ));
+    }
+    dm_scene_for(scene, options, Some(motion))
 }
 
 /// Builds and illuminates the DM-trees of a loaded scene, the grid sized
-/// for moves of `lengths` (world units along an axis), scene object
-/// `movable` (if any) declared movable.
-fn dm_scene_for(
-    scene: &Scene,
-    options: DmOptions,
-    lengths: &[f64],
-    movable: Option<usize>,
-) -> Result<DmRun> {
+/// for `motion` (if any), whose object is declared movable.
+fn dm_scene_for(scene: &Scene, options: DmOptions, motion: Option<Motion>) -> Result<DmRun> {
     let started = Instant::now();
-    let pieces = Pieces::from_scene_moving(scene, lengths)?;
+    let pieces = Pieces::from_scene_moving(scene, motion).map_err(|e| match motion {
+        // The scene snaps on a grid of its own: the way stretched the
+        // grid so far that the scene lost what it needs.
+        Some(m) if Pieces::from_scene(scene).is_ok() => Error::Field {
+            path: scene.path.clone(),
+            field: "--by".into(),
+            message: format!(
+                "{} steps of {:?} stretch the scene's grid too far: {}",
+                m.steps,
+                m.by,
+                match &e {
+                    Error::Field { field, message, .. } => format!("{field}: {message}"),
+                    Error::Grid { source, .. } => source.to_string(),
+                    other => other.to_string(),
+                }
+            ),
+        },
+        _ => e,
+    })?;
     let lights = area_lights(scene, &pieces)?;
     let light_map = LightMap::of(scene, &pieces)?;
     let objects = piece_objects(scene, &pieces);
@@ -281,7 +313,7 @@ fn dm_scene_for(
         .map(|(ks, f)| (ks.iter().map(|&k| pieces.polygons[k].clone()).collect(), *f))
         .collect();
     let normals = normals_of(&pieces, groups.iter().map(|(ks, _)| ks));
-    let movable: Vec<usize> = movable.into_iter().collect();
+    let movable: Vec<usize> = motion.map(|m| m.object).into_iter().collect();
     let fresh = FreshDm::build(lights, objects, &movable, &normals, options)?;
     let groups = groups.into_iter().map(|g| g.0).collect();
     Ok(DmRun::assemble(

@@ -81,7 +81,8 @@ pub use atomic::{Outputs, write_atomic};
 pub use bsp_core;
 pub use csg::{csg, save_csg_obj};
 pub use decompose::{
-    DIRECTION_SCALE, GRID_MARGIN, Pieces, SnappedLight, convex_pieces, integer_direction,
+    DIRECTION_SCALE, GRID_MARGIN, Motion, Pieces, SnappedLight, convex_pieces, integer_direction,
+    scene_grid,
 };
 pub use demo::{DEMOS, DemoFiles, TETRA_DEPTH, tetra_triangles, write_demo};
 pub use dm::{DmFigures, DmRun, DmStats, UpdateFigures, dm_scene, dm_scene_moving, dm_scene_with};

@@ -69,7 +69,7 @@ fn main() -> ExitCode {
     // DM_COST_MOVABLE=1: OBJECT declared movable at the build (as `umbra
     // update` does), so its first move costs what the later ones do.
     let build = || match std::env::var_os("DM_COST_MOVABLE") {
-        Some(_) => dm_scene_moving(&scene, options, object, &[0.05]),
+        Some(_) => dm_scene_moving(&scene, options, object, [0.05, 0.0, 0.0], 1),
         None => dm_scene_with(&scene, options),
     };
     let mut run = build().expect("the scene builds");

@@ -224,7 +224,16 @@ fn update_ends_where_a_scene_built_there_does() {
         json["update"]["rebuild_seconds"].as_array().unwrap().len(),
         3
     );
-    // Moving off the grid is an error, and nothing is written.
+}
+
+#[test]
+fn update_carries_an_object_off_the_scene_box() {
+    // The square ends 30 to the right, beyond the floor's edge (the box of
+    // the scene is [-10, 10] along x): the grid grows to hold its way, and
+    // the end state is what a scene built there gives, the floor all lit.
+    let text = scene(0.0);
+    let far = scene(30.0);
+    let dir = folder(&[("scene.toml", text.as_str()), ("far.toml", far.as_str())]);
     let run = umbra(
         dir.path(),
         &[
@@ -233,16 +242,71 @@ fn update_ends_where_a_scene_built_there_does() {
             "--move",
             "square",
             "--by",
-            "1000,0,0",
+            "10,0,0",
+            "--steps",
+            "3",
             "-o",
-            "far.ply",
+            "out.ply",
         ],
     );
-    assert_eq!(run.code, 2);
+    assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(
-        run.stderr.contains("off the scene's grid"),
+        run.stderr.contains("leaves the scene's box: the grid grew"),
         "{}",
         run.stderr
     );
-    assert!(!dir.path().join("far.ply").exists());
+    let run = umbra(dir.path(), &["dm", "far.toml", "-o", "far.ply"]);
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let a = load_ply(&dir.path().join("out.ply")).unwrap();
+    let b = load_ply(&dir.path().join("far.ply")).unwrap();
+    assert_eq!(class_areas(&a, 0), [400.0, 0.0, 0.0]);
+    for source in [0, 1] {
+        let (x, y) = (class_areas(&a, source), class_areas(&b, source));
+        for c in 0..3 {
+            assert!(
+                (x[c] - y[c]).abs() < 1e-9,
+                "source {source}: {x:?} vs {y:?}"
+            );
+        }
+    }
+    // A move within the box keeps the scene's grid: no warning.
+    let run = umbra(
+        dir.path(),
+        &[
+            "update",
+            "scene.toml",
+            "--move",
+            "square",
+            "--by",
+            "2,0,0",
+            "--steps",
+            "3",
+            "-o",
+            "near.ply",
+        ],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(!run.stderr.contains("warning"), "{}", run.stderr);
+    // A way so long that the scene no longer holds on the grid is an
+    // error naming `--by`, and nothing is written.
+    for by in ["1e30,0,0", "1e308,0,0"] {
+        let run = umbra(
+            dir.path(),
+            &[
+                "update",
+                "scene.toml",
+                "--move",
+                "square",
+                "--by",
+                by,
+                "--steps",
+                "2",
+                "-o",
+                "gone.ply",
+            ],
+        );
+        assert_eq!(run.code, 2, "{by}: {}", run.stderr);
+        assert!(run.stderr.contains("--by: 2 steps of"), "{}", run.stderr);
+        assert!(!dir.path().join("gone.ply").exists());
+    }
 }
