@@ -9,7 +9,7 @@ use bsp_core::ConvexPolygon;
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
 use umbra::dm_scene;
-use umbra_benches::dm_table::{demo, translated};
+use umbra_benches::dm_table::demo;
 
 fn build(c: &mut Criterion) {
     let dir = tempfile::tempdir().unwrap();
@@ -34,7 +34,10 @@ fn moves(c: &mut Criterion) {
         let (id, ks) = run.objects[index].clone();
         let step = (0.05 * run.pieces.grid.scale()).round() as i64;
         let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
-        let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
+        let there: Vec<ConvexPolygon> = here
+            .iter()
+            .map(|p| p.translated([step, 0, 0]).expect("on the grid"))
+            .collect();
         let mut flip = false;
         c.bench_function(&format!("dm_move_{name}_{object}"), |b| {
             b.iter(|| {

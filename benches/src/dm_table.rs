@@ -6,21 +6,10 @@
 //! polygons clipped per vertex under them.
 
 use crate::output_change::OutputChange;
-use bsp_core::{ConvexPolygon, GridPoint};
+use bsp_core::ConvexPolygon;
 use std::path::Path;
 use std::time::Instant;
 use umbra::{DmOptions, DmRun, Scene, dm_scene, dm_scene_moving, dm_scene_with, write_demo};
-
-/// `p` moved by `d` grid units (its vertices are grid points).
-pub fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
-    let points: Vec<GridPoint> = (0..p.len())
-        .map(|k| {
-            let g = p.vertex_grid_point(k).expect("grid vertex").to_i64();
-            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).expect("on the grid")
-        })
-        .collect();
-    ConvexPolygon::from_grid_points(&points, p.source()).expect("still convex")
-}
 
 /// A demo written into `dir` and loaded.
 pub fn demo(dir: &Path, name: &str) -> Scene {
@@ -45,7 +34,10 @@ fn back_and_forth(run: &mut DmRun, scene: &Scene, name: &str, moves: usize) -> V
     let (id, ks) = run.objects[index].clone();
     let step = (0.05 * run.pieces.grid.scale()).round() as i64;
     let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
-    let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
+    let there: Vec<ConvexPolygon> = here
+        .iter()
+        .map(|p| p.translated([step, 0, 0]).expect("on the grid"))
+        .collect();
     let seconds = (0..moves)
         .map(|m| {
             let to = if m % 2 == 0 { &there } else { &here };

@@ -50,6 +50,11 @@ pub enum Error {
     /// A polygon is not strictly convex (a reflex vertex or a self-overlap).
     #[error("polygon is not convex")]
     NonConvex,
+    /// A polygon corner is a cut's implicit point (three planes meeting,
+    /// even where that falls on a grid position) where a grid point is
+    /// needed.
+    #[error("a polygon corner is not a grid point (it was cut)")]
+    ImplicitVertex,
     /// Three planes do not meet in a single point.
     #[error("the planes do not meet in a single point")]
     NoIntersection,

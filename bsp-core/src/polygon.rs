@@ -374,6 +374,28 @@ impl ConvexPolygon {
         acc.map(|c| c / total)
     }
 
+    /// The polygon moved by `d` grid steps, its source kept. Exact: its
+    /// corners must be grid points (every input polygon's are), and the
+    /// moved corners give the polygon [`Self::from_grid_points`] makes of
+    /// them. Errors: a corner that is a cut's implicit point
+    /// ([`Error::ImplicitVertex`]), or one moved past
+    /// [`GRID_LIMIT`](crate::GRID_LIMIT) ([`Error::CoordinateRange`]).
+    pub fn translated(&self, d: [i64; 3]) -> Result<Self, Error> {
+        let corners = self.grid_corners().ok_or(Error::ImplicitVertex)?;
+        let moved = corners
+            .iter()
+            .map(|p| {
+                let g = p.to_i64();
+                GridPoint::new(
+                    g[0].saturating_add(d[0]),
+                    g[1].saturating_add(d[1]),
+                    g[2].saturating_add(d[2]),
+                )
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Self::from_grid_points(&moved, self.source)
+    }
+
     /// The same region facing the other way (support plane flipped, vertex
     /// order reversed).
     pub fn flipped(&self) -> Self {

@@ -6,7 +6,7 @@
 use std::time::Instant;
 
 use area_shadow::{AreaSource, ShadowGroups};
-use bsp_core::{ConvexPolygon, FaceKey, GridPoint, VertexKey};
+use bsp_core::{ConvexPolygon, FaceKey, VertexKey};
 use dm_mesh::{
     Cell, CellClass, DmLight, DmOptions, DmScene, IllumStats, ObjectId, PieceId, ReceiverDm, Region,
 };
@@ -756,9 +756,9 @@ impl DmRun {
             let offset = by.map(|x| grid.length_to_units(x * f64::from(s)).round() as i64);
             let moved = original
                 .iter()
-                .map(|p| translate(p, offset))
-                .collect::<Option<Vec<_>>>()
-                .ok_or_else(|| field(format!("step {s} moves `{name}` off the scene's grid")))?;
+                .map(|p| p.translated(offset))
+                .collect::<std::result::Result<Vec<_>, _>>()
+                .map_err(|_| field(format!("step {s} moves `{name}` off the scene's grid")))?;
             let started = Instant::now();
             self.dm
                 .move_object(id, moved.clone())
@@ -876,14 +876,4 @@ fn normals_of<'a>(
     objects
         .map(|ks| ks.iter().map(|&k| pieces.normals[k]).collect())
         .collect()
-}
-
-fn translate(p: &ConvexPolygon, d: [i64; 3]) -> Option<ConvexPolygon> {
-    let points: Option<Vec<GridPoint>> = (0..p.len())
-        .map(|k| {
-            let g = p.vertex_grid_point(k)?.to_i64();
-            GridPoint::new(g[0] + d[0], g[1] + d[1], g[2] + d[2]).ok()
-        })
-        .collect();
-    ConvexPolygon::from_grid_points(&points?, p.source()).ok()
 }

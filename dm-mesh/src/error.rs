@@ -15,6 +15,10 @@ pub enum Error {
     /// then a plane through three grid points).
     #[error("polygon {0} of the object has vertices that are not grid points")]
     ImplicitInput(usize),
+    /// A translation takes the object's polygon off the grid (a
+    /// coordinate past [`bsp_core::GRID_LIMIT`]).
+    #[error("polygon {0} of the object would leave the grid")]
+    OffGrid(usize),
     /// The object handle names no object of the scene (removed already?).
     #[error("no such object (it was removed, or belongs to another scene)")]
     UnknownObject,

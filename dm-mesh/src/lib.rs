@@ -18,7 +18,8 @@
 //! receiver's normal, or one set with [`DmScene::set_receiver_normal`]: the
 //! input polygon's, of which the receiver is a snapped copy). Objects can be
 //! added, removed and moved ([`DmScene::add_object`],
-//! [`DmScene::remove_object`], [`DmScene::move_object`]). A removal drops
+//! [`DmScene::remove_object`], [`DmScene::move_object`], or
+//! [`DmScene::translate_object`] by whole grid steps). A removal drops
 //! the occluder from the lists of the cells it covered and deletes its
 //! discontinuity nodes by the paper's three steps ([`Deletion::Local`], the
 //! default): the node's edge leaves the mesh, the subtree with the smaller
@@ -114,7 +115,8 @@
 //! assert!((area(&scene, CellClass::Umbra) - 14.0 * 14.0).abs() < 1e-9);
 //! assert!((area(&scene, CellClass::Penumbra) - (18.0 * 18.0 - 14.0 * 14.0)).abs() < 1e-9);
 //! // Move the occluder 10 units along x: the umbra moves with it.
-//! scene.move_object(ids[1], vec![square(10)]).unwrap();
+//! scene.translate_object(ids[1], [10, 0, 0]).unwrap();
+//! assert_eq!(scene.piece_polygon(scene.object_pieces(ids[1]).unwrap()[0]), Some(&square(10)));
 //! assert!((area(&scene, CellClass::Umbra) - 14.0 * 14.0).abs() < 1e-9);
 //! let stats = scene.illuminate();
 //! assert!(stats.vertices > 0);

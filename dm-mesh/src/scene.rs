@@ -576,6 +576,28 @@ impl DmScene {
         self.change(id, Some((polygons, flags)))
     }
 
+    /// Moves an object by `d` grid steps: [`Self::move_object`] with each
+    /// of its polygons [translated](ConvexPolygon::translated), the step an
+    /// application takes frame after frame. Errors: no such object, or a
+    /// polygon moved off the grid ([`Error::OffGrid`], nothing changed).
+    pub fn translate_object(&mut self, id: ObjectId, d: [i64; 3]) -> Result<(), Error> {
+        let pieces = self.object_pieces(id).ok_or(Error::UnknownObject)?;
+        let moved = pieces
+            .iter()
+            .enumerate()
+            .map(|(k, &piece)| {
+                self.pieces[piece]
+                    .polygon
+                    .translated(d)
+                    .map_err(|e| match e {
+                        bsp_core::Error::ImplicitVertex => Error::ImplicitInput(k),
+                        _ => Error::OffGrid(k),
+                    })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        self.move_object(id, moved)
+    }
+
     /// Whether an object was declared movable ([`Self::build_movable`]);
     /// `false` for a handle of no object.
     pub fn is_movable(&self, id: ObjectId) -> bool {

@@ -26,7 +26,6 @@ use std::process::ExitCode;
 
 use bsp_core::ConvexPolygon;
 use umbra::{Deletion, DmOptions, OverlapKind, Scene, dm_scene_moving, dm_scene_with};
-use umbra_benches::dm_table::translated;
 
 /// The allocator of the `umbra` binary, so the figures are the command's.
 #[global_allocator]
@@ -76,7 +75,10 @@ fn main() -> ExitCode {
     let (id, ks) = run.objects[index].clone();
     let step = (0.05 * run.pieces.grid.scale()).round() as i64;
     let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
-    let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
+    let there: Vec<ConvexPolygon> = here
+        .iter()
+        .map(|p| p.translated([step, 0, 0]).expect("on the grid"))
+        .collect();
     let cells =
         |dm: &umbra::DmRun| -> usize { dm.dm.receivers().map(|(_, r)| r.cell_count()).sum() };
     let cells_before = cells(&run);

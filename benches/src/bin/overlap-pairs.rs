@@ -11,7 +11,7 @@ use std::time::Instant;
 
 use bsp_core::ConvexPolygon;
 use umbra::{DmOptions, OverlapKind, Scene, dm_scene_with};
-use umbra_benches::dm_table::{demo, translated};
+use umbra_benches::dm_table::demo;
 use umbra_benches::rooms::box_hall;
 
 /// The allocator of the `umbra` binary, so the figures are the command's.
@@ -48,7 +48,10 @@ fn row(name: &str, scene: &Scene, object: &str, kind: OverlapKind, runs: usize) 
     let (id, ks) = run.objects[index].clone();
     let step = (0.05 * run.pieces.grid.scale()).round() as i64;
     let here: Vec<ConvexPolygon> = ks.iter().map(|&k| run.pieces.polygons[k].clone()).collect();
-    let there: Vec<ConvexPolygon> = here.iter().map(|p| translated(p, [step, 0, 0])).collect();
+    let there: Vec<ConvexPolygon> = here
+        .iter()
+        .map(|p| p.translated([step, 0, 0]).expect("on the grid"))
+        .collect();
     let mut moves = Vec::new();
     for m in 0..5 {
         let to = if m % 2 == 0 { &there } else { &here };

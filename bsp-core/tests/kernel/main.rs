@@ -6,4 +6,5 @@ mod planar_snap;
 mod scene_bsp;
 mod solid;
 mod split;
+mod translate;
 mod winged_edge;

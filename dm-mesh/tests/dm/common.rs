@@ -243,17 +243,6 @@ pub fn scene_with(objects: std::ops::Range<usize>) -> impl Strategy<Value = Test
         })
 }
 
-/// A polygon moved by `d` grid units.
-pub fn translated(p: &ConvexPolygon, d: [i64; 3]) -> ConvexPolygon {
-    let pts: Vec<GridPoint> = (0..p.len())
-        .map(|k| {
-            let g = p.vertex_grid_point(k).unwrap().to_i64();
-            gp(g[0] + d[0], g[1] + d[1], g[2] + d[2])
-        })
-        .collect();
-    ConvexPolygon::from_grid_points(&pts, p.source()).unwrap()
-}
-
 /// Area of each class (lit, penumbra, umbra) on a receiver for light 0.
 pub fn class_areas(scene: &DmScene, piece: PieceId) -> [f64; 3] {
     light_class_areas(scene, piece, 0)

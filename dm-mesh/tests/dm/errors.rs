@@ -1,7 +1,8 @@
 //! Input the scene rejects, as values: polygons whose vertices are not
 //! grid points, whether they come in a build (the first bad polygon in
 //! order is the one named, on one thread or two: objects are made side by
-//! side), an addition or a move, which then leave the scene as it was.
+//! side), an addition or a move, which then leave the scene as it was;
+//! translations that would take an object off the grid.
 
 use crate::common::{floor, gp, level_rect, light};
 use bsp_core::{ConvexPolygon, Plane, Split};
@@ -75,4 +76,66 @@ fn additions_and_moves_reject_bad_polygons() {
     assert_eq!(scene.object_pieces(ids[1]).map(<[_]>::len), Some(1));
     assert_eq!(cells(&scene), before);
     scene.check_invariants().expect("the scene as it was");
+}
+
+#[test]
+fn translations_off_the_grid_or_of_no_object_are_refused() {
+    let flags = PieceFlags::default();
+    let (mut scene, ids) = DmScene::build(
+        lights(),
+        vec![
+            (vec![floor(100)], flags),
+            (
+                vec![
+                    level_rect([-5, 5], 10, [-5, 5]),
+                    level_rect([-5, 5], 12, [-5, 5]),
+                ],
+                flags,
+            ),
+        ],
+    )
+    .expect("the scene builds");
+    scene.illuminate();
+    let before: Vec<ConvexPolygon> = scene
+        .object_pieces(ids[1])
+        .unwrap()
+        .iter()
+        .map(|&p| scene.piece_polygon(p).unwrap().clone())
+        .collect();
+    let cells = scene
+        .receivers()
+        .map(|(_, dm)| dm.cell_count())
+        .sum::<usize>();
+    // Both polygons would leave the grid; the first is named.
+    let limit = i64::from(bsp_core::GRID_LIMIT);
+    assert_eq!(
+        scene.translate_object(ids[1], [0, limit, 0]).err(),
+        Some(Error::OffGrid(0))
+    );
+    // y = 10 + (limit - 11) stays on the grid, y = 12 + (limit - 11) does not.
+    assert_eq!(
+        scene.translate_object(ids[1], [0, limit - 11, 0]).err(),
+        Some(Error::OffGrid(1))
+    );
+    let after: Vec<ConvexPolygon> = scene
+        .object_pieces(ids[1])
+        .unwrap()
+        .iter()
+        .map(|&p| scene.piece_polygon(p).unwrap().clone())
+        .collect();
+    assert_eq!(after, before);
+    assert_eq!(
+        scene
+            .receivers()
+            .map(|(_, dm)| dm.cell_count())
+            .sum::<usize>(),
+        cells
+    );
+    scene.check_invariants().expect("the scene as it was");
+    // A removed object's handle names nothing.
+    scene.remove_object(ids[1]).unwrap();
+    assert_eq!(
+        scene.translate_object(ids[1], [1, 0, 0]).err(),
+        Some(Error::UnknownObject)
+    );
 }

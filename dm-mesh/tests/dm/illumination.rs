@@ -1,7 +1,7 @@
 //! Vertex irradiance: the three cases against the visible part of the
 //! light past every occluder of the scene, and against Monte Carlo.
 
-use crate::common::{TestScene, cuboid, floor, gp, level_rect, light, scene, translated};
+use crate::common::{TestScene, cuboid, floor, gp, level_rect, light, scene};
 use crate::oracle::{hidden, interior_samples};
 use bsp_core::ConvexPolygon;
 use dm_mesh::{CellClass, DmScene};
@@ -98,14 +98,14 @@ proptest! {
         let k = 1 + pick % (t.objects.len() - 1).max(1);
         prop_assume!(k < t.objects.len());
         let moved: Vec<ConvexPolygon> =
-            t.objects[k].0.iter().map(|p| translated(p, d)).collect();
+            t.objects[k].0.iter().map(|p| p.translated(d).unwrap()).collect();
         let (mut lazy, ids) = t.build();
         lazy.move_object(ids[k], moved.clone()).unwrap();
         let all = lazy.illuminate();
         prop_assert_eq!(all.evaluated, all.vertices);
         let (mut eager, ids) = t.build();
         eager.illuminate();
-        eager.move_object(ids[k], moved).unwrap();
+        eager.translate_object(ids[k], d).unwrap();
         same_values(&eager, &lazy)?;
         let stats = eager.illuminate();
         prop_assert!(stats.evaluated <= stats.vertices);
@@ -383,7 +383,7 @@ fn a_receiver_normal_set_is_what_light_falls_on() {
     scene.illuminate();
     assert!(check(&scene, tilted) >= 4);
     // Moved parallel to itself (the floor down by 1): the normal stays.
-    let down = translated(&floor(200), [0, -1, 0]);
+    let down = floor(200).translated([0, -1, 0]).unwrap();
     scene.move_object(ids[0], vec![down]).unwrap();
     scene.illuminate();
     assert!(check(&scene, tilted) >= 4);

@@ -202,7 +202,7 @@ fn joint_umbra_and_moves(
     let original = t.objects[last].0.clone();
     let moved: Vec<ConvexPolygon> = original
         .iter()
-        .map(|p| crate::common::translated(p, away))
+        .map(|p| p.translated(away).unwrap())
         .collect();
     for polygons in [moved, original] {
         scene.move_object(ids[last], polygons.clone()).unwrap();

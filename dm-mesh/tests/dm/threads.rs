@@ -2,8 +2,7 @@
 //! depend on the number of threads (same cells, same lists, same vertex
 //! irradiance, bit for bit), also after moves.
 
-use crate::common::{TestScene, bumpy_bodies, plate_over_boxes, scene_with, translated};
-use bsp_core::ConvexPolygon;
+use crate::common::{TestScene, bumpy_bodies, plate_over_boxes, scene_with};
 use dm_mesh::DmScene;
 use proptest::prelude::*;
 
@@ -40,12 +39,7 @@ fn build_and_move(t: &TestScene) -> Vec<CellPrint> {
     let (mut scene, ids) = t.build();
     scene.illuminate();
     if let Some(&id) = ids.get(1) {
-        let moved: Vec<ConvexPolygon> = t.objects[1]
-            .0
-            .iter()
-            .map(|p| translated(p, [7, 0, -5]))
-            .collect();
-        scene.move_object(id, moved).unwrap();
+        scene.translate_object(id, [7, 0, -5]).unwrap();
         scene.illuminate();
     }
     fingerprint(&scene)

@@ -6,7 +6,7 @@
 
 use crate::common::{
     Object, TestScene, bumpy_bodies, class_areas, concavity, facing_boxes, plate_over_boxes,
-    ring_bodies, scene, scene_with, translated,
+    ring_bodies, scene, scene_with,
 };
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
@@ -48,8 +48,9 @@ fn apply(scene: &mut DmScene, model: &mut Model, op: &Op) -> Result<(), TestCase
         Op::Move(k, d) => {
             let k = 1 + (k - 1) % (n - 1);
             if let Some(((polys, flags), id)) = model.objects[k].clone() {
-                let moved: Vec<ConvexPolygon> = polys.iter().map(|p| translated(p, d)).collect();
-                scene.move_object(id, moved.clone()).unwrap();
+                let moved: Vec<ConvexPolygon> =
+                    polys.iter().map(|p| p.translated(d).unwrap()).collect();
+                scene.translate_object(id, d).unwrap();
                 model.objects[k] = Some(((moved, flags), id));
             }
         }
