@@ -273,6 +273,8 @@ impl DmScene {
         state.values.clear();
         state.fresh = false;
         self.unlit.insert(piece);
+        self.revision += 1;
+        self.changed_at.insert(piece, self.revision);
         Ok(())
     }
 
@@ -288,6 +290,7 @@ impl DmScene {
     /// this call then has little left to do, and its figures include the
     /// work those changes did since the last call.
     pub fn illuminate(&mut self) -> IllumStats {
+        self.revision += 1;
         self.lit = true;
         let since = std::mem::take(&mut self.lit_since);
         since.add(self.illuminate_pending())
@@ -321,6 +324,7 @@ impl DmScene {
                         state,
                         &mut scratch,
                     ));
+                    self.changed_at.insert(r, self.revision);
                 }
             }
             return stats;
@@ -354,6 +358,7 @@ impl DmScene {
         for (r, dm, state) in work {
             self.receivers.insert(r, dm);
             self.illum.insert(r, state);
+            self.changed_at.insert(r, self.revision);
         }
         stats
     }

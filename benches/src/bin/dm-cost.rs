@@ -116,18 +116,24 @@ fn main() -> ExitCode {
     let mut evaluated = 0;
     for m in 0..moves {
         let to = if m % 2 == 0 { &there } else { &here };
+        let since = run.dm.revision();
         let started = std::time::Instant::now();
         profile_move(m == profiled, "enable");
         run.dm.move_object(id, to.clone()).expect("moves");
         let moved = started.elapsed().as_secs_f64();
         let stats = run.dm.illuminate();
         profile_move(m == profiled, "disable");
+        let elapsed = started.elapsed().as_secs_f64();
+        // What an application reads again: the receivers listed changed.
+        let listing = std::time::Instant::now();
+        let changed = run.dm.receivers_changed_since(since).count();
         eprintln!(
-            "move {m}: {:.2} ms ({:.2} ms before illumination), {} vertices looked at, {} re-evaluated",
-            1e3 * started.elapsed().as_secs_f64(),
+            "move {m}: {:.2} ms ({:.2} ms before illumination), {} vertices looked at, {} re-evaluated; {changed} receivers changed (listed in {:.1} us)",
+            1e3 * elapsed,
             1e3 * moved,
             stats.vertices,
-            stats.evaluated
+            stats.evaluated,
+            1e6 * listing.elapsed().as_secs_f64()
         );
         evaluated += stats.evaluated;
         if std::env::var_os("DM_COST_VERBOSE").is_some() {

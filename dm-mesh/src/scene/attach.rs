@@ -225,6 +225,7 @@ impl DmScene {
         for (piece, receiver) in polygons {
             let key = self.pieces.insert(piece);
             self.receivers.insert(key, receiver);
+            self.changed_at.insert(key, self.revision);
             self.illum.insert(key, ReceiverIllum::default());
             self.contacts.insert(key, ContactPlanes::default());
             self.unlit.insert(key);

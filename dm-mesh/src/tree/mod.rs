@@ -208,6 +208,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         self.tracking = true;
     }
 
+    /// Whether changes are recorded ([`Self::start_tracking`] has run).
+    pub(crate) fn is_tracking(&self) -> bool {
+        self.tracking
+    }
+
     /// Whether some face changed since the last [`Self::take_touched`].
     pub(crate) fn has_touched(&self) -> bool {
         !self.touched.is_empty()

@@ -523,3 +523,31 @@ pub fn floor_cells(scene: &DmScene, piece: PieceId) -> Vec<(ConvexPolygon, CellC
         .map(|(f, c)| (dm.mesh().face_polygon(f, 0).unwrap(), dm.class(c, 0)))
         .collect()
 }
+
+/// One cell: vertex coordinate bits, entries, vertex irradiance bits.
+pub type CellPrint = (Vec<[u64; 3]>, Vec<dm_mesh::Entry>, Vec<u64>);
+
+/// Everything one receiver holds, in its mesh's order: per cell its
+/// vertices (exact coordinates as f64 bits), entries and irradiance bits.
+pub fn receiver_print(scene: &DmScene, piece: PieceId) -> Vec<CellPrint> {
+    let dm = scene.receiver(piece).unwrap();
+    dm.cells()
+        .map(|(face, cell)| {
+            let vertices = dm.mesh().face_vertices(face);
+            (
+                vertices
+                    .iter()
+                    .map(|&v| {
+                        let p = dm.mesh().vertex(v).unwrap().position.to_f64();
+                        p.map(f64::to_bits)
+                    })
+                    .collect(),
+                cell.entries().to_vec(),
+                vertices
+                    .iter()
+                    .map(|&v| scene.vertex_irradiance(piece, v).unwrap_or(-1.0).to_bits())
+                    .collect(),
+            )
+        })
+        .collect()
+}

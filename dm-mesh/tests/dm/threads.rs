@@ -2,37 +2,18 @@
 //! depend on the number of threads (same cells, same lists, same vertex
 //! irradiance, bit for bit), also after moves.
 
-use crate::common::{TestScene, bumpy_bodies, plate_over_boxes, scene_with};
+use crate::common::{
+    CellPrint, TestScene, bumpy_bodies, plate_over_boxes, receiver_print, scene_with,
+};
 use dm_mesh::DmScene;
 use proptest::prelude::*;
 
-/// One cell: vertex coordinate bits, entries, vertex irradiance bits.
-type CellPrint = (Vec<[u64; 3]>, Vec<dm_mesh::Entry>, Vec<u64>);
-
-/// Everything a scene's receivers hold, in order: per cell its vertices
-/// (exact coordinates as f64 bits), entries and irradiance bits.
+/// Everything a scene's receivers hold, in order.
 fn fingerprint(scene: &DmScene) -> Vec<CellPrint> {
-    let mut out = Vec::new();
-    for (piece, dm) in scene.receivers() {
-        for (face, cell) in dm.cells() {
-            let vertices = dm.mesh().face_vertices(face);
-            out.push((
-                vertices
-                    .iter()
-                    .map(|&v| {
-                        let p = dm.mesh().vertex(v).unwrap().position.to_f64();
-                        p.map(f64::to_bits)
-                    })
-                    .collect(),
-                cell.entries().to_vec(),
-                vertices
-                    .iter()
-                    .map(|&v| scene.vertex_irradiance(piece, v).unwrap_or(-1.0).to_bits())
-                    .collect(),
-            ));
-        }
-    }
-    out
+    scene
+        .receivers()
+        .flat_map(|(piece, _)| receiver_print(scene, piece))
+        .collect()
 }
 
 fn build_and_move(t: &TestScene) -> Vec<CellPrint> {

@@ -5,14 +5,15 @@
 //! keep their invariants after every operation.
 
 use crate::common::{
-    Object, TestScene, bumpy_bodies, class_areas, concavity, facing_boxes, plate_over_boxes,
-    ring_bodies, scene, scene_with,
+    CellPrint, Object, TestScene, bumpy_bodies, class_areas, concavity, cuboid, facing_boxes,
+    floor, light, plate_over_boxes, receiver_print, ring_bodies, scene, scene_with,
 };
 use crate::oracle::interior_samples;
 use bsp_core::{ConvexPolygon, Side};
 use dm_mesh::{Deletion, DmLight, DmOptions, DmScene, ObjectId, OverlapKind, PieceId};
 use proptest::prelude::*;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
+use svbsp::PieceFlags;
 
 #[derive(Debug, Clone)]
 enum Op {
@@ -43,6 +44,38 @@ fn check_all(scene: &DmScene) -> Result<(), TestCaseError> {
 }
 
 fn apply(scene: &mut DmScene, model: &mut Model, op: &Op) -> Result<(), TestCaseError> {
+    let since = scene.revision();
+    let before: BTreeMap<PieceId, Vec<CellPrint>> = scene
+        .receivers()
+        .map(|(piece, _)| (piece, receiver_print(scene, piece)))
+        .collect();
+    let applied = apply_op(scene, model, op)?;
+    check_all(scene)?;
+    // Every receiver the op changed (new ones included) is listed as
+    // changed; every other one holds what it held, bit for bit.
+    prop_assert_eq!(scene.revision() > since, applied);
+    let listed: BTreeSet<PieceId> = scene.receivers_changed_since(since).collect();
+    for &piece in &listed {
+        prop_assert!(
+            scene.receiver(piece).is_some(),
+            "{piece:?} listed, but gone"
+        );
+    }
+    for (piece, _) in scene.receivers() {
+        if !listed.contains(&piece) {
+            prop_assert!(
+                before.get(&piece) == Some(&receiver_print(scene, piece)),
+                "{piece:?} changed, but not listed"
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Applies `op` to the scene and the model; whether it changed anything
+/// (an object to move or remove was there, one to add back had been
+/// removed).
+fn apply_op(scene: &mut DmScene, model: &mut Model, op: &Op) -> Result<bool, TestCaseError> {
     let n = model.objects.len();
     match *op {
         Op::Move(k, d) => {
@@ -52,14 +85,18 @@ fn apply(scene: &mut DmScene, model: &mut Model, op: &Op) -> Result<(), TestCase
                     polys.iter().map(|p| p.translated(d).unwrap()).collect();
                 scene.translate_object(id, d).unwrap();
                 model.objects[k] = Some(((moved, flags), id));
+                return Ok(true);
             }
         }
         Op::Remove(k) => {
             let k = 1 + (k - 1) % (n - 1);
             if let Some((object, id)) = model.objects[k].take() {
                 scene.remove_object(id).unwrap();
+                let revision = scene.revision();
                 prop_assert!(scene.remove_object(id).is_err());
+                prop_assert_eq!(scene.revision(), revision, "a refused change is none");
                 model.removed[k] = Some(object);
+                return Ok(true);
             }
         }
         Op::ReAdd(k) => {
@@ -67,10 +104,11 @@ fn apply(scene: &mut DmScene, model: &mut Model, op: &Op) -> Result<(), TestCase
             if let Some(object) = model.removed[k].take() {
                 let id = scene.add_object(object.0.clone(), object.1).unwrap();
                 model.objects[k] = Some((object, id));
+                return Ok(true);
             }
         }
     }
-    check_all(scene)
+    Ok(false)
 }
 
 /// Receivers of the live objects, in model order, piece by piece.
@@ -342,5 +380,69 @@ fn samples_helper_is_inside() {
         interior_samples(&p, 4)
             .iter()
             .all(|q| q[0].abs() < 10.0 && q[2].abs() < 10.0)
+    );
+}
+
+/// What a change lists as changed: after a build every receiver; after a
+/// move the floor and the moved box's new faces, not a box far from its
+/// shadow; after an illumination with nothing left to do, nothing.
+#[test]
+fn a_move_lists_the_receivers_it_changed() {
+    let flags = PieceFlags::default();
+    let t = TestScene {
+        objects: vec![
+            (vec![floor(400)], flags),
+            (cuboid([-300, 0, -10], [-280, 20, 10]), flags),
+            (cuboid([280, 0, -10], [300, 20, 10]), flags),
+        ],
+        light: light(-10, -10, 20, 20, 500, 0),
+    };
+    let (mut scene, ids) = t.build();
+    let all: BTreeSet<PieceId> = scene.receivers().map(|(p, _)| p).collect();
+    assert_eq!(all.len(), 13);
+    assert_eq!(
+        scene.receivers_changed_since(0).collect::<BTreeSet<_>>(),
+        all
+    );
+    let built = scene.revision();
+    scene.illuminate();
+    assert_eq!(
+        scene
+            .receivers_changed_since(built)
+            .collect::<BTreeSet<_>>(),
+        all,
+        "every receiver got its values"
+    );
+    let since = scene.revision();
+    scene.illuminate();
+    assert_eq!(scene.receivers_changed_since(since).count(), 0);
+    let since = scene.revision();
+    scene.translate_object(ids[1], [5, 0, 0]).unwrap();
+    let listed: BTreeSet<PieceId> = scene.receivers_changed_since(since).collect();
+    let floor = scene.object_pieces(ids[0]).unwrap()[0];
+    let moved: BTreeSet<PieceId> = scene
+        .object_pieces(ids[1])
+        .unwrap()
+        .iter()
+        .copied()
+        .collect();
+    let far = scene.object_pieces(ids[2]).unwrap().to_vec();
+    assert!(listed.contains(&floor));
+    assert!(moved.is_subset(&listed));
+    assert!(far.iter().all(|p| !listed.contains(p)), "{listed:?}");
+    assert_eq!(listed.len(), 1 + moved.len());
+    // A new receiver normal lists that receiver alone; its values come
+    // back with the next illumination, listed again.
+    let since = scene.revision();
+    scene.set_receiver_normal(far[0], [0.0, 1.0, 0.0]).unwrap();
+    assert_eq!(
+        scene.receivers_changed_since(since).collect::<Vec<_>>(),
+        [far[0]]
+    );
+    let since = scene.revision();
+    scene.illuminate();
+    assert_eq!(
+        scene.receivers_changed_since(since).collect::<Vec<_>>(),
+        [far[0]]
     );
 }
