@@ -393,6 +393,50 @@ fn areas(scene: &DmScene, ids: &[ObjectId]) -> Result<Vec<[f64; 3]>, String> {
 
 /// Vertex irradiance of the updated scene `a` against the rebuilt `b`,
 /// where both have a vertex (at the same coordinates).
+/// Per receiver, what it holds: per cell its vertices (coordinate bits),
+/// entries and vertex irradiance bits.
+type ReceiverPrints = HashMap<PieceId, Vec<(Vec<[u64; 3]>, Vec<dm_mesh::Entry>, Vec<u64>)>>;
+
+fn receiver_prints(scene: &DmScene) -> ReceiverPrints {
+    scene
+        .receivers()
+        .map(|(piece, dm)| {
+            let cells = dm
+                .cells()
+                .map(|(face, cell)| {
+                    let vertices = dm.mesh().face_vertices(face);
+                    let position = |v| dm.mesh().vertex(v).map(|v| v.position.to_f64());
+                    (
+                        vertices
+                            .iter()
+                            .map(|&v| position(v).unwrap_or_default().map(f64::to_bits))
+                            .collect(),
+                        cell.entries().to_vec(),
+                        vertices
+                            .iter()
+                            .map(|&v| scene.vertex_irradiance(piece, v).unwrap_or(-1.0).to_bits())
+                            .collect(),
+                    )
+                })
+                .collect();
+            (piece, cells)
+        })
+        .collect()
+}
+
+/// Every receiver a change left unlisted (`receivers_changed_since`)
+/// holds what it held before, and every new one is listed.
+fn unlisted_unchanged(scene: &DmScene, before: &ReceiverPrints, since: u64) -> Result<(), String> {
+    let listed: std::collections::HashSet<PieceId> = scene.receivers_changed_since(since).collect();
+    let now = receiver_prints(scene);
+    for (piece, print) in &now {
+        if !listed.contains(piece) && before.get(piece) != Some(print) {
+            return Err(format!("receiver {piece:?} changed, but is not listed"));
+        }
+    }
+    Ok(())
+}
+
 fn same_irradiance(
     a: &DmScene,
     ids_a: &[ObjectId],
@@ -493,6 +537,7 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
     let movable = case.objects.len();
     for op in &case.ops {
         let k = |o: u8| 1 + usize::from(o) % movable;
+        let (since, before) = (scene.revision(), receiver_prints(&scene));
         match *op {
             Op::Move(o, by) => {
                 let k = k(o);
@@ -522,6 +567,7 @@ pub fn check_dm_update(case: &DmCase) -> Result<(), String> {
             }
         }
         check(&scene, &format!("{op:?}"))?;
+        unlisted_unchanged(&scene, &before, since).map_err(|e| format!("after {op:?}: {e}"))?;
     }
     scene.illuminate();
 
