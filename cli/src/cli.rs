@@ -204,8 +204,10 @@ pub struct UpdateArgs {
     /// Output PLY file (the final state).
     #[arg(short, long, value_name = "OUT.ply")]
     pub output: PathBuf,
-    /// Write run statistics as JSON, with `update.update_seconds` and
-    /// `update.rebuild_seconds` (one entry per step).
+    /// Write run statistics as JSON, with `update.update_seconds`,
+    /// `update.rebuild_seconds` and `update.changed_receivers` (the
+    /// polygons whose cells or values the step changed), one entry per
+    /// step.
     #[arg(long, value_name = "S.json")]
     pub stats: Option<PathBuf>,
     /// Leave out the internal EV / VE discontinuities inside penumbrae

@@ -67,6 +67,10 @@ pub struct UpdateFigures {
     pub rebuild_seconds: Vec<f64>,
     /// Vertices re-evaluated by each step.
     pub reilluminated_vertices: Vec<u64>,
+    /// Receivers whose cells or vertex irradiance each step changed (the
+    /// moved object's new polygons among them): what an application
+    /// drawing the cells reads again ([`DmScene::receivers_changed_since`]).
+    pub changed_receivers: Vec<u64>,
 }
 
 /// What `umbra dm` / `umbra update` write with `--stats`.
@@ -759,6 +763,7 @@ impl DmRun {
                 .map(|p| p.translated(offset))
                 .collect::<std::result::Result<Vec<_>, _>>()
                 .map_err(|_| field(format!("step {s} moves `{name}` off the scene's grid")))?;
+            let since = self.dm.revision();
             let started = Instant::now();
             self.dm
                 .move_object(id, moved.clone())
@@ -766,6 +771,8 @@ impl DmRun {
             let illum = self.dm.illuminate();
             figures.update_seconds.push(started.elapsed().as_secs_f64());
             figures.reilluminated_vertices.push(illum.evaluated as u64);
+            let changed = self.dm.receivers_changed_since(since).count();
+            figures.changed_receivers.push(changed as u64);
             states.push(moved);
         }
         // The input polygons went `steps * by`, their pieces as rounded.

@@ -224,6 +224,10 @@ fn update_ends_where_a_scene_built_there_does() {
         json["update"]["rebuild_seconds"].as_array().unwrap().len(),
         3
     );
+    // Each step changed the floor's cells and made the square anew.
+    let changed = json["update"]["changed_receivers"].as_array().unwrap();
+    assert_eq!(changed.len(), 3);
+    assert!(changed.iter().all(|n| n.as_u64() == Some(2)), "{changed:?}");
 }
 
 #[test]
