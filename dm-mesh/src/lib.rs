@@ -34,7 +34,8 @@
 //! change listed ([`DmScene::receivers_changed_since`] the
 //! [`DmScene::revision`] it kept before: a box's move on the 10k-polygon
 //! hall lists 31 of its 10k receivers); every other receiver keeps its
-//! cells, keys and values.
+//! cells, keys and values. `examples/frames.rs` runs such a frame loop
+//! (`cargo run --release -p dm-mesh --example frames`).
 //! [`Deletion::Collapse`] instead collapses the subtrees the occluder grew
 //! and merges the later occluders there again. A removal is cheapest for
 //! the occluders merged last, whose nodes lie at the bottom of the trees:
