@@ -167,12 +167,7 @@ pub fn dm_scene_moving(
         .objects
         .iter()
         .position(|o| o.name == object)
-        .ok_or_else(|| {
-            field(
-                "object",
-                format!("no object is named `{object}` (from --move)"),
-            )
-        })?;
+        .ok_or_else(|| field("--move", format!("no object is named `{object}`")))?;
     let motion = Motion {
         object: index,
         by,

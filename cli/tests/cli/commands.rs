@@ -83,7 +83,8 @@ fn dm_commands_refuse_bad_input_with_exit_2_and_write_nothing() {
         ],
     );
     assert!(
-        run.stderr.contains("no object is named `nobody`"),
+        run.stderr
+            .contains("valid.toml: --move: no object is named `nobody`"),
         "{}",
         run.stderr
     );
