@@ -6,11 +6,13 @@
 
 use crate::common::{
     CellPrint, Object, TestScene, bumpy_bodies, class_areas, concavity, cuboid, facing_boxes,
-    floor, light, plate_over_boxes, receiver_print, ring_bodies, scene, scene_with,
+    floor, light, light_class_areas, plate_over_boxes, receiver_print, ring_bodies, scene,
+    scene_with,
 };
 use crate::oracle::interior_samples;
-use bsp_core::{ConvexPolygon, Side};
-use dm_mesh::{Deletion, DmLight, DmOptions, DmScene, ObjectId, OverlapKind, PieceId};
+use area_shadow::AreaSource;
+use bsp_core::ConvexPolygon;
+use dm_mesh::{CellClass, Deletion, DmLight, DmOptions, DmScene, ObjectId, OverlapKind, PieceId};
 use proptest::prelude::*;
 use std::collections::{BTreeMap, BTreeSet};
 use svbsp::PieceFlags;
@@ -132,20 +134,26 @@ fn compare(
         let (da, db) = (a.receiver(ra).unwrap(), b.receiver(rb).unwrap());
         prop_assert!(da.polygon() == db.polygon());
         let scale = da.polygon().area();
-        let (xa, xb) = (class_areas(a, ra), class_areas(b, rb));
-        for c in 0..3 {
-            prop_assert!(
-                (xa[c] - xb[c]).abs() <= 1e-9 * scale,
-                "class {c}: {} vs {}",
-                xa[c],
-                xb[c]
+        let lights = a.lights().len();
+        for light in 0..lights {
+            let (xa, xb) = (
+                light_class_areas(a, ra, light),
+                light_class_areas(b, rb, light),
             );
+            for c in 0..3 {
+                prop_assert!(
+                    (xa[c] - xb[c]).abs() <= 1e-9 * scale,
+                    "light {light} class {c}: {} vs {}",
+                    xa[c],
+                    xb[c]
+                );
+            }
         }
         // Class of sample points of each cell of one, located exactly in
         // the other (by the cell planes, at points strictly inside).
         for (f, cell) in da.cells() {
             let polygon = da.mesh().face_polygon(f, 0).unwrap();
-            let class = da.class(cell, 0);
+            let classes: Vec<CellClass> = (0..lights).map(|l| da.class(cell, l)).collect();
             for (g, other) in db.cells() {
                 let q = db.mesh().face_polygon(g, 0).unwrap();
                 // Overlap with area: clip one by the other's edge planes.
@@ -158,11 +166,14 @@ fn compare(
                     });
                 }
                 if piece.is_some() {
-                    prop_assert_eq!(
-                        class,
-                        db.class(other, 0),
-                        "cells overlap with different classes"
-                    );
+                    for (light, &class) in classes.iter().enumerate() {
+                        prop_assert_eq!(
+                            class,
+                            db.class(other, light),
+                            "cells overlap with different classes of light {}",
+                            light
+                        );
+                    }
                 }
             }
         }
@@ -185,7 +196,6 @@ fn compare(
                         "{p:?}: {ea} vs {eb}"
                     );
                 }
-                let _ = Side::On;
             }
         }
     }
@@ -207,9 +217,25 @@ fn run_movable(
     options: DmOptions,
     movable: &[usize],
 ) -> Result<(), TestCaseError> {
-    let light = DmLight::new(t.light.clone(), 1.0).unwrap();
+    run_under(&[t.light.clone()], t, ops, options, movable)
+}
+
+/// [`run_movable`] under `sources` (the scene's own light ignored).
+fn run_under(
+    sources: &[AreaSource],
+    t: &TestScene,
+    ops: &[Op],
+    options: DmOptions,
+    movable: &[usize],
+) -> Result<(), TestCaseError> {
+    let lights = || -> Vec<DmLight> {
+        sources
+            .iter()
+            .map(|s| DmLight::new(s.clone(), 1.0).unwrap())
+            .collect()
+    };
     let (mut scene, ids) =
-        DmScene::build_movable(vec![light], t.objects.clone(), movable, options).unwrap();
+        DmScene::build_movable(lights(), t.objects.clone(), movable, options).unwrap();
     scene.illuminate();
     check_all(&scene)?;
     let mut model = Model {
@@ -223,9 +249,8 @@ fn run_movable(
         apply(&mut scene, &mut model, op)?;
     }
     let live: Vec<(Object, ObjectId)> = model.objects.iter().flatten().cloned().collect();
-    let light = DmLight::new(t.light.clone(), 1.0).unwrap();
     let (mut fresh, fresh_ids) =
-        DmScene::build(vec![light], live.iter().map(|(o, _)| o.clone()).collect()).unwrap();
+        DmScene::build(lights(), live.iter().map(|(o, _)| o.clone()).collect()).unwrap();
     let ids: Vec<ObjectId> = live.iter().map(|(_, id)| *id).collect();
     compare(&mut scene, &ids, &mut fresh, &fresh_ids)
 }
@@ -276,6 +301,24 @@ proptest! {
         let movable: Vec<usize> = chosen.into_iter().filter(|&k| k < t.objects.len()).collect();
         run_movable(&t, &[], DmOptions::default(), &movable)?;
         run_movable(&t, &ops, DmOptions::default(), &movable)?;
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(16))]
+
+    /// Under two lights (one of which may be tilted, or low enough for
+    /// objects to reach its plane) updates agree with a rebuild light by
+    /// light.
+    #[test]
+    fn updates_under_two_lights_agree_with_a_rebuild(
+        t in scene_with(3..10),
+        other in (-120_i64..60, -120_i64..60, 20_i64..100, 20_i64..100, 110_i64..260, -30_i64..30),
+        ops in ops(),
+    ) {
+        let (x, z, w, d, h, tilt) = other;
+        let sources = [t.light.clone(), light(x, z, w, d, h, tilt)];
+        run_under(&sources, &t, &ops, DmOptions::default(), &[])?;
     }
 }
 
