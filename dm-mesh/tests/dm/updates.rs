@@ -217,7 +217,7 @@ fn run_movable(
     options: DmOptions,
     movable: &[usize],
 ) -> Result<(), TestCaseError> {
-    run_under(&[t.light.clone()], t, ops, options, movable)
+    run_under(std::slice::from_ref(&t.light), t, ops, options, movable)
 }
 
 /// [`run_movable`] under `sources` (the scene's own light ignored).
