@@ -4,7 +4,8 @@
 //! stats carry the contract's fields and the update arrays, and moving an
 //! object step by step ends where a scene built at the final place does.
 
-use crate::{folder, umbra};
+use crate::{Run, folder, umbra};
+use std::path::Path;
 use umbra::{OutputMesh, load_ply};
 
 /// Floor 20 x 20 at y = 0, a 4 x 4 square at y = 5, a 2 x 2 light at
@@ -70,6 +71,39 @@ fn class_areas(mesh: &OutputMesh, source: u32) -> [f64; 3] {
         out[class] += area(&pts);
     }
     out
+}
+
+/// The floor's (source 0) and the square's (source 1) class areas agree.
+fn assert_same_areas(a: &OutputMesh, b: &OutputMesh) {
+    for source in [0, 1] {
+        let (x, y) = (class_areas(a, source), class_areas(b, source));
+        for c in 0..3 {
+            assert!(
+                (x[c] - y[c]).abs() < 1e-9,
+                "source {source}: {x:?} vs {y:?}"
+            );
+        }
+    }
+}
+
+/// `umbra update scene.toml` moving the square `steps` times by `by`
+/// (`DX,DY,DZ`) into `out`.
+fn update_square(dir: &Path, by: &str, steps: &str, out: &str) -> Run {
+    umbra(
+        dir,
+        &[
+            "update",
+            "scene.toml",
+            "--move",
+            "square",
+            "--by",
+            by,
+            "--steps",
+            steps,
+            "-o",
+            out,
+        ],
+    )
 }
 
 #[test]
@@ -185,15 +219,7 @@ fn update_ends_where_a_scene_built_there_does() {
     assert_eq!(run.code, 0, "{}", run.stderr);
     let a = load_ply(&dir.path().join("out.ply")).unwrap();
     let b = load_ply(&dir.path().join("moved.ply")).unwrap();
-    for source in [0, 1] {
-        let (x, y) = (class_areas(&a, source), class_areas(&b, source));
-        for c in 0..3 {
-            assert!(
-                (x[c] - y[c]).abs() < 1e-9,
-                "source {source}: {x:?} vs {y:?}"
-            );
-        }
-    }
+    assert_same_areas(&a, &b);
     // The umbra moved with the square: [0, 6] x [-3, 3].
     assert!((class_areas(&a, 0)[2] - 36.0).abs() < 1e-9);
     // Collapsing instead of the paper's deletion, through the shadow
@@ -205,15 +231,7 @@ fn update_ends_where_a_scene_built_there_does() {
     let run = umbra(dir.path(), &other);
     assert_eq!(run.code, 0, "{}", run.stderr);
     let c = load_ply(&dir.path().join("alt.ply")).unwrap();
-    for source in [0, 1] {
-        let (x, y) = (class_areas(&a, source), class_areas(&c, source));
-        for k in 0..3 {
-            assert!(
-                (x[k] - y[k]).abs() < 1e-9,
-                "source {source}: {x:?} vs {y:?}"
-            );
-        }
-    }
+    assert_same_areas(&a, &c);
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("s.json")).unwrap()).unwrap();
     assert_eq!(
@@ -238,21 +256,7 @@ fn update_carries_an_object_off_the_scene_box() {
     let text = scene(0.0);
     let far = scene(30.0);
     let dir = folder(&[("scene.toml", text.as_str()), ("far.toml", far.as_str())]);
-    let run = umbra(
-        dir.path(),
-        &[
-            "update",
-            "scene.toml",
-            "--move",
-            "square",
-            "--by",
-            "10,0,0",
-            "--steps",
-            "3",
-            "-o",
-            "out.ply",
-        ],
-    );
+    let run = update_square(dir.path(), "10,0,0", "3", "out.ply");
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(
         run.stderr.contains("leaves the scene's box: the grid grew"),
@@ -264,51 +268,15 @@ fn update_carries_an_object_off_the_scene_box() {
     let a = load_ply(&dir.path().join("out.ply")).unwrap();
     let b = load_ply(&dir.path().join("far.ply")).unwrap();
     assert_eq!(class_areas(&a, 0), [400.0, 0.0, 0.0]);
-    for source in [0, 1] {
-        let (x, y) = (class_areas(&a, source), class_areas(&b, source));
-        for c in 0..3 {
-            assert!(
-                (x[c] - y[c]).abs() < 1e-9,
-                "source {source}: {x:?} vs {y:?}"
-            );
-        }
-    }
+    assert_same_areas(&a, &b);
     // A move within the box keeps the scene's grid: no warning.
-    let run = umbra(
-        dir.path(),
-        &[
-            "update",
-            "scene.toml",
-            "--move",
-            "square",
-            "--by",
-            "2,0,0",
-            "--steps",
-            "3",
-            "-o",
-            "near.ply",
-        ],
-    );
+    let run = update_square(dir.path(), "2,0,0", "3", "near.ply");
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(!run.stderr.contains("warning"), "{}", run.stderr);
     // A way so long that the scene no longer holds on the grid is an
     // error naming `--by`, and nothing is written.
     for by in ["1e30,0,0", "1e308,0,0"] {
-        let run = umbra(
-            dir.path(),
-            &[
-                "update",
-                "scene.toml",
-                "--move",
-                "square",
-                "--by",
-                by,
-                "--steps",
-                "2",
-                "-o",
-                "gone.ply",
-            ],
-        );
+        let run = update_square(dir.path(), by, "2", "gone.ply");
         assert_eq!(run.code, 2, "{by}: {}", run.stderr);
         assert!(run.stderr.contains("--by: 2 steps of"), "{}", run.stderr);
         assert!(!dir.path().join("gone.ply").exists());
