@@ -165,6 +165,10 @@ pub struct DmArgs {
     /// Output PLY file (same layout as `umbra shadow`; one face per cell).
     #[arg(short, long, value_name = "OUT.ply")]
     pub output: PathBuf,
+    /// Also write the cells as OBJ (the PLY's vertices and faces; groups
+    /// name each face's source, lit_mask and umbra_mask).
+    #[arg(long, value_name = "OUT.obj")]
+    pub obj: Option<PathBuf>,
     /// Write run statistics as JSON (FORMATS.md §3 fields, plus `dm`: tree
     /// nodes, cells, comparisons per vertex, build phases).
     #[arg(long, value_name = "S.json")]
@@ -204,6 +208,10 @@ pub struct UpdateArgs {
     /// Output PLY file (the final state).
     #[arg(short, long, value_name = "OUT.ply")]
     pub output: PathBuf,
+    /// Also write the cells as OBJ (the PLY's vertices and faces; groups
+    /// name each face's source, lit_mask and umbra_mask).
+    #[arg(long, value_name = "OUT.obj")]
+    pub obj: Option<PathBuf>,
     /// Write run statistics as JSON, with `update.update_seconds`,
     /// `update.rebuild_seconds` and `update.changed_receivers` (the
     /// polygons whose cells or values the step changed), one entry per
@@ -443,13 +451,24 @@ fn dm_options(outer_only: bool, deletion: DeletionArg, overlap: OverlapArg) -> D
     }
 }
 
-/// Writes a DM run's PLY and, if asked, its statistics, together; returns
-/// the statistics written.
-fn save_dm(run: &DmRun, output: &Path, ascii: bool, stats: Option<&Path>) -> Result<DmStats> {
+/// Where `umbra dm` and `umbra update` write.
+struct DmFiles<'a> {
+    ply: &'a Path,
+    ascii: bool,
+    obj: Option<&'a Path>,
+    stats: Option<&'a Path>,
+}
+
+/// Writes a DM run's PLY and, if asked, its OBJ and its statistics,
+/// together; returns the statistics written.
+fn save_dm(run: &DmRun, files: &DmFiles<'_>) -> Result<DmStats> {
     let mut outputs = Outputs::default();
     let (mesh, figures) = run.output()?;
-    stage_ply(&mut outputs, output, &mesh, encoding(ascii))?;
-    if let Some(stats) = stats {
+    stage_ply(&mut outputs, files.ply, &mesh, encoding(files.ascii))?;
+    if let Some(obj) = files.obj {
+        stage_obj(&mut outputs, obj, &mesh)?;
+    }
+    if let Some(stats) = files.stats {
         figures.stage(&mut outputs, stats)?;
     }
     outputs.commit()?;
@@ -464,7 +483,15 @@ fn run_dm(args: &DmArgs) -> Result<()> {
     let options = dm_options(args.outer_only, DeletionArg::Local, args.overlap);
     let run = dm_scene_with(&scene, options)?;
     progress.say("writing");
-    let s = save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
+    let s = save_dm(
+        &run,
+        &DmFiles {
+            ply: &args.output,
+            ascii: args.ascii,
+            obj: args.obj.as_deref(),
+            stats: args.stats.as_deref(),
+        },
+    )?;
     progress.finish();
     warn_dropped(&scene, &s.stats.dropped_polygons);
     let mut out = std::io::stdout().lock();
@@ -507,7 +534,15 @@ fn run_update(args: &UpdateArgs) -> Result<()> {
     run.refresh_figures();
     run.stats.update = Some(figures);
     progress.say("writing");
-    let s = save_dm(&run, &args.output, args.ascii, args.stats.as_deref())?;
+    let s = save_dm(
+        &run,
+        &DmFiles {
+            ply: &args.output,
+            ascii: args.ascii,
+            obj: args.obj.as_deref(),
+            stats: args.stats.as_deref(),
+        },
+    )?;
     progress.finish();
     warn_dropped(&scene, &s.stats.dropped_polygons);
     warn_coarser(&scene, args, run.pieces.grid.cell_size());
@@ -637,6 +672,7 @@ pub fn run(cli: Cli) -> Result<()> {
                 return run_dm(&DmArgs {
                     scene: path.clone(),
                     output: path.with_extension("ply"),
+                    obj: None,
                     stats: Some(path.with_extension("json")),
                     ascii: false,
                     outer_only: false,

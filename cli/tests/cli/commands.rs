@@ -115,11 +115,11 @@ fn help_documents_every_option() {
                 "bsp",
             ],
         ),
-        ("dm", &["--output", "--stats", "--ascii"]),
+        ("dm", &["--output", "--obj", "--stats", "--ascii"]),
         (
             "update",
             &[
-                "--move", "--by", "--steps", "--output", "--stats", "--ascii",
+                "--move", "--by", "--steps", "--output", "--obj", "--stats", "--ascii",
             ],
         ),
         ("csg", &["--union", "--intersect", "--subtract", "--output"]),

@@ -282,3 +282,59 @@ fn update_carries_an_object_off_the_scene_box() {
         assert!(!dir.path().join("gone.ply").exists());
     }
 }
+
+/// `path`'s OBJ has the PLY `mesh`'s faces in order: the same corners, and
+/// a group naming each face's source and masks.
+fn assert_obj_is_ply(path: &Path, mesh: &OutputMesh) {
+    let obj = umbra::ObjMesh::load(path).unwrap();
+    assert_eq!(obj.faces.len(), mesh.faces.len());
+    for (o, p) in obj.faces.iter().zip(&mesh.faces) {
+        let corners: Vec<[f64; 3]> = p
+            .vertices
+            .iter()
+            .map(|&v| mesh.vertices[v as usize].0)
+            .collect();
+        assert_eq!(o.vertices, corners);
+        let group = format!(
+            "source_{}_lit_{}_umbra_{}",
+            p.source, p.lit_mask, p.umbra_mask
+        );
+        assert_eq!(o.group.as_deref(), Some(group.as_str()));
+    }
+}
+
+#[test]
+fn dm_and_update_write_the_cells_as_obj_too() {
+    let text = scene(0.0);
+    let dir = folder(&[("scene.toml", text.as_str())]);
+    let run = umbra(
+        dir.path(),
+        &["dm", "scene.toml", "-o", "dm.ply", "--obj", "dm.obj"],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let mesh = load_ply(&dir.path().join("dm.ply")).unwrap();
+    assert!(mesh.faces.len() > 9, "penumbra and umbra cells");
+    assert_obj_is_ply(&dir.path().join("dm.obj"), &mesh);
+
+    let run = umbra(
+        dir.path(),
+        &[
+            "update",
+            "scene.toml",
+            "--move",
+            "square",
+            "--by",
+            "1,0,0",
+            "-o",
+            "up.ply",
+            "--obj",
+            "up.obj",
+        ],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    let moved = load_ply(&dir.path().join("up.ply")).unwrap();
+    assert_obj_is_ply(&dir.path().join("up.obj"), &moved);
+    // The moved shadow's umbra is still 6 x 6, now over x in [-2, 4].
+    assert!((class_areas(&moved, 0)[2] - 36.0).abs() < 1e-9);
+    assert_ne!(moved.vertices, mesh.vertices);
+}

@@ -217,6 +217,12 @@ fn an_output_that_cannot_be_written_leaves_no_other() {
         ][..],
         &["shadow", "scene.toml", "-o", "out.ply", "--obj", "no/o.obj"],
         &["dm", "scene.toml", "-o", "out.ply", "--stats", "no/s.json"],
+        &["dm", "scene.toml", "-o", "out.ply", "--obj", "taken"],
+        &["update", "scene.toml", "--move", "t", "--by", "0,1,0"]
+            .iter()
+            .chain(&["-o", "out.ply", "--obj", "no/o.obj"])
+            .copied()
+            .collect::<Vec<_>>(),
         &["update", "scene.toml", "--move", "t", "--by", "0,1,0"]
             .iter()
             .chain(&["-o", "out.ply", "--stats", "no/s.json"])
