@@ -17,6 +17,7 @@ pub mod area;
 pub mod bergeron;
 pub mod dm_update;
 pub mod merge;
+pub mod pipeline;
 mod scene;
 pub mod shadows;
 pub mod split;
