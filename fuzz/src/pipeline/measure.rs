@@ -1,0 +1,158 @@
+//! What the `pipeline` target measures of an output mesh: its faces' areas
+//! per input polygon, lit per light, and the range rule.
+
+/// Per input polygon (`source`), the total area of its faces and, per
+/// light, the area of those that see all of it.
+#[derive(Debug, Default)]
+pub(super) struct Areas {
+    total: Vec<f64>,
+    lit: Vec<Vec<f64>>,
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn corners(mesh: &umbra::OutputMesh, face: &umbra::OutputFace) -> Vec<[f64; 3]> {
+    face.vertices
+        .iter()
+        .map(|&v| mesh.vertices[v as usize].0)
+        .collect()
+}
+
+/// The distance from `x` to the convex planar polygon `p`.
+fn distance_to_polygon(x: [f64; 3], p: &[[f64; 3]]) -> f64 {
+    let edge_distance = |a: [f64; 3], b: [f64; 3]| {
+        let (d, w) = (sub(b, a), sub(x, a));
+        let t = (dot(w, d) / dot(d, d).max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        let e = sub(w, [d[0] * t, d[1] * t, d[2] * t]);
+        dot(e, e).sqrt()
+    };
+    let edges = (0..p.len()).map(|i| edge_distance(p[i], p[(i + 1) % p.len()]));
+    let nearest_edge = edges.fold(f64::INFINITY, f64::min);
+    let n = (1..p.len() - 1).fold([0.0; 3], |n, i| {
+        let c = cross(sub(p[i], p[0]), sub(p[i + 1], p[0]));
+        [n[0] + c[0], n[1] + c[1], n[2] + c[2]]
+    });
+    let inside = (0..p.len()).all(|i| {
+        let (a, b) = (p[i], p[(i + 1) % p.len()]);
+        dot(cross(sub(b, a), sub(x, a)), n) >= 0.0
+    });
+    let length = dot(n, n).sqrt();
+    if inside && length > 0.0 {
+        (dot(sub(x, p[0]), n) / length).abs()
+    } else {
+        nearest_edge
+    }
+}
+
+fn face_area(mesh: &umbra::OutputMesh, face: &umbra::OutputFace) -> f64 {
+    let p = corners(mesh, face);
+    let mut n = [0.0; 3];
+    for i in 1..p.len() - 1 {
+        let (a, b, c) = (p[0], p[i], p[i + 1]);
+        let (u, v) = (
+            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
+            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
+        );
+        n[0] += u[1] * v[2] - u[2] * v[1];
+        n[1] += u[2] * v[0] - u[0] * v[2];
+        n[2] += u[0] * v[1] - u[1] * v[0];
+    }
+    0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+}
+
+/// Checks one output mesh and measures it. `ranges` holds, per light, the
+/// position and range of a point light with a range: no lit face may lie
+/// wholly beyond it.
+pub(super) fn measure(
+    what: &str,
+    mesh: &umbra::OutputMesh,
+    ranges: &[Option<([f64; 3], f64)>],
+) -> Result<Areas, String> {
+    mesh.check().map_err(|e| format!("{what}: {e}"))?;
+    let lights = ranges.len();
+    let all = if lights >= 32 {
+        u32::MAX
+    } else {
+        (1_u32 << lights) - 1
+    };
+    let mut areas = Areas::default();
+    for (k, face) in mesh.faces.iter().enumerate() {
+        if face.lit_mask & face.umbra_mask != 0 {
+            return Err(format!("{what}: face {k} is lit and umbra for one light"));
+        }
+        if (face.lit_mask | face.umbra_mask) & !all != 0 {
+            return Err(format!(
+                "{what}: face {k} has a mask bit past {lights} lights"
+            ));
+        }
+        for (i, range) in ranges.iter().enumerate() {
+            let Some((light, range)) = *range else {
+                continue;
+            };
+            if face.lit_mask >> i & 1 != 0
+                && distance_to_polygon(light, &corners(mesh, face)) > range * (1.0 + 1e-9)
+            {
+                return Err(format!(
+                    "{what}: face {k} is lit by light {i} beyond its range"
+                ));
+            }
+        }
+        let s = face.source as usize;
+        if areas.total.len() <= s {
+            areas.total.resize(s + 1, 0.0);
+            areas.lit.resize(s + 1, vec![0.0; lights]);
+        }
+        let a = face_area(mesh, face);
+        areas.total[s] += a;
+        for (i, lit) in areas.lit[s].iter_mut().enumerate() {
+            if face.lit_mask >> i & 1 != 0 {
+                *lit += a;
+            }
+        }
+    }
+    Ok(areas)
+}
+
+/// Whether `a` and `b` agree polygon by polygon, to 1e-9 of each polygon's
+/// area (the outputs are exact up to the rounding of their coordinates):
+/// in total, and lit by each light `compared` marks.
+pub(super) fn same_areas(
+    what: &str,
+    a: &Areas,
+    b: &Areas,
+    compared: &[bool],
+) -> Result<(), String> {
+    let n = a.total.len().max(b.total.len());
+    let get = |v: &[f64], s: usize| v.get(s).copied().unwrap_or(0.0);
+    for s in 0..n {
+        let (ta, tb) = (get(&a.total, s), get(&b.total, s));
+        let tolerance = 1e-9 * ta.max(tb) + 1e-12;
+        if (ta - tb).abs() > tolerance {
+            return Err(format!("{what}: polygon {s} has area {ta} against {tb}"));
+        }
+        let lit = |x: &Areas, i| x.lit.get(s).map_or(0.0, |l: &Vec<f64>| l[i]);
+        for i in (0..compared.len()).filter(|&i| compared[i]) {
+            let (la, lb) = (lit(a, i), lit(b, i));
+            if (la - lb).abs() > tolerance {
+                return Err(format!(
+                    "{what}: polygon {s}, light {i}: lit area {la} against {lb}"
+                ));
+            }
+        }
+    }
+    Ok(())
+}
