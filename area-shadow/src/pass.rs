@@ -53,7 +53,7 @@ use crate::merge_pieces::merge_same_class;
 use crate::tree::{Partition, VolumeTree};
 use crate::volumes::cast_volumes_within;
 use crate::{AreaSource, SourceSide};
-use bsp_core::{ConvexPolygon, GRID_LIMIT, GridPoint, Split};
+use bsp_core::{ConvexPolygon, GRID_LIMIT, GridPoint, Plane, Split};
 use rayon::prelude::*;
 use svbsp::{ConvexPolyhedron, Fragment, PieceFlags};
 
@@ -202,7 +202,9 @@ pub struct AreaTrees {
     /// with the piece's index; kept out of [`Self::penumbra`]. Such a piece
     /// receives on both sides, so it sees all of the light where nothing
     /// else hides any, but it lies inside the union of its own two volumes
-    /// (one each side of its plane, glued along it).
+    /// (one each side of its plane, glued along it). The same holds for
+    /// every other piece in its plane (a one-sided floor under a two-sided
+    /// sheet that covers it): their volumes are kept here too.
     pub straddling: Vec<(u32, ConvexPolyhedron)>,
     /// The same volumes as one union, for every other receiver.
     pub straddling_union: VolumeTree,
@@ -252,6 +254,15 @@ impl AreaTrees {
             .map(|(k, piece)| (distance2(piece.centroid(), centre), k))
             .collect();
         order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // The planes of two-sided pieces the light straddles: a piece in one
+        // of them hides nothing from such a receiver, though the receiver
+        // lies inside the piece's two volumes (see `straddling`).
+        let two_sided_straddled: Vec<Plane> = pieces
+            .iter()
+            .zip(flags)
+            .filter(|(piece, f)| f.two_sided && light.side_of(piece.support()) == SourceSide::Both)
+            .map(|(piece, _)| *piece.support())
+            .collect();
         let (lo, hi) = grid_box(pieces);
         let region = receiver_region(lo, hi);
         let cells = order.len() / OCCLUDERS_PER_CELL;
@@ -277,8 +288,11 @@ impl AreaTrees {
                 continue;
             }
             trees.occluders += 1;
-            let straddling =
-                flags[k].two_sided && light.side_of(piece.support()) == SourceSide::Both;
+            let straddling = light.side_of(piece.support()) == SourceSide::Both
+                && (flags[k].two_sided
+                    || two_sided_straddled
+                        .iter()
+                        .any(|p| p.is_coincident(piece.support())));
             for volume in volumes.penumbra {
                 if straddling {
                     trees.straddling_union.insert(volume.clone());

@@ -1,5 +1,6 @@
 //! Integration tests of `area-shadow`, one binary.
 
+mod coincident;
 mod cores;
 mod culled;
 mod figure4;

@@ -91,6 +91,48 @@ fn a_range_straddled_where_an_area_light_cuts() {
     assert_eq!(check_pipeline(&case), Ok(Outcome::Checked { moved: true }));
 }
 
+/// Found by libFuzzer: a two-sided sheet (object 1) lying on a one-sided
+/// floor that casts shadows, under a triangle light their plane cuts.
+/// `umbra shadow` left all of the sheet in penumbra, `umbra dm` had it lit
+/// where the box below hides nothing: the floor's two penumbra volumes
+/// (one each side of its plane) held the sheet, though no ray from it
+/// crosses the floor (area-shadow's `AreaTrees`, fixed).
+#[test]
+fn a_two_sided_sheet_on_a_floor_under_a_light_their_plane_cuts() {
+    let floor = [[-10, 0, 10], [10, 0, 10], [10, 0, -10], [-10, 0, -10]];
+    let mut sheet = floor;
+    sheet.reverse();
+    let object = |polygons: Vec<Vec<[i8; 3]>>, two_sided, casts_shadows| ObjectCase {
+        polygons,
+        two_sided,
+        casts_shadows,
+        rotate_deg: [0, 0, 0],
+        scale: [2, 2, 2],
+        translate: [0, 0, 0],
+    };
+    let case = PipelineCase {
+        objects: vec![
+            object(vec![floor.to_vec()], false, true),
+            object(vec![sheet.to_vec()], true, false),
+            object(box_faces([-6, -6, -6], [1, 1, 3]), false, true),
+        ],
+        lights: vec![
+            LightCase::Area {
+                corners: vec![[3, -5, -8], [-7, 3, 0], [-10, -10, -10]],
+            },
+            LightCase::Point {
+                position: [1, 4, 8],
+                range: Some(1),
+            },
+            LightCase::Area {
+                corners: vec![[-5, 4, -6], [-4, 4, -6], [-4, 4, -5], [-5, 4, -5]],
+            },
+        ],
+        moving: Some((0, [-3, -3, -3])),
+    };
+    assert_eq!(check_pipeline(&case), Ok(Outcome::Checked { moved: true }));
+}
+
 /// Writes the seed corpus (run by hand when the decoder changes): the
 /// first inputs of each outcome.
 #[test]
