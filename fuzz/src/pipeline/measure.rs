@@ -2,11 +2,12 @@
 //! per input polygon, lit per light, and the range rule.
 
 /// Per input polygon (`source`), the total area of its faces and, per
-/// light, the area of those that see all of it.
+/// light, the area and the perimeter of those that see all of it.
 #[derive(Debug, Default)]
 pub(super) struct Areas {
     total: Vec<f64>,
     lit: Vec<Vec<f64>>,
+    lit_perimeter: Vec<Vec<f64>>,
 }
 
 fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -115,39 +116,62 @@ pub(super) fn measure(
         if areas.total.len() <= s {
             areas.total.resize(s + 1, 0.0);
             areas.lit.resize(s + 1, vec![0.0; lights]);
+            areas.lit_perimeter.resize(s + 1, vec![0.0; lights]);
         }
         let a = face_area(mesh, face);
         areas.total[s] += a;
+        let p = corners(mesh, face);
+        let perimeter: f64 = (0..p.len())
+            .map(|i| {
+                let e = sub(p[(i + 1) % p.len()], p[i]);
+                dot(e, e).sqrt()
+            })
+            .sum();
         for (i, lit) in areas.lit[s].iter_mut().enumerate() {
             if face.lit_mask >> i & 1 != 0 {
                 *lit += a;
+                areas.lit_perimeter[s][i] += perimeter;
             }
         }
     }
     Ok(areas)
 }
 
-/// Whether `a` and `b` agree polygon by polygon, to 1e-9 of each polygon's
-/// area (the outputs are exact up to the rounding of their coordinates):
-/// in total, and lit by each light `compared` marks.
+/// Whether `a` and `b` agree polygon by polygon, in total and lit by each
+/// light `compared` marks, to 1e-9 of each polygon's area: the outputs are
+/// exact up to the rounding of their coordinates, and every polygon's
+/// fragments tile it whatever its cuts.
+///
+/// A scene off the lattice is snapped, and its output points are moved
+/// back onto the input polygons by a map that is bilinear on a convex quad
+/// (`umbra`'s input frames): it moves each point by up to about a grid
+/// `step`, and bends straight lines by a fraction of that. Two pipelines
+/// that cut a lit region alike in the grid (exactly) but put vertices at
+/// different places along its sides then write areas that differ by up to
+/// the region's perimeter times that bend: a lit area may differ by four
+/// grid steps times the larger lit perimeter. (`step` is 0 on the lattice,
+/// where the map is the identity.)
 pub(super) fn same_areas(
     what: &str,
     a: &Areas,
     b: &Areas,
     compared: &[bool],
+    step: f64,
 ) -> Result<(), String> {
     let n = a.total.len().max(b.total.len());
     let get = |v: &[f64], s: usize| v.get(s).copied().unwrap_or(0.0);
+    let per_light = |v: &[Vec<f64>], s: usize, i: usize| v.get(s).map_or(0.0, |l| l[i]);
     for s in 0..n {
         let (ta, tb) = (get(&a.total, s), get(&b.total, s));
         let tolerance = 1e-9 * ta.max(tb) + 1e-12;
         if (ta - tb).abs() > tolerance {
             return Err(format!("{what}: polygon {s} has area {ta} against {tb}"));
         }
-        let lit = |x: &Areas, i| x.lit.get(s).map_or(0.0, |l: &Vec<f64>| l[i]);
         for i in (0..compared.len()).filter(|&i| compared[i]) {
-            let (la, lb) = (lit(a, i), lit(b, i));
-            if (la - lb).abs() > tolerance {
+            let (la, lb) = (per_light(&a.lit, s, i), per_light(&b.lit, s, i));
+            let perimeter =
+                per_light(&a.lit_perimeter, s, i).max(per_light(&b.lit_perimeter, s, i));
+            if (la - lb).abs() > tolerance + 4.0 * step * perimeter {
                 return Err(format!(
                     "{what}: polygon {s}, light {i}: lit area {la} against {lb}"
                 ));
