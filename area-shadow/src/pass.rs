@@ -26,8 +26,10 @@
 //! A two-sided piece whose plane cuts the light receives each part of the
 //! light on its own side, so it is lit where no other piece hides any of
 //! the light; but it lies inside its own two penumbra volumes (one each
-//! side of its plane). Such volumes go into a union of their own, and the
-//! piece is cut by each of them but its own.
+//! side of its plane), and inside those of any other piece in its plane
+//! (a floor it lies on), which hide nothing from it either. Such volumes
+//! go into a union of their own, and the piece is cut by each of them but
+//! its own, with the points of its plane outside.
 //!
 //! The paper's umbra is the union of single occluders' umbrae. Pieces
 //! that make up one convex body (module `groups`: a triangulated sphere, a
@@ -55,6 +57,7 @@ use crate::volumes::cast_volumes_within;
 use crate::{AreaSource, SourceSide};
 use bsp_core::{ConvexPolygon, GRID_LIMIT, GridPoint, Plane, Split};
 use rayon::prelude::*;
+use std::collections::HashSet;
 use svbsp::{ConvexPolyhedron, Fragment, PieceFlags};
 
 /// Shadow-casting pieces per cell of the trees' skeleton
@@ -254,14 +257,15 @@ impl AreaTrees {
             .map(|(k, piece)| (distance2(piece.centroid(), centre), k))
             .collect();
         order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        // The planes of two-sided pieces the light straddles: a piece in one
-        // of them hides nothing from such a receiver, though the receiver
-        // lies inside the piece's two volumes (see `straddling`).
-        let two_sided_straddled: Vec<Plane> = pieces
+        // The planes of two-sided pieces the light straddles, both ways
+        // round: a piece in one of them hides nothing from such a receiver,
+        // though the receiver lies inside the piece's two volumes (see
+        // `straddling`).
+        let two_sided_straddled: HashSet<Plane> = pieces
             .iter()
             .zip(flags)
             .filter(|(piece, f)| f.two_sided && light.side_of(piece.support()) == SourceSide::Both)
-            .map(|(piece, _)| *piece.support())
+            .flat_map(|(piece, _)| [*piece.support(), piece.support().flipped()])
             .collect();
         let (lo, hi) = grid_box(pieces);
         let region = receiver_region(lo, hi);
@@ -289,10 +293,7 @@ impl AreaTrees {
             }
             trees.occluders += 1;
             let straddling = light.side_of(piece.support()) == SourceSide::Both
-                && (flags[k].two_sided
-                    || two_sided_straddled
-                        .iter()
-                        .any(|p| p.is_coincident(piece.support())));
+                && (flags[k].two_sided || two_sided_straddled.contains(piece.support()));
             for volume in volumes.penumbra {
                 if straddling {
                     trees.straddling_union.insert(volume.clone());
