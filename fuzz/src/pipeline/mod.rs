@@ -22,6 +22,8 @@
 //!   whatever their cells. Not for a point light with a range: a fragment
 //!   wholly beyond it has the umbra bit (FORMATS.md), so where a polygon
 //!   straddles the range its lit area depends on how it was cut;
+//! - a scene with a camera renders in three ways (or refuses with the
+//!   field at fault);
 //! - moving an object one step with `umbra update`'s path ends where a
 //!   scene written at the moved place does (areas as above; for scenes
 //!   whose coordinates are all on a half-unit lattice, so that the two
@@ -35,7 +37,10 @@ mod measure;
 
 use arbitrary::{Arbitrary, Unstructured};
 use measure::{measure, same_areas};
-use umbra::{DmOptions, Error, Scene, dm_scene, dm_scene_moving, scene_grid, shadow_scene};
+use umbra::{
+    DmOptions, Error, Method, Order, RenderOptions, Scene, View, dm_scene, dm_scene_moving,
+    render_scene_with, scene_grid, shadow_scene,
+};
 
 /// One decoded input of the `pipeline` target; its `Debug` output is Rust
 /// code. Coordinates are in half units (`3` is 1.5 in the scene file).
@@ -47,6 +52,9 @@ pub struct PipelineCase {
     pub lights: Vec<LightCase>,
     /// The object moved, and its one step (half units).
     pub moving: Option<(usize, [i8; 3])>,
+    /// A camera's eye (half units), looking at the origin: the scene is
+    /// rendered too.
+    pub camera: Option<[i8; 3]>,
 }
 
 /// One `[[object]]`.
@@ -241,10 +249,16 @@ impl<'a> Arbitrary<'a> for PipelineCase {
         } else {
             None
         };
+        let camera = if u.ratio(1, 4)? {
+            Some(point(u, 24)?)
+        } else {
+            None
+        };
         Ok(Self {
             objects,
             lights,
             moving,
+            camera,
         })
     }
 }
@@ -297,6 +311,12 @@ impl PipelineCase {
                 o.rotate_deg[2],
                 vector(o.scale),
                 vector(o.translate),
+            );
+        }
+        if let Some(eye) = self.camera {
+            s += &format!(
+                "[camera]\neye = {}\ntarget = [0, 0, 0]\nwidth = {RENDER_WIDTH}\nheight = {RENDER_HEIGHT}\n\n",
+                vector(eye)
             );
         }
         for light in &self.lights {
@@ -383,6 +403,49 @@ pub enum Outcome {
     },
 }
 
+/// The image size of a case's camera.
+const RENDER_WIDTH: u32 = 8;
+const RENDER_HEIGHT: u32 = 6;
+
+/// Renders a scene both pipelines took in three ways (shaded from the
+/// fragments in a z-buffer, outlined fragments in BSP order, Bergeron's
+/// volumes): each gives an image of the camera's size, or refuses with the
+/// field at fault: the volumes method an area light, BSP order an eye too
+/// far from the scene.
+fn check_renders(scene: &Scene) -> Result<(), String> {
+    let ways = [
+        (View::Shaded, Method::Fragments, Order::ZBuffer),
+        (View::Fragments, Method::Fragments, Order::Bsp),
+        (View::Classes, Method::Volumes, Order::ZBuffer),
+    ];
+    for (view, method, order) in ways {
+        match render_scene_with(
+            scene,
+            &RenderOptions {
+                view,
+                method,
+                order,
+            },
+        ) {
+            Ok(image) => {
+                if (image.width, image.height) != (RENDER_WIDTH, RENDER_HEIGHT)
+                    || image.rgb.len() != (RENDER_WIDTH * RENDER_HEIGHT * 3) as usize
+                {
+                    return Err(format!(
+                        "{method:?} render: {} x {} image",
+                        image.width, image.height
+                    ));
+                }
+            }
+            Err(Error::Field { field, .. })
+                if (method == Method::Volumes && field.starts_with("light["))
+                    || (order == Order::Bsp && field == "camera.eye") => {}
+            Err(e) => return Err(format!("{method:?} render in {order:?} order refused: {e}")),
+        }
+    }
+    Ok(())
+}
+
 /// Runs the case through both pipelines and a move, and checks; returns
 /// what it came to, or `Err` with the first violated invariant.
 pub fn check_pipeline(case: &PipelineCase) -> Result<Outcome, String> {
@@ -418,6 +481,9 @@ pub fn check_pipeline(case: &PipelineCase) -> Result<Outcome, String> {
         }
         (Ok(_), Err(e)) => return Err(format!("dm refused what shadow took: {e}")),
         (Err(e), Ok(_)) => return Err(format!("shadow refused what dm took: {e}")),
+    }
+    if case.camera.is_some() {
+        check_renders(&scene)?;
     }
     let Some((moved_case, name, by)) = case.moved() else {
         return Ok(Outcome::Checked { moved: false });

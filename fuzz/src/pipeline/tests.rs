@@ -18,7 +18,7 @@ fn seed_corpus_replays() {
 
 #[test]
 fn pseudo_random_inputs_pass() {
-    let (mut checked, mut moved, mut refused) = (0, 0, 0);
+    let (mut checked, mut moved, mut rendered, mut refused) = (0, 0, 0, 0);
     for seed in 0..300 {
         let data = bytes(seed, 40 + (seed % 120) as usize);
         let Some(case) = decode(&data) else { continue };
@@ -27,14 +27,15 @@ fn pseudo_random_inputs_pass() {
             Ok(Outcome::Checked { moved: m }) => {
                 checked += 1;
                 moved += usize::from(m);
+                rendered += usize::from(case.camera.is_some());
             }
             Err(problem) => panic!("seed {seed}: {problem}\n{case:?}\n{}", case.scene_text()),
         }
     }
-    eprintln!("{checked} checked ({moved} with a move), {refused} refused");
+    eprintln!("{checked} checked ({moved} with a move, {rendered} rendered), {refused} refused");
     assert!(
-        checked > 100 && moved > 30,
-        "{checked} checked, {moved} moved, {refused} refused"
+        checked > 100 && moved > 30 && rendered > 30,
+        "{checked} checked, {moved} moved, {rendered} rendered, {refused} refused"
     );
 }
 
@@ -87,6 +88,7 @@ fn a_range_straddled_where_an_area_light_cuts() {
             },
         ],
         moving: Some((0, [-3, -3, -3])),
+        camera: None,
     };
     assert_eq!(check_pipeline(&case), Ok(Outcome::Checked { moved: true }));
 }
@@ -129,6 +131,7 @@ fn a_two_sided_sheet_on_a_floor_under_a_light_their_plane_cuts() {
             },
         ],
         moving: Some((0, [-3, -3, -3])),
+        camera: None,
     };
     assert_eq!(check_pipeline(&case), Ok(Outcome::Checked { moved: true }));
 }
@@ -194,6 +197,7 @@ fn lit_areas_off_the_lattice_differ_by_the_output_maps_bend() {
             },
         ],
         moving: Some((0, [-3, -3, -3])),
+        camera: None,
     };
     assert_eq!(check_pipeline(&case), Ok(Outcome::Checked { moved: false }));
 }
