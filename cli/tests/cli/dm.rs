@@ -87,23 +87,22 @@ fn assert_same_areas(a: &OutputMesh, b: &OutputMesh) {
 }
 
 /// `umbra update scene.toml` moving the square `steps` times by `by`
-/// (`DX,DY,DZ`) into `out`.
-fn update_square(dir: &Path, by: &str, steps: &str, out: &str) -> Run {
-    umbra(
-        dir,
-        &[
-            "update",
-            "scene.toml",
-            "--move",
-            "square",
-            "--by",
-            by,
-            "--steps",
-            steps,
-            "-o",
-            out,
-        ],
-    )
+/// (`DX,DY,DZ`) into `out`, with `more` options.
+fn update_square(dir: &Path, by: &str, steps: &str, out: &str, more: &[&str]) -> Run {
+    let mut args = vec![
+        "update",
+        "scene.toml",
+        "--move",
+        "square",
+        "--by",
+        by,
+        "--steps",
+        steps,
+        "-o",
+        out,
+    ];
+    args.extend_from_slice(more);
+    umbra(dir, &args)
 }
 
 #[test]
@@ -256,7 +255,7 @@ fn update_carries_an_object_off_the_scene_box() {
     let text = scene(0.0);
     let far = scene(30.0);
     let dir = folder(&[("scene.toml", text.as_str()), ("far.toml", far.as_str())]);
-    let run = update_square(dir.path(), "10,0,0", "3", "out.ply");
+    let run = update_square(dir.path(), "10,0,0", "3", "out.ply", &[]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(
         run.stderr.contains("leaves the scene's box: the grid grew"),
@@ -270,13 +269,13 @@ fn update_carries_an_object_off_the_scene_box() {
     assert_eq!(class_areas(&a, 0), [400.0, 0.0, 0.0]);
     assert_same_areas(&a, &b);
     // A move within the box keeps the scene's grid: no warning.
-    let run = update_square(dir.path(), "2,0,0", "3", "near.ply");
+    let run = update_square(dir.path(), "2,0,0", "3", "near.ply", &[]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     assert!(!run.stderr.contains("warning"), "{}", run.stderr);
     // A way so long that the scene no longer holds on the grid is an
     // error naming `--by`, and nothing is written.
     for by in ["1e30,0,0", "1e308,0,0"] {
-        let run = update_square(dir.path(), by, "2", "gone.ply");
+        let run = update_square(dir.path(), by, "2", "gone.ply", &[]);
         assert_eq!(run.code, 2, "{by}: {}", run.stderr);
         assert!(run.stderr.contains("--by: 2 steps of"), "{}", run.stderr);
         assert!(!dir.path().join("gone.ply").exists());
@@ -316,21 +315,7 @@ fn dm_and_update_write_the_cells_as_obj_too() {
     assert!(mesh.faces.len() > 9, "penumbra and umbra cells");
     assert_obj_is_ply(&dir.path().join("dm.obj"), &mesh);
 
-    let run = umbra(
-        dir.path(),
-        &[
-            "update",
-            "scene.toml",
-            "--move",
-            "square",
-            "--by",
-            "1,0,0",
-            "-o",
-            "up.ply",
-            "--obj",
-            "up.obj",
-        ],
-    );
+    let run = update_square(dir.path(), "1,0,0", "1", "up.ply", &["--obj", "up.obj"]);
     assert_eq!(run.code, 0, "{}", run.stderr);
     let moved = load_ply(&dir.path().join("up.ply")).unwrap();
     assert_obj_is_ply(&dir.path().join("up.obj"), &moved);
