@@ -19,7 +19,9 @@
 //!   Slater's DM-trees) cut every input polygon into fragments of the same
 //!   total area, and agree, polygon by polygon and light by light, on the
 //!   area that sees all of the light: that region is exact in both,
-//!   whatever their cells. Not for a point light with a range: a fragment
+//!   whatever their cells (off the half-unit lattice, up to the bend of
+//!   the map that writes output points back onto the input polygons: see
+//!   `measure::same_areas`). Not for a point light with a range: a fragment
 //!   wholly beyond it has the umbra bit (FORMATS.md), so where a polygon
 //!   straddles the range its lit area depends on how it was cut;
 //! - a scene with a camera renders in three ways (or refuses with the
