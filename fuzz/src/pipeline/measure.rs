@@ -43,10 +43,7 @@ fn distance_to_polygon(x: [f64; 3], p: &[[f64; 3]]) -> f64 {
     };
     let edges = (0..p.len()).map(|i| edge_distance(p[i], p[(i + 1) % p.len()]));
     let nearest_edge = edges.fold(f64::INFINITY, f64::min);
-    let n = (1..p.len() - 1).fold([0.0; 3], |n, i| {
-        let c = cross(sub(p[i], p[0]), sub(p[i + 1], p[0]));
-        [n[0] + c[0], n[1] + c[1], n[2] + c[2]]
-    });
+    let n = double_vector_area(p);
     let inside = (0..p.len()).all(|i| {
         let (a, b) = (p[i], p[(i + 1) % p.len()]);
         dot(cross(sub(b, a), sub(x, a)), n) >= 0.0
@@ -59,20 +56,13 @@ fn distance_to_polygon(x: [f64; 3], p: &[[f64; 3]]) -> f64 {
     }
 }
 
-fn face_area(mesh: &umbra::OutputMesh, face: &umbra::OutputFace) -> f64 {
-    let p = corners(mesh, face);
-    let mut n = [0.0; 3];
-    for i in 1..p.len() - 1 {
-        let (a, b, c) = (p[0], p[i], p[i + 1]);
-        let (u, v) = (
-            [b[0] - a[0], b[1] - a[1], b[2] - a[2]],
-            [c[0] - a[0], c[1] - a[1], c[2] - a[2]],
-        );
-        n[0] += u[1] * v[2] - u[2] * v[1];
-        n[1] += u[2] * v[0] - u[0] * v[2];
-        n[2] += u[0] * v[1] - u[1] * v[0];
-    }
-    0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+/// Twice the vector area of the convex polygon `p` (its normal, by the
+/// right-hand rule, as long as twice its area).
+fn double_vector_area(p: &[[f64; 3]]) -> [f64; 3] {
+    (1..p.len() - 1).fold([0.0; 3], |n, i| {
+        let c = cross(sub(p[i], p[0]), sub(p[i + 1], p[0]));
+        [n[0] + c[0], n[1] + c[1], n[2] + c[2]]
+    })
 }
 
 /// Checks one output mesh and measures it. `ranges` holds, per light, the
@@ -100,12 +90,12 @@ pub(super) fn measure(
                 "{what}: face {k} has a mask bit past {lights} lights"
             ));
         }
+        let p = corners(mesh, face);
         for (i, range) in ranges.iter().enumerate() {
             let Some((light, range)) = *range else {
                 continue;
             };
-            if face.lit_mask >> i & 1 != 0
-                && distance_to_polygon(light, &corners(mesh, face)) > range * (1.0 + 1e-9)
+            if face.lit_mask >> i & 1 != 0 && distance_to_polygon(light, &p) > range * (1.0 + 1e-9)
             {
                 return Err(format!(
                     "{what}: face {k} is lit by light {i} beyond its range"
@@ -118,9 +108,9 @@ pub(super) fn measure(
             areas.lit.resize(s + 1, vec![0.0; lights]);
             areas.lit_perimeter.resize(s + 1, vec![0.0; lights]);
         }
-        let a = face_area(mesh, face);
+        let n = double_vector_area(&p);
+        let a = 0.5 * dot(n, n).sqrt();
         areas.total[s] += a;
-        let p = corners(mesh, face);
         let perimeter: f64 = (0..p.len())
             .map(|i| {
                 let e = sub(p[(i + 1) % p.len()], p[i]);
