@@ -15,11 +15,13 @@
 
 pub mod area;
 pub mod bergeron;
+pub mod csg;
 pub mod dm_update;
 pub mod merge;
 pub mod pipeline;
 mod scene;
 pub mod shadows;
+mod solids;
 pub mod split;
 
 /// Every file of a committed corpus directory (`corpus/<target>/`), sorted
