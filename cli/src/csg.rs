@@ -47,8 +47,8 @@ pub fn csg(
         path: a_path.to_path_buf(),
         source,
     })?;
-    let a_faces = closed_pieces(a, a_path, &grid)?;
-    let b_faces = closed_pieces(b, b_path, &grid)?;
+    let (a_faces, a_folded) = closed_pieces(a, a_path, &grid)?;
+    let (b_faces, b_folded) = closed_pieces(b, b_path, &grid)?;
     let options = BalancedOptions::default();
     let result = |a_solid: &BspSolid,
                   a_faces: &[ConvexPolygon],
@@ -60,8 +60,18 @@ pub fn csg(
         }
         merge_equal_positions(mesh)
     };
-    let a_solid = balanced_solid(a_faces.clone(), &options);
-    let b_solid = balanced_solid(b_faces.clone(), &options);
+    // A surface that snapping folded is labelled by winding numbers from
+    // the start: its result may close and still be wrong (see
+    // `closed_pieces`).
+    let solid = |faces: &[ConvexPolygon], folded: bool| {
+        if folded {
+            winding_solid(faces, &options)
+        } else {
+            balanced_solid(faces.to_vec(), &options)
+        }
+    };
+    let a_solid = solid(&a_faces, a_folded);
+    let b_solid = solid(&b_faces, b_folded);
     let mut mesh = result(&a_solid, &a_faces, &b_solid, &b_faces);
     if open_edges(&mesh) > 0 {
         // A surface that folds or crosses itself once snapped: the cells
@@ -187,10 +197,17 @@ fn merge_equal_positions(mesh: IndexedMesh) -> IndexedMesh {
     }
 }
 
-/// The mesh's faces as convex pieces on the grid; an error unless the
-/// snapped faces close up (every directed edge matched by its reverse)
-/// around some volume.
-fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexPolygon>> {
+/// The mesh's faces as convex pieces on the grid, and whether snapping
+/// folded the surface: a piece turned against its face as written (a
+/// sliver a hair wide, an earlier result's, whose corners crossed when
+/// they went to grid points). An error unless the snapped faces close up
+/// (every directed edge matched by its reverse) around some volume.
+///
+/// A folded surface can still close, and its solid's cells labelled by
+/// their last planes can then be wrong far from the fold: a block minus
+/// two boxes meeting along an edge, read back, held every point far
+/// outside it, so a box far away intersected with it came out whole.
+fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<(Vec<ConvexPolygon>, bool)> {
     let mut pieces = Vec::new();
     // The faces' edges as snapped, before they are cut into convex pieces:
     // a piece drops a corner in line with its neighbours, which a face
@@ -213,10 +230,13 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
                 *edges.entry((q, p)).or_insert(0) -= 1;
             }
         }
-        faces.push(snapped);
+        faces.push((snapped, newell_normal(&face.vertices)));
     }
-    for face in without_sheets(faces) {
+    let mut folded = false;
+    for (face, normal) in without_sheets(faces) {
         for piece in convex_pieces(&face) {
+            let turned = piece.support().unit_normal_f64();
+            folded |= (0..3).map(|k| turned[k] * normal[k]).sum::<f64>() < 0.0;
             let k = pieces.len() as u32;
             pieces.push(piece.with_source(k));
         }
@@ -248,8 +268,24 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
             ),
         });
     }
-    Ok(pieces)
+    Ok((pieces, folded))
 }
+
+/// The normal of a polygon as written (Newell's: twice its vector area),
+/// pointing to the side it is counter-clockwise from.
+fn newell_normal(corners: &[[f64; 3]]) -> [f64; 3] {
+    let mut n = [0.0; 3];
+    for (i, a) in corners.iter().enumerate() {
+        let b = corners[(i + 1) % corners.len()];
+        n[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        n[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        n[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    n
+}
+
+/// A face's snapped corners, with what travels with it.
+type Corners<T> = (Vec<GridPoint>, T);
 
 /// The faces as one layer of surface: a face written again the same way
 /// round counts once (a surface given twice bounds the same solid), and
@@ -257,7 +293,7 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
 /// two-sided sheet, inside a solid or made by snapping a slab thinner
 /// than a step) both go. Such a pair bounds no volume, and a repeated
 /// face none more, but their faces would split the solid's BSP as walls.
-fn without_sheets(faces: Vec<Vec<GridPoint>>) -> Vec<Vec<GridPoint>> {
+fn without_sheets<T>(faces: Vec<Corners<T>>) -> Vec<Corners<T>> {
     // Each face's corner cycle, consecutive repeats dropped, from its
     // least corner.
     let cycle = |corners: &[GridPoint]| -> Vec<GridPoint> {
@@ -271,9 +307,9 @@ fn without_sheets(faces: Vec<Vec<GridPoint>>) -> Vec<Vec<GridPoint>> {
         c
     };
     let mut seen = HashSet::new();
-    let once: Vec<(Vec<GridPoint>, Vec<GridPoint>)> = faces
+    let once: Vec<(Vec<GridPoint>, Corners<T>)> = faces
         .into_iter()
-        .map(|face| (cycle(&face), face))
+        .map(|face| (cycle(&face.0), face))
         .filter(|(c, _)| c.len() < 3 || seen.insert(c.clone()))
         .collect();
     once.into_iter()

@@ -508,17 +508,16 @@ mod tests {
         assert!(outcome.points > 20, "{outcome:?}");
     }
 
-    /// Found by libFuzzer, and still open: `((S0 - S1) - S2) & S3`, where S1
-    /// is two boxes meeting along an edge and everything but S3 is turned
-    /// by 45 degrees about each axis. The first result, read back as the
-    /// command line would, makes a solid whose tree holds every point far
-    /// outside it (the plain cell labels, by each empty cell's last plane,
-    /// are wrong; labels by winding numbers are right), so the last result
-    /// is all of S3, which lies well clear of the others. Ignored until
-    /// `umbra csg` labels such inputs correctly (see the CHANGELOG).
+    /// Found by libFuzzer: `((S0 - S1) - S2) & S3`, where S1 is two boxes
+    /// meeting along an edge and everything but S3 is turned by 45 degrees
+    /// about each axis. The first result, read back as the command line
+    /// would, has slivers a hair wide whose corners cross when snapped:
+    /// its surface folds yet closes, and its tree (cells labelled by their
+    /// last planes) held every point far outside it, so the last result
+    /// was all of S3, which lies well clear of the others. A folded input
+    /// is now labelled by winding numbers.
     #[test]
-    #[ignore = "known open bug in umbra csg: a result fed back in labels far cells inside"]
-    fn a_result_fed_back_in_holds_points_far_outside_it() {
+    fn a_folded_result_fed_back_in_held_points_far_outside_it() {
         let case = CsgCase {
             solids: vec![
                 SolidCase {
