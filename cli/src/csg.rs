@@ -258,12 +258,32 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<(Vec<Convex
             ),
         });
     }
-    if pieces.is_empty() || six_volume(&pieces) == 0 {
+    let volume = if pieces.is_empty() {
+        0
+    } else {
+        six_volume(&pieces)
+    };
+    if volume == 0 {
         return Err(Error::Field {
             path: path.to_path_buf(),
             field: "faces".into(),
             message: format!(
                 "the mesh encloses no volume once snapped to the grid (step {:e}): it is smaller or thinner than a step",
+                grid.cell_size()
+            ),
+        });
+    }
+    // A surface wound inwards would make the solid its outside (each
+    // empty cell on its last plane's side): the set operations would
+    // work on the complement, and a flat body that snapping turned inside
+    // out (a tetrahedron with its four corners in one plane, turned)
+    // would take all the space around it.
+    if volume < 0 {
+        return Err(Error::Field {
+            path: path.to_path_buf(),
+            field: "faces".into(),
+            message: format!(
+                "the mesh encloses a negative volume once snapped to the grid (step {:e}): its faces are wound inwards (clockwise seen from outside), or it is thinner than a step",
                 grid.cell_size()
             ),
         });

@@ -141,6 +141,57 @@ fn a_mesh_thinner_than_the_grid_is_refused() {
     }
 }
 
+/// A cube wound inwards encloses a negative volume, and so does a flat
+/// tetrahedron (its four corners in the plane x = y) turned by 45 degrees
+/// about each axis, which snapping left a hair thick and inside out: each
+/// refused by name and reason. The set operations worked on such a mesh's
+/// outside (an intersection with a cube gave most of the cube).
+#[test]
+fn a_mesh_wound_inwards_is_refused() {
+    let inward: String = cube([0.0; 3], [1.0; 3])
+        .lines()
+        .map(|line| match line.strip_prefix("f ") {
+            Some(corners) => {
+                let mut c: Vec<&str> = corners.split(' ').collect();
+                c.reverse();
+                format!("f {}\n", c.join(" "))
+            }
+            None => format!("{line}\n"),
+        })
+        .collect();
+    let flat = "v -3.4445436482630054 -2.9445436482630054 -0.9822330470336318\n\
+                v -3.621320343559643 -3.621320343559642 -0.8786796564403581\n\
+                v -3.1945436482630063 -3.6945436482630054 -0.6286796564403578\n\
+                v -3.017766952966369 -3.017766952966369 -0.7322330470336316\n\
+                f 1 2 3\nf 1 3 4\nf 1 4 2\nf 2 4 3\n";
+    // The cube beside it, turned as the tetrahedron was: the grid, which
+    // encloses both, decides how the tetrahedron snaps.
+    let turned = "v -3.017766952966369 -3.017766952966369 -0.7322330470336316\n\
+                  v -2.017766952966369 -2.017766952966369 -2.1464466094067265\n\
+                  v -0.31066017177982125 -2.3106601717798214 -1.1464466094067263\n\
+                  v -1.3106601717798214 -3.3106601717798214 0.2677669529663686\n\
+                  v -3.3106601717798214 -1.3106601717798214 0.26776695296636843\n\
+                  v -1.603553390593274 -1.603553390593274 1.2677669529663687\n\
+                  v -0.6035533905932737 -0.6035533905932737 -0.14644660940672632\n\
+                  v -2.3106601717798214 -0.3106601717798212 -1.1464466094067265\n\
+                  f 1 2 3 4\nf 5 6 7 8\nf 1 4 6 5\nf 2 8 7 3\nf 1 5 8 2\nf 4 3 7 6\n";
+    let dir = folder(&[
+        ("a.obj", &cube([-4.0; 3], [0.0; 3])),
+        ("turned.obj", turned),
+        ("inward.obj", &inward),
+        ("flat.obj", flat),
+    ]);
+    for (a, b) in [("a.obj", "inward.obj"), ("turned.obj", "flat.obj")] {
+        for op in ["--union", "--intersect", "--subtract"] {
+            refused(
+                dir.path(),
+                &[a, op, b],
+                &[b, "negative volume", "wound inwards"],
+            );
+        }
+    }
+}
+
 /// A unit cube whose top is two quads, its front and back faces carrying
 /// their shared corner in line with their own: every edge pairs, and the
 /// mesh is closed (it was refused: the convex pieces drop the in-line
