@@ -23,6 +23,7 @@ mod scene;
 pub mod shadows;
 mod solids;
 pub mod split;
+mod vector;
 
 /// Every file of a committed corpus directory (`corpus/<target>/`), sorted
 /// by name, with its contents. Hidden files are skipped.

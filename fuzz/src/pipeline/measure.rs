@@ -1,6 +1,8 @@
 //! What the `pipeline` target measures of an output mesh: its faces' areas
 //! per input polygon, lit per light, and the range rule.
 
+use crate::vector::{cross, dot, sub};
+
 /// Per input polygon (`source`), the total area of its faces and, per
 /// light, the area and the perimeter of those that see all of it.
 #[derive(Debug, Default)]
@@ -8,22 +10,6 @@ pub(super) struct Areas {
     total: Vec<f64>,
     lit: Vec<Vec<f64>>,
     lit_perimeter: Vec<Vec<f64>>,
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
 }
 
 fn corners(mesh: &umbra::OutputMesh, face: &umbra::OutputFace) -> Vec<[f64; 3]> {
