@@ -200,13 +200,16 @@ fn merge_equal_positions(mesh: IndexedMesh) -> IndexedMesh {
 /// The mesh's faces as convex pieces on the grid, and whether snapping
 /// folded the surface: a piece turned against its face as written (a
 /// sliver a hair wide, an earlier result's, whose corners crossed when
-/// they went to grid points). An error unless the snapped faces close up
-/// (every directed edge matched by its reverse) around some volume.
+/// they went to grid points), or a face with area as written left with
+/// none. An error unless the snapped faces close up (every directed edge
+/// matched by its reverse) around some volume.
 ///
 /// A folded surface can still close, and its solid's cells labelled by
 /// their last planes can then be wrong far from the fold: a block minus
 /// two boxes meeting along an edge, read back, held every point far
-/// outside it, so a box far away intersected with it came out whole.
+/// outside it, so a box far away intersected with it came out whole; a
+/// cube with a sliver a hair thick beside it (what a subtraction of a
+/// solid it had been joined to left) held half the points around it.
 fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<(Vec<ConvexPolygon>, bool)> {
     let mut pieces = Vec::new();
     // The faces' edges as snapped, before they are cut into convex pieces:
@@ -234,12 +237,16 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<(Vec<Convex
     }
     let mut folded = false;
     for (face, normal) in without_sheets(faces) {
+        let before = pieces.len();
         for piece in convex_pieces(&face) {
             let turned = piece.support().unit_normal_f64();
             folded |= (0..3).map(|k| turned[k] * normal[k]).sum::<f64>() < 0.0;
             let k = pieces.len() as u32;
             pieces.push(piece.with_source(k));
         }
+        // (A face with area as written that snapping flattened away: a
+        // sliver's, whose neighbours no longer close around it.)
+        folded |= pieces.len() == before && normal != [0.0; 3];
     }
     let open = edges.values().filter(|&&c| c != 0).count() / 2;
     if mesh.faces.is_empty() {

@@ -593,6 +593,42 @@ mod tests {
         );
     }
 
+    /// Found by libFuzzer: `((S0 | S1) - S1) | S1`, S1 two boxes joined
+    /// along part of a face and S0 a cube, all turned by 45 degrees about
+    /// each axis. The subtraction, on a grid other than the union's, left
+    /// the cube with a sliver a hair thick beside it; read back, two of
+    /// the sliver's faces snap to nothing, and the cube's tree held half
+    /// the points around it, so the last union was one box. A face with
+    /// area that snapping flattens away now counts as a fold.
+    #[test]
+    fn a_sliver_snapped_flat_is_a_fold() {
+        let joined = SolidCase {
+            faces: [
+                box_faces([-5, -5, -5], [3, 3, 3]),
+                box_faces([-2, -4, -4], [3, 3, 3]),
+            ]
+            .concat(),
+            turn: [45, 45, 45],
+        };
+        let case = CsgCase {
+            solids: vec![
+                SolidCase {
+                    faces: box_faces([-5, 2, -5], [4, 4, 4]),
+                    turn: [45, 45, 45],
+                },
+                joined.clone(),
+                joined.clone(),
+                joined,
+            ],
+            ops: vec![0, 2, 0],
+            samples: 233611787212663,
+        };
+        assert_eq!(
+            check_csg(&case).map(|o| (o.results, o.refused)),
+            Ok((3, false))
+        );
+    }
+
     /// Writes the seed corpus (run by hand when the decoder changes).
     #[test]
     #[ignore = "rewrites corpus/csg; run by hand"]
