@@ -47,8 +47,8 @@ pub fn csg(
         path: a_path.to_path_buf(),
         source,
     })?;
-    let (a_faces, a_folded) = closed_pieces(a, a_path, &grid)?;
-    let (b_faces, b_folded) = closed_pieces(b, b_path, &grid)?;
+    let (a_faces, a_by_winding) = closed_pieces(a, a_path, &grid)?;
+    let (b_faces, b_by_winding) = closed_pieces(b, b_path, &grid)?;
     let options = BalancedOptions::default();
     let result = |a_solid: &BspSolid,
                   a_faces: &[ConvexPolygon],
@@ -60,18 +60,18 @@ pub fn csg(
         }
         merge_equal_positions(mesh)
     };
-    // A surface that snapping folded is labelled by winding numbers from
-    // the start: its result may close and still be wrong (see
-    // `closed_pieces`).
-    let solid = |faces: &[ConvexPolygon], folded: bool| {
-        if folded {
+    // A surface that snapping folded, or with faces in one plane facing
+    // both ways, is labelled by winding numbers from the start: its result
+    // may close and still be wrong (see `closed_pieces`).
+    let solid = |faces: &[ConvexPolygon], by_winding: bool| {
+        if by_winding {
             winding_solid(faces, &options)
         } else {
             balanced_solid(faces.to_vec(), &options)
         }
     };
-    let a_solid = solid(&a_faces, a_folded);
-    let b_solid = solid(&b_faces, b_folded);
+    let a_solid = solid(&a_faces, a_by_winding);
+    let b_solid = solid(&b_faces, b_by_winding);
     let mut mesh = result(&a_solid, &a_faces, &b_solid, &b_faces);
     if open_edges(&mesh) > 0 {
         // A surface that folds or crosses itself once snapped: the cells
@@ -197,19 +197,22 @@ fn merge_equal_positions(mesh: IndexedMesh) -> IndexedMesh {
     }
 }
 
-/// The mesh's faces as convex pieces on the grid, and whether snapping
-/// folded the surface: a piece turned against its face as written (a
-/// sliver a hair wide, an earlier result's, whose corners crossed when
-/// they went to grid points), or a face with area as written left with
-/// none. An error unless the snapped faces close up (every directed edge
-/// matched by its reverse) around some volume.
+/// The mesh's faces as convex pieces on the grid, and whether their
+/// solid's cells need winding numbers: snapping folded the surface (a
+/// piece turned against its face as written: a sliver a hair wide, an
+/// earlier result's, whose corners crossed when they went to grid
+/// points; or a face with area as written left with none), or pieces in
+/// one plane face both ways. An error unless the snapped faces close up
+/// (every directed edge matched by its reverse) around some volume.
 ///
 /// A folded surface can still close, and its solid's cells labelled by
 /// their last planes can then be wrong far from the fold: a block minus
 /// two boxes meeting along an edge, read back, held every point far
 /// outside it, so a box far away intersected with it came out whole; a
 /// cube with a sliver a hair thick beside it (what a subtraction of a
-/// solid it had been joined to left) held half the points around it.
+/// solid it had been joined to left) held half the points around it. Two
+/// boxes joined along part of a face, united with two others sharing one
+/// of them, gave a surface around that box twice.
 fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<(Vec<ConvexPolygon>, bool)> {
     let mut pieces = Vec::new();
     // The faces' edges as snapped, before they are cut into convex pieces:
@@ -235,19 +238,26 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<(Vec<Convex
         }
         faces.push((snapped, newell_normal(&face.vertices)));
     }
-    let mut folded = false;
+    let mut by_winding = false;
     for (face, normal) in without_sheets(faces) {
         let before = pieces.len();
         for piece in convex_pieces(&face) {
             let turned = piece.support().unit_normal_f64();
-            folded |= (0..3).map(|k| turned[k] * normal[k]).sum::<f64>() < 0.0;
+            by_winding |= (0..3).map(|k| turned[k] * normal[k]).sum::<f64>() < 0.0;
             let k = pieces.len() as u32;
             pieces.push(piece.with_source(k));
         }
         // (A face with area as written that snapping flattened away: a
         // sliver's, whose neighbours no longer close around it.)
-        folded |= pieces.len() == before && normal != [0.0; 3];
+        by_winding |= pieces.len() == before && normal != [0.0; 3];
     }
+    // Faces in one plane facing both ways (solid on both sides: two
+    // boxes joined along part of a face) sit at one node of the tree, and
+    // the cells beyond them take the side of a later plane.
+    let planes: HashSet<Plane> = pieces.iter().map(|p| *p.support()).collect();
+    by_winding |= pieces
+        .iter()
+        .any(|p| planes.contains(&p.support().flipped()));
     let open = edges.values().filter(|&&c| c != 0).count() / 2;
     if mesh.faces.is_empty() {
         return Err(Error::Field {
@@ -295,7 +305,7 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<(Vec<Convex
             ),
         });
     }
-    Ok((pieces, folded))
+    Ok((pieces, by_winding))
 }
 
 /// The normal of a polygon as written (Newell's: twice its vector area),

@@ -629,6 +629,53 @@ mod tests {
         );
     }
 
+    /// Found by libFuzzer: `((S0 | S1) | S2) & S3`, where S1, S2 and S3
+    /// are each a box with a smaller one joined along part of a face (the
+    /// first box the same in S1 and S2). The joined faces, in one plane
+    /// facing both ways, sat at one node of each tree, the cells beyond
+    /// them took a later plane's side, and the second union's surface went
+    /// twice around the shared box. Such inputs are now labelled by
+    /// winding numbers.
+    #[test]
+    fn boxes_joined_along_part_of_a_face_are_labelled_by_winding() {
+        let case = CsgCase {
+            solids: vec![
+                SolidCase {
+                    faces: box_faces([-5, -5, -5], [4, 4, 1]),
+                    turn: [45, 45, 45],
+                },
+                SolidCase {
+                    faces: [
+                        box_faces([-1, -1, -1], [3, 3, 3]),
+                        box_faces([2, -2, -2], [3, 3, 3]),
+                    ]
+                    .concat(),
+                    turn: [45, 45, 45],
+                },
+                SolidCase {
+                    faces: [
+                        box_faces([-1, -1, -1], [3, 3, 3]),
+                        box_faces([2, 0, 0], [1, 3, 3]),
+                    ]
+                    .concat(),
+                    turn: [45, 45, 45],
+                },
+                SolidCase {
+                    faces: [
+                        box_faces([-1, -1, -1], [3, 3, 3]),
+                        box_faces([2, 0, 0], [3, 3, 3]),
+                    ]
+                    .concat(),
+                    turn: [0, 0, 0],
+                },
+            ],
+            ops: vec![0, 0, 1],
+            samples: 5642533481369980494,
+        };
+        let outcome = check_csg(&case).unwrap();
+        assert!(outcome.results >= 2, "{outcome:?}");
+    }
+
     /// Writes the seed corpus (run by hand when the decoder changes).
     #[test]
     #[ignore = "rewrites corpus/csg; run by hand"]
