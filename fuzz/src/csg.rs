@@ -676,6 +676,55 @@ mod tests {
         assert!(outcome.results >= 2, "{outcome:?}");
     }
 
+    /// Found by libFuzzer: `((S0 & S1) & S2) & S3`, each a box with a
+    /// smaller one joined to it (along part of a face, or an edge), turned
+    /// by 45 degrees about each axis. The second intersection came out a
+    /// sliver: S2's cells, labelled by their last planes, were wrong. Every
+    /// input's cells are now labelled by winding numbers.
+    #[test]
+    fn joined_boxes_intersected_in_a_chain() {
+        let case = CsgCase {
+            solids: vec![
+                SolidCase {
+                    faces: [
+                        box_faces([-5, -5, -5], [3, 3, 3]),
+                        box_faces([-2, -4, -4], [3, 3, 3]),
+                    ]
+                    .concat(),
+                    turn: [45, 45, 45],
+                },
+                SolidCase {
+                    faces: [
+                        box_faces([-5, -5, -5], [3, 3, 3]),
+                        box_faces([-2, -4, -3], [3, 3, 3]),
+                    ]
+                    .concat(),
+                    turn: [45, 45, 45],
+                },
+                SolidCase {
+                    faces: [
+                        box_faces([-5, -5, -5], [3, 3, 3]),
+                        box_faces([-2, -4, -5], [2, 3, 1]),
+                    ]
+                    .concat(),
+                    turn: [45, 45, 45],
+                },
+                SolidCase {
+                    faces: [
+                        box_faces([-5, -5, -5], [3, 3, 3]),
+                        box_faces([-2, -4, -4], [3, 3, 3]),
+                    ]
+                    .concat(),
+                    turn: [45, 45, 0],
+                },
+            ],
+            ops: vec![1, 1, 1],
+            samples: 8536140394893047414,
+        };
+        let outcome = check_csg(&case).unwrap();
+        assert!(outcome.results >= 2, "{outcome:?}");
+    }
+
     /// Writes the seed corpus (run by hand when the decoder changes).
     #[test]
     #[ignore = "rewrites corpus/csg; run by hand"]
