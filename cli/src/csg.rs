@@ -238,11 +238,7 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
             ),
         });
     }
-    let volume = if pieces.is_empty() {
-        0
-    } else {
-        six_volume(&pieces)
-    };
+    let volume = six_volume(&pieces);
     if volume == 0 {
         return Err(Error::Field {
             path: path.to_path_buf(),
@@ -253,11 +249,12 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
             ),
         });
     }
-    // A surface wound inwards would make the solid its outside (each
-    // empty cell on its last plane's side): the set operations would
-    // work on the complement, and a flat body that snapping turned inside
-    // out (a tetrahedron with its four corners in one plane, turned)
-    // would take all the space around it.
+    // A surface wound inwards winds -1 times around its inside, so its
+    // solid would be empty and the mesh silently ignored: more likely a
+    // mistake in the file, or a flat body that snapping turned inside out
+    // (a tetrahedron with its four corners in one plane, turned), than
+    // what was meant. (Labelled by last planes, as they once were, such a
+    // solid was all the space around the mesh.)
     if volume < 0 {
         return Err(Error::Field {
             path: path.to_path_buf(),

@@ -499,8 +499,8 @@ mod tests {
     /// would, has slivers a hair wide whose corners cross when snapped:
     /// its surface folds yet closes, and its tree (cells labelled by their
     /// last planes) held every point far outside it, so the last result
-    /// was all of S3, which lies well clear of the others. A folded input
-    /// is now labelled by winding numbers.
+    /// was all of S3, which lies well clear of the others. Every input's
+    /// cells are now labelled by winding numbers.
     #[test]
     fn a_folded_result_fed_back_in_held_points_far_outside_it() {
         let case = CsgCase {
@@ -598,10 +598,10 @@ mod tests {
     /// each axis. The subtraction, on a grid other than the union's, left
     /// the cube with a sliver a hair thick beside it; read back, two of
     /// the sliver's faces snap to nothing, and the cube's tree held half
-    /// the points around it, so the last union was one box. A face with
-    /// area that snapping flattens away now counts as a fold.
+    /// the points around it, so the last union was one box (labels by
+    /// winding numbers, as for every input now, are right).
     #[test]
-    fn a_sliver_snapped_flat_is_a_fold() {
+    fn a_cube_with_a_sliver_snapped_flat_beside_it() {
         let joined = SolidCase {
             faces: [
                 box_faces([-5, -5, -5], [3, 3, 3]),
@@ -634,10 +634,10 @@ mod tests {
     /// first box the same in S1 and S2). The joined faces, in one plane
     /// facing both ways, sat at one node of each tree, the cells beyond
     /// them took a later plane's side, and the second union's surface went
-    /// twice around the shared box. Such inputs are now labelled by
-    /// winding numbers.
+    /// twice around the shared box. Every input's cells are now labelled
+    /// by winding numbers.
     #[test]
-    fn boxes_joined_along_part_of_a_face_are_labelled_by_winding() {
+    fn boxes_joined_along_part_of_a_face_united() {
         let case = CsgCase {
             solids: vec![
                 SolidCase {
