@@ -642,6 +642,15 @@ pub fn run(cli: Cli) -> Result<()> {
         Command::Csg(args) => {
             let a = ObjMesh::load(&args.a)?;
             let b = ObjMesh::load(&args.b)?;
+            for (mesh, path) in [(&a, &args.a), (&b, &args.b)] {
+                // (An empty result written before, or maybe the wrong file.)
+                if mesh.faces.is_empty() {
+                    eprintln!(
+                        "umbra: warning: {} has no faces: read as the empty solid",
+                        path.display()
+                    );
+                }
+            }
             let op = if args.union {
                 SetOp::Union
             } else if args.intersect {

@@ -25,6 +25,9 @@ use crate::winding::Surface;
 /// sheet inside the solid, which the result kept where it lay outside the
 /// other solid, is gone).
 ///
+/// A mesh without faces is the empty solid: an empty result, written by
+/// an earlier operation as an empty OBJ file, can be read back and used.
+///
 /// Errors: a mesh that does not close, or encloses no volume or a
 /// negative one once snapped to the grid, and a result that still does
 /// not close (cells too small to hold a grid point keep their last
@@ -36,6 +39,9 @@ pub fn csg(
     b_path: &Path,
     op: SetOp,
 ) -> Result<IndexedMesh> {
+    if a.faces.is_empty() && b.faces.is_empty() {
+        return Ok(IndexedMesh::default());
+    }
     let points = a
         .faces
         .iter()
@@ -70,6 +76,8 @@ pub fn csg(
     // 5.0-6.0 s either way, the boundary's cutting dominates).
     let a_solid = winding_solid(&a_faces, &options);
     let b_solid = winding_solid(&b_faces, &options);
+    // (With no faces, a solid is empty: the other's faces all lie outside
+    // it, and `boundary` keeps or drops them as the operation says.)
     let mut mesh = result(&a_solid, &a_faces, &b_solid, &b_faces);
     if open_edges(&mesh) > 0 {
         let a_faces = regularized(&a_solid, &a_faces);
@@ -97,6 +105,9 @@ pub fn csg(
 /// number just off the pieces above them), and by their last plane's side
 /// where no ray from those pieces counts cleanly.
 fn winding_solid(faces: &[ConvexPolygon], options: &BalancedOptions) -> BspSolid {
+    if faces.is_empty() {
+        return BspSolid::empty();
+    }
     let surface = Surface::new(faces);
     let label = |path: &[(Plane, Side)], pieces: &[ConvexPolygon]| {
         surface
@@ -187,9 +198,9 @@ fn merge_equal_positions(mesh: IndexedMesh) -> IndexedMesh {
     }
 }
 
-/// The mesh's faces as convex pieces on the grid; an error unless the
-/// snapped faces close up (every directed edge matched by its reverse)
-/// around a positive volume.
+/// The mesh's faces as convex pieces on the grid (none for a mesh without
+/// faces, the empty solid); an error unless the snapped faces close up
+/// (every directed edge matched by its reverse) around a positive volume.
 fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexPolygon>> {
     let mut pieces = Vec::new();
     // The faces' edges as snapped, before they are cut into convex pieces:
@@ -223,11 +234,8 @@ fn closed_pieces(mesh: &ObjMesh, path: &Path, grid: &Grid) -> Result<Vec<ConvexP
     }
     let open = edges.values().filter(|&&c| c != 0).count() / 2;
     if mesh.faces.is_empty() {
-        return Err(Error::Field {
-            path: path.to_path_buf(),
-            field: "faces".into(),
-            message: "the mesh has no faces; set operations need closed meshes".into(),
-        });
+        // The empty solid.
+        return Ok(pieces);
     }
     if open > 0 {
         return Err(Error::Field {

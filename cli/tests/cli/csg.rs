@@ -215,20 +215,69 @@ fn a_face_split_along_its_neighbours_is_closed() {
 }
 
 /// A unit cube beside one 1e9 away snaps to nothing (the grid's step is
-/// 32), and a file of vertices only has no face: each refused by name
-/// and reason (both were "not closed, 0 edges without a match").
+/// 32): refused by name and reason (it was "not closed, 0 edges without a
+/// match").
 #[test]
-fn a_mesh_lost_to_the_grid_or_without_faces_is_refused_so() {
+fn a_mesh_lost_to_the_grid_is_refused_so() {
     let dir = folder(&[
         ("a.obj", &cube([0.0; 3], [1.0; 3])),
         ("far.obj", &cube([1e9, 0.0, 0.0], [1e9 + 1.0, 1.0, 1.0])),
+    ]);
+    refused(
+        dir.path(),
+        &["a.obj", "--union", "far.obj"],
+        &["a.obj", "encloses no volume once snapped"],
+    );
+}
+
+/// Two cubes apart intersect in nothing: the result is an empty OBJ file,
+/// and read back it is the empty solid (it was refused: "has no faces").
+/// With a cube of volume 8: the union and the cube minus it are the cube,
+/// the intersection and it minus the cube are empty; two empty solids give
+/// the empty one. A file of vertices only is read so too; both with a
+/// warning that names the file.
+#[test]
+fn an_empty_result_read_back_is_the_empty_solid() {
+    let dir = folder(&[
+        ("a.obj", &cube([0.0; 3], [2.0; 3])),
+        ("far.obj", &cube([5.0; 3], [6.0; 3])),
         ("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n"),
     ]);
-    for (b, file, reason) in [
-        ("far.obj", "a.obj", "encloses no volume once snapped"),
-        ("points.obj", "points.obj", "has no faces"),
-    ] {
-        refused(dir.path(), &["a.obj", "--union", b], &[file, reason]);
+    let run = umbra(
+        dir.path(),
+        &["csg", "a.obj", "--intersect", "far.obj", "-o", "empty.obj"],
+    );
+    assert_eq!(run.code, 0, "{}", run.stderr);
+    assert!(run.stdout.contains("0 vertices, 0 faces"), "{}", run.stdout);
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("empty.obj")).unwrap(),
+        ""
+    );
+    for empty in ["empty.obj", "points.obj"] {
+        for (a, op, b, volume) in [
+            ("a.obj", "--union", empty, 8.0),
+            (empty, "--union", "a.obj", 8.0),
+            ("a.obj", "--subtract", empty, 8.0),
+            ("a.obj", "--intersect", empty, 0.0),
+            (empty, "--intersect", "a.obj", 0.0),
+            (empty, "--subtract", "a.obj", 0.0),
+            (empty, "--union", empty, 0.0),
+        ] {
+            let run = umbra(dir.path(), &["csg", a, op, b, "-o", "out.obj"]);
+            assert_eq!(run.code, 0, "{a} {op} {b}: {}", run.stderr);
+            let warning = format!("{empty} has no faces: read as the empty solid");
+            assert!(
+                run.stderr.contains(&warning),
+                "{a} {op} {b}: {}",
+                run.stderr
+            );
+            let (found, closed) = read(&dir.path().join("out.obj"));
+            assert!(closed, "{a} {op} {b}: not closed");
+            assert!(
+                (found - volume).abs() < 1e-9,
+                "{a} {op} {b}: {found} vs {volume}"
+            );
+        }
     }
 }
 
