@@ -238,7 +238,7 @@ pub struct UpdateArgs {
 #[derive(Debug, Args)]
 #[command(group(ArgGroup::new("operation").required(true).args(["union", "intersect", "subtract"])))]
 pub struct CsgArgs {
-    /// First closed mesh (OBJ).
+    /// First closed mesh (OBJ; one without faces is the empty solid).
     pub a: PathBuf,
     /// A union B.
     #[arg(long)]
@@ -249,7 +249,7 @@ pub struct CsgArgs {
     /// A minus B.
     #[arg(long)]
     pub subtract: bool,
-    /// Second closed mesh (OBJ).
+    /// Second closed mesh (OBJ; one without faces is the empty solid).
     pub b: PathBuf,
     /// Output OBJ file.
     #[arg(short, long, value_name = "OUT.obj")]
