@@ -19,7 +19,8 @@
 //!
 //! A refusal is an accepted outcome (a documented one: an input that does
 //! not close or encloses no volume once snapped, or a result that would
-//! not close), and the chain stops there.
+//! not close), and the chain stops there. An empty result goes on, read
+//! back as the empty solid.
 
 use std::path::Path;
 
