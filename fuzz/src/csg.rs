@@ -414,6 +414,15 @@ mod tests {
     use super::*;
     use crate::pseudo_random_bytes as bytes;
 
+    /// Two boxes (corner and size each, as `box_faces` takes them) in one
+    /// mesh, turned: the shape of most libFuzzer findings below.
+    fn joined_boxes(a: [[i8; 3]; 2], b: [[i8; 3]; 2], turn: [i16; 3]) -> SolidCase {
+        SolidCase {
+            faces: [box_faces(a[0], a[1]), box_faces(b[0], b[1])].concat(),
+            turn,
+        }
+    }
+
     #[test]
     fn seed_corpus_replays() {
         let files = crate::corpus_files("csg").expect("corpus/csg is readable");
@@ -510,14 +519,11 @@ mod tests {
                     faces: box_faces([-5, -5, -5], [4, 4, 4]),
                     turn: [45, 45, 45],
                 },
-                SolidCase {
-                    faces: [
-                        box_faces([-5, -5, -5], [3, 1, 3]),
-                        box_faces([-2, -4, -4], [3, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
+                joined_boxes(
+                    [[-5, -5, -5], [3, 1, 3]],
+                    [[-2, -4, -4], [3, 3, 3]],
+                    [45, 45, 45],
+                ),
                 SolidCase {
                     faces: vec![
                         vec![[-5, -5, -5], [-1, -5, -5], [-5, -5, -3]],
@@ -528,14 +534,11 @@ mod tests {
                     ],
                     turn: [0, 30, 270],
                 },
-                SolidCase {
-                    faces: [
-                        box_faces([-3, 5, -2], [3, 2, 4]),
-                        box_faces([0, 6, -2], [2, 4, 2]),
-                    ]
-                    .concat(),
-                    turn: [0, 90, 0],
-                },
+                joined_boxes(
+                    [[-3, 5, -2], [3, 2, 4]],
+                    [[0, 6, -2], [2, 4, 2]],
+                    [0, 90, 0],
+                ),
             ],
             ops: vec![2, 2, 1],
             samples: 18201265676968120972,
@@ -568,22 +571,16 @@ mod tests {
                     ],
                     turn: [45, 45, 45],
                 },
-                SolidCase {
-                    faces: [
-                        box_faces([-5, -5, -5], [3, 3, 4]),
-                        box_faces([-2, -6, -4], [4, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
-                SolidCase {
-                    faces: [
-                        box_faces([-5, -5, -5], [3, 3, 3]),
-                        box_faces([-2, -4, -4], [3, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
+                joined_boxes(
+                    [[-5, -5, -5], [3, 3, 4]],
+                    [[-2, -6, -4], [4, 3, 3]],
+                    [45, 45, 45],
+                ),
+                joined_boxes(
+                    [[-5, -5, -5], [3, 3, 3]],
+                    [[-2, -4, -4], [3, 3, 3]],
+                    [45, 45, 45],
+                ),
             ],
             ops: vec![1, 1, 1],
             samples: 2170205185142300190,
@@ -603,14 +600,11 @@ mod tests {
     /// winding numbers, as for every input now, are right).
     #[test]
     fn a_cube_with_a_sliver_snapped_flat_beside_it() {
-        let joined = SolidCase {
-            faces: [
-                box_faces([-5, -5, -5], [3, 3, 3]),
-                box_faces([-2, -4, -4], [3, 3, 3]),
-            ]
-            .concat(),
-            turn: [45, 45, 45],
-        };
+        let joined = joined_boxes(
+            [[-5, -5, -5], [3, 3, 3]],
+            [[-2, -4, -4], [3, 3, 3]],
+            [45, 45, 45],
+        );
         let case = CsgCase {
             solids: vec![
                 SolidCase {
@@ -645,30 +639,17 @@ mod tests {
                     faces: box_faces([-5, -5, -5], [4, 4, 1]),
                     turn: [45, 45, 45],
                 },
-                SolidCase {
-                    faces: [
-                        box_faces([-1, -1, -1], [3, 3, 3]),
-                        box_faces([2, -2, -2], [3, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
-                SolidCase {
-                    faces: [
-                        box_faces([-1, -1, -1], [3, 3, 3]),
-                        box_faces([2, 0, 0], [1, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
-                SolidCase {
-                    faces: [
-                        box_faces([-1, -1, -1], [3, 3, 3]),
-                        box_faces([2, 0, 0], [3, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [0, 0, 0],
-                },
+                joined_boxes(
+                    [[-1, -1, -1], [3, 3, 3]],
+                    [[2, -2, -2], [3, 3, 3]],
+                    [45, 45, 45],
+                ),
+                joined_boxes(
+                    [[-1, -1, -1], [3, 3, 3]],
+                    [[2, 0, 0], [1, 3, 3]],
+                    [45, 45, 45],
+                ),
+                joined_boxes([[-1, -1, -1], [3, 3, 3]], [[2, 0, 0], [3, 3, 3]], [0, 0, 0]),
             ],
             ops: vec![0, 0, 1],
             samples: 5642533481369980494,
@@ -686,38 +667,26 @@ mod tests {
     fn joined_boxes_intersected_in_a_chain() {
         let case = CsgCase {
             solids: vec![
-                SolidCase {
-                    faces: [
-                        box_faces([-5, -5, -5], [3, 3, 3]),
-                        box_faces([-2, -4, -4], [3, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
-                SolidCase {
-                    faces: [
-                        box_faces([-5, -5, -5], [3, 3, 3]),
-                        box_faces([-2, -4, -3], [3, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
-                SolidCase {
-                    faces: [
-                        box_faces([-5, -5, -5], [3, 3, 3]),
-                        box_faces([-2, -4, -5], [2, 3, 1]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 45],
-                },
-                SolidCase {
-                    faces: [
-                        box_faces([-5, -5, -5], [3, 3, 3]),
-                        box_faces([-2, -4, -4], [3, 3, 3]),
-                    ]
-                    .concat(),
-                    turn: [45, 45, 0],
-                },
+                joined_boxes(
+                    [[-5, -5, -5], [3, 3, 3]],
+                    [[-2, -4, -4], [3, 3, 3]],
+                    [45, 45, 45],
+                ),
+                joined_boxes(
+                    [[-5, -5, -5], [3, 3, 3]],
+                    [[-2, -4, -3], [3, 3, 3]],
+                    [45, 45, 45],
+                ),
+                joined_boxes(
+                    [[-5, -5, -5], [3, 3, 3]],
+                    [[-2, -4, -5], [2, 3, 1]],
+                    [45, 45, 45],
+                ),
+                joined_boxes(
+                    [[-5, -5, -5], [3, 3, 3]],
+                    [[-2, -4, -4], [3, 3, 3]],
+                    [45, 45, 0],
+                ),
             ],
             ops: vec![1, 1, 1],
             samples: 8536140394893047414,
