@@ -514,7 +514,7 @@ pub(crate) fn illuminate_receiver(
     // Values of vertices gone since are dropped now and then.
     let (live, _, _) = mesh.counts();
     if values.len() > 2 * live + 64 {
-        values.retain(|v, _| mesh.vertex(v).is_some());
+        values.retain(|v, _| mesh.contains_vertex(v));
     }
     state.fresh = true;
     stats

@@ -520,6 +520,12 @@ impl ImplicitPoint {
         })
     }
 
+    /// The point of three planes whose filter data was computed before
+    /// (by [`Self::new`], from the same planes in the same order).
+    pub(crate) fn from_parts(planes: [Plane; 3], filter: PointFilter) -> Self {
+        Self { planes, filter }
+    }
+
     /// The three planes that define the point.
     pub fn planes(&self) -> &[Plane; 3] {
         &self.planes

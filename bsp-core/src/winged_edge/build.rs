@@ -1,6 +1,7 @@
 //! Building winged-edge meshes from polygons.
 
-use super::{Edge, Face, Vertex, VertexKey, VertexPosition, WingedMesh};
+use super::planes::PlaneTable;
+use super::{Edge, Face, VertexKey, VertexPosition, WingedMesh};
 use crate::predicates::{self, Side};
 use crate::{ConvexPolygon, EdgeKey, Error, FaceKey, GridPoint, ImplicitPoint, Plane};
 use slotmap::SlotMap;
@@ -30,6 +31,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     pub fn from_polygon(polygon: &ConvexPolygon, face_data: F, edge_data: E) -> Self {
         let mut mesh = Self {
             vertices: SlotMap::with_key(),
+            planes: PlaneTable::default(),
             edges: SlotMap::with_key(),
             faces: SlotMap::with_key(),
             supports: vec![*polygon.support()],
@@ -46,10 +48,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                         )
                     }
                 };
-                mesh.vertices.insert(Vertex {
-                    position,
-                    edge: EdgeKey::default(),
-                })
+                mesh.insert_vertex(position, EdgeKey::default())
             })
             .collect();
         let face = mesh.faces.insert(Face {
@@ -99,6 +98,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         use std::collections::HashMap;
         let mut mesh = Self {
             vertices: SlotMap::with_key(),
+            planes: PlaneTable::default(),
             edges: SlotMap::with_key(),
             faces: SlotMap::with_key(),
             supports: Vec::new(),
@@ -114,10 +114,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             for i in 0..n {
                 let p = polygon.vertex_grid_point(i).ok_or(Error::NonPlanar)?;
                 let key = *vertex_of.entry(p).or_insert_with(|| {
-                    mesh.vertices.insert(Vertex {
-                        position: VertexPosition::Grid(p),
-                        edge: EdgeKey::default(),
-                    })
+                    mesh.insert_vertex(VertexPosition::Grid(p), EdgeKey::default())
                 });
                 keys.push(key);
             }

@@ -38,8 +38,8 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             }
             let support = self.support_of(k);
             for v in [e.start, e.end] {
-                let position = &self.vertices.get(v).ok_or("dangling vertex")?.position;
-                if position.side(&e.line) != Side::On || position.side(&support) != Side::On {
+                let at = &self.vertices.get(v).ok_or("dangling vertex")?.at;
+                if self.side_at(at, &e.line) != Side::On || self.side_at(at, &support) != Side::On {
                     return Err(format!("{k:?}: an end is off the edge's line"));
                 }
             }
@@ -50,6 +50,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 return Err(format!("{k:?}: its edge does not touch it"));
             }
         }
+        self.check_plane_counts()?;
         for (k, face) in &self.faces {
             let e = self.edges.get(face.edge).ok_or("face without edge")?;
             if e.left != Some(k) && e.right != Some(k) {
@@ -61,11 +62,14 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 return Err(format!("{k:?}: fewer than three sides"));
             }
             for &v in &vertices {
-                let p = &self.vertices[v].position;
-                if p.side(self.support(face)) != Side::On {
+                let p = &self.vertices[v].at;
+                if self.side_at(p, self.support(face)) != Side::On {
                     return Err(format!("{k:?}: a vertex is off the support plane"));
                 }
-                if planes.iter().any(|plane| p.side(plane) == Side::Front) {
+                if planes
+                    .iter()
+                    .any(|plane| self.side_at(p, plane) == Side::Front)
+                {
                     return Err(format!("{k:?}: not convex"));
                 }
             }
@@ -91,6 +95,29 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         if euler + outside_walks != 2 * components {
             return Err(format!(
                 "V - E + F = {euler} with {outside_walks} boundaries and {components} components"
+            ));
+        }
+        Ok(())
+    }
+
+    /// Every plane of the table is held exactly as often as implicit
+    /// vertices name it, and every vertex's planes are held.
+    fn check_plane_counts(&self) -> Result<(), String> {
+        let mut named: std::collections::HashMap<super::PlaneRef, u32> =
+            std::collections::HashMap::new();
+        for (_, v) in &self.vertices {
+            if let super::StoredPosition::Implicit { planes, .. } = v.at {
+                for r in planes {
+                    *named.entry(r).or_default() += 1;
+                }
+            }
+        }
+        let held: std::collections::HashMap<super::PlaneRef, u32> = self.planes.held().collect();
+        if held != named {
+            return Err(format!(
+                "plane table: {} planes held, {} named by vertices (or counts differ)",
+                held.len(),
+                named.len()
             ));
         }
         Ok(())

@@ -1,7 +1,9 @@
 //! Editing winged-edge meshes: splitting edges and faces, merging faces,
 //! removing straight vertices.
 
-use super::{Edge, Face, FaceSplit, Vertex, VertexPosition, WingedMesh};
+use super::{
+    Edge, Face, FaceSplit, PlaneRef, StoredPosition, StoredVertex, VertexPosition, WingedMesh,
+};
 use crate::predicates::Side;
 use crate::{EdgeKey, Error, FaceKey, ImplicitPoint, Plane, VertexKey};
 use smallvec::SmallVec;
@@ -21,10 +23,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         if position.side(&edge.line) != Side::On || position.side(&support) != Side::On {
             return Err(Error::NonPlanar);
         }
-        let (a, b) = (
-            self.vertices[edge.start].position,
-            self.vertices[edge.end].position,
-        );
+        let (a, b) = (self.position(edge.start), self.position(edge.end));
         if !strictly_between(&position, &a, &b) {
             return Err(Error::NonConvex);
         }
@@ -36,7 +35,14 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         e: EdgeKey,
         position: VertexPosition,
     ) -> (VertexKey, EdgeKey) {
-        let v = self.vertices.insert(Vertex { position, edge: e });
+        let at = self.store(position);
+        self.split_edge_at(e, at)
+    }
+
+    /// [`Self::split_edge_unchecked`] at a position already stored (its
+    /// planes held for the new vertex).
+    fn split_edge_at(&mut self, e: EdgeKey, at: StoredPosition) -> (VertexKey, EdgeKey) {
+        let v = self.vertices.insert(StoredVertex { at, edge: e });
         let old = self.edges[e].clone();
         let second = self.edges.insert(Edge {
             start: v,
@@ -79,7 +85,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         let first = self.faces[f].edge;
         let mut e = first;
         loop {
-            let s = self.vertices[self.walk_start(e, side)].position.side(plane);
+            let s = self.side_at(&self.vertices[self.walk_start(e, side)].at, plane);
             back |= s == Side::Back;
             front |= s == Side::Front;
             walk.push((e, s));
@@ -97,15 +103,29 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         let m = walk.len();
         let mut edges: SmallVec<[EdgeKey; 16]> = SmallVec::with_capacity(m + 2);
         let mut sides: SmallVec<[Side; 16]> = SmallVec::with_capacity(m + 2);
+        // The support's and the plane's numbers in the plane table, shared
+        // by the (two) new vertices.
+        let mut shared: Option<[PlaneRef; 2]> = None;
         for i in 0..m {
             let (e, s) = walk[i];
             let t = walk[(i + 1) % m].1;
             if (s == Side::Back && t == Side::Front) || (s == Side::Front && t == Side::Back) {
                 let edge = &self.edges[e];
                 let forward = edge.left == side;
-                let point = ImplicitPoint::new(support, edge.line, *plane)
+                let line = edge.line;
+                let point = ImplicitPoint::new(support, line, *plane)
                     .expect("an edge with ends on both sides meets the plane");
-                let (_, second) = self.split_edge_unchecked(e, VertexPosition::Implicit(point));
+                let [on_support, on_plane] = match shared {
+                    Some(refs) => refs.map(|r| self.planes.retain(r)),
+                    None => {
+                        *shared.insert([self.planes.intern(support), self.planes.intern(*plane)])
+                    }
+                };
+                let at = StoredPosition::Implicit {
+                    planes: [on_support, self.planes.intern(line), on_plane],
+                    filter: *point.filter(),
+                };
+                let (_, second) = self.split_edge_at(e, at);
                 if forward {
                     edges.extend([e, second]);
                 } else {
@@ -222,7 +242,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             let plane = self.edge_plane_for(arriving, Some(from));
             let y = &self.edges[leaving];
             let far = if y.left == Some(to) { y.end } else { y.start };
-            if self.vertices[far].position.side(&plane) == Side::Front {
+            if self.side_at(&self.vertices[far].at, &plane) == Side::Front {
                 return Err(Error::NonConvex);
             }
         }
@@ -272,7 +292,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             } else {
                 self.edges[e2].start
             };
-            if self.vertices[far].position.side(&self.edges[e1].line) != Side::On {
+            if self.side_at(&self.vertices[far].at, &self.edges[e1].line) != Side::On {
                 return None;
             }
         }
@@ -301,7 +321,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             }
         }
         self.edges.remove(second);
-        self.vertices.remove(v);
+        self.remove_vertex(v);
         Some(first)
     }
 

@@ -71,7 +71,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             .into_iter()
             .find(|&e| {
                 let v = self.walk_start(e, Some(f));
-                self.vertices[v].position.same_point(&corner)
+                self.position(v).same_point(&corner)
             })
             .ok_or(Error::NoIntersection)?;
         let s_start = sub
@@ -79,7 +79,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             .into_iter()
             .find(|&(g, inner)| {
                 let u = sub.walk_start(g, Some(inner));
-                sub.vertices[u].position.same_point(&corner)
+                sub.position(u).same_point(&corner)
             })
             .ok_or(Error::NoIntersection)?;
         // The corner's vertex in each (edges at it may be split, the
@@ -91,7 +91,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         // the next vertices differ, the nearer one is put into the other
         // outline.
         let (mut em, (mut es, mut inner)) = (m_start, s_start);
-        let mut at = self.vertices[self.walk_start(em, Some(f))].position;
+        let mut at = self.position(self.walk_start(em, Some(f)));
         let mut steps = 0;
         loop {
             steps += 1;
@@ -100,7 +100,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             }
             let m = self.walk_end(em, Some(f));
             let s = sub.walk_end(es, Some(inner));
-            let (pm, ps) = (self.vertices[m].position, sub.vertices[s].position);
+            let (pm, ps) = (self.position(m), sub.position(s));
             if pm.same_point(&ps) {
                 if m == m_corner {
                     break;
@@ -155,10 +155,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 sub.walk_start(es, Some(inner)),
                 self.walk_start(em, Some(f)),
             );
-            if !sub.vertices[u]
-                .position
-                .same_point(&self.vertices[v].position)
-            {
+            if !sub.position(u).same_point(&self.position(v)) {
                 return Err(Error::NoIntersection);
             }
             vmap.insert(u, v);
@@ -184,9 +181,11 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         }
         // (The vertices inside, with the edge each points at in `sub`.)
         let mut inside: Vec<(VertexKey, EdgeKey)> = Vec::new();
-        for (u, vertex) in sub.vertices.drain() {
+        // (Their planes go into this mesh's table.)
+        let vertices: Vec<_> = sub.vertices.drain().collect();
+        for (u, vertex) in vertices {
             if !vmap.contains_key(u) {
-                let v = self.vertices.insert(vertex);
+                let v = self.insert_vertex(sub.position_of(&vertex.at), vertex.edge);
                 vmap.insert(u, v);
                 inside.push((v, vertex.edge));
             }

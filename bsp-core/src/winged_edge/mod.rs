@@ -20,14 +20,16 @@
 //! like a [`ConvexPolygon`]'s edge planes. Vertices are grid points or
 //! implicit points; every decision goes through [`predicates`](crate::predicates).
 
-use crate::predicates::{self, Side};
+use crate::predicates::{self, PointFilter, Side};
 use crate::{ConvexPolygon, Error, GridPoint, ImplicitPoint, Plane};
+use planes::{PlaneRef, PlaneTable};
 use slotmap::{SlotMap, new_key_type};
 
 mod build;
 mod check;
 mod edit;
 mod graft;
+mod planes;
 
 new_key_type! {
     /// Handle of a vertex.
@@ -88,11 +90,28 @@ impl VertexPosition {
     }
 }
 
-/// A vertex and one edge incident to it.
+/// A vertex, as read from a mesh ([`WingedMesh::vertex`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Vertex {
     /// Its position.
     pub position: VertexPosition,
+}
+
+/// A vertex's position as the mesh keeps it: an implicit point's planes
+/// are numbers in the mesh's plane table (module `planes`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum StoredPosition {
+    Grid(GridPoint),
+    Implicit {
+        planes: [PlaneRef; 3],
+        filter: PointFilter,
+    },
+}
+
+/// A vertex as the mesh keeps it, with one edge incident to it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct StoredVertex {
+    at: StoredPosition,
     edge: EdgeKey,
 }
 
@@ -179,7 +198,9 @@ pub enum FaceSplit {
 /// A winged-edge mesh of convex faces; see the module docs.
 #[derive(Debug, Clone)]
 pub struct WingedMesh<F = (), E = ()> {
-    vertices: SlotMap<VertexKey, Vertex>,
+    vertices: SlotMap<VertexKey, StoredVertex>,
+    /// The planes of the implicit vertices, each once.
+    planes: PlaneTable,
     edges: SlotMap<EdgeKey, Edge<E>>,
     faces: SlotMap<FaceKey, Face<F>>,
     /// The faces' support planes, each once.
@@ -233,9 +254,94 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         self.edges.get_mut(e).map(|edge| &mut edge.data)
     }
 
-    /// A vertex.
-    pub fn vertex(&self, v: VertexKey) -> Option<&Vertex> {
-        self.vertices.get(v)
+    /// A vertex (its position made from the plane table: a copy).
+    pub fn vertex(&self, v: VertexKey) -> Option<Vertex> {
+        self.vertices.get(v).map(|stored| Vertex {
+            position: self.position_of(&stored.at),
+        })
+    }
+
+    /// Whether `v` is a vertex of the mesh.
+    pub fn contains_vertex(&self, v: VertexKey) -> bool {
+        self.vertices.contains_key(v)
+    }
+
+    /// Side of `plane` vertex `v` lies on, exactly (`None`: not a vertex).
+    /// Cheaper than [`Self::vertex`]'s `side`: the planes are read only
+    /// when the filter cannot decide.
+    pub fn vertex_side(&self, v: VertexKey, plane: &Plane) -> Option<Side> {
+        self.vertices
+            .get(v)
+            .map(|stored| self.side_at(&stored.at, plane))
+    }
+
+    /// Number of distinct planes the mesh's implicit vertices lie on.
+    pub fn vertex_plane_count(&self) -> usize {
+        self.planes.len()
+    }
+
+    /// Side of `q` a stored position lies on, exactly.
+    #[inline]
+    fn side_at(&self, at: &StoredPosition, q: &Plane) -> Side {
+        match at {
+            StoredPosition::Grid(p) => predicates::side_of_point(q, *p),
+            StoredPosition::Implicit { planes, filter } => match filter.side(q) {
+                Some(side) => side,
+                None => predicates::exact_side_of_implicit(planes.map(|r| self.planes.get(r)), q),
+            },
+        }
+    }
+
+    /// The position a stored one stands for.
+    fn position_of(&self, at: &StoredPosition) -> VertexPosition {
+        match at {
+            StoredPosition::Grid(p) => VertexPosition::Grid(*p),
+            StoredPosition::Implicit { planes, filter } => VertexPosition::Implicit(
+                ImplicitPoint::from_parts(planes.map(|r| *self.planes.get(r)), *filter),
+            ),
+        }
+    }
+
+    /// The position of vertex `v` (which must be one).
+    fn position(&self, v: VertexKey) -> VertexPosition {
+        self.position_of(&self.vertices[v].at)
+    }
+
+    /// A position kept: an implicit point's planes go into the table.
+    fn store(&mut self, position: VertexPosition) -> StoredPosition {
+        match position {
+            VertexPosition::Grid(p) => StoredPosition::Grid(p),
+            VertexPosition::Implicit(point) => {
+                let [a, b, c] = *point.planes();
+                StoredPosition::Implicit {
+                    planes: [
+                        self.planes.intern(a),
+                        self.planes.intern(b),
+                        self.planes.intern(c),
+                    ],
+                    filter: *point.filter(),
+                }
+            }
+        }
+    }
+
+    /// A new vertex at `position`, its incident edge `edge`.
+    fn insert_vertex(&mut self, position: VertexPosition, edge: EdgeKey) -> VertexKey {
+        let at = self.store(position);
+        self.vertices.insert(StoredVertex { at, edge })
+    }
+
+    /// Removes vertex `v`, releasing its planes.
+    fn remove_vertex(&mut self, v: VertexKey) {
+        if let Some(StoredVertex {
+            at: StoredPosition::Implicit { planes, .. },
+            ..
+        }) = self.vertices.remove(v)
+        {
+            for r in planes {
+                self.planes.release(r);
+            }
+        }
     }
 
     /// The successor of `e` in the walk of `side` (one of its faces).
@@ -354,9 +460,16 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         }
     }
 
-    /// The vertices.
-    pub fn vertices(&self) -> impl Iterator<Item = (VertexKey, &Vertex)> {
-        self.vertices.iter()
+    /// The vertices (positions made from the plane table: copies).
+    pub fn vertices(&self) -> impl Iterator<Item = (VertexKey, Vertex)> + '_ {
+        self.vertices.iter().map(|(v, stored)| {
+            (
+                v,
+                Vertex {
+                    position: self.position_of(&stored.at),
+                },
+            )
+        })
     }
 
     /// The faces around a vertex (the outside as `None`), in the order of
@@ -410,7 +523,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         // of the edge before it, does when that one lies in it): tested at
         // its end vertex.
         let along =
-            |end: VertexKey, plane: &Plane| self.vertices[end].position.side(plane) == Side::On;
+            |end: VertexKey, plane: &Plane| self.side_at(&self.vertices[end].at, plane) == Side::On;
         let mut first_end = None;
         for side in self.face_sides(f) {
             let end = side.end;
@@ -439,7 +552,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
     pub fn face_outline(&self, f: FaceKey) -> Vec<[f64; 3]> {
         self.face_vertices(f)
             .into_iter()
-            .map(|v| self.vertices[v].position.to_f64())
+            .map(|v| self.position(v).to_f64())
             .collect()
     }
 
