@@ -69,6 +69,6 @@ pub use predicates::{ImplicitPoint, Side};
 pub use scene_bsp::{Location, SceneBsp, SceneChild, SceneNode, Traversal, Viewpoint};
 pub use solid::{BspSolid, Containment, LeafLabel, PointClass, Region, SolidChild, SolidNode};
 pub use winged_edge::{
-    Edge, EdgeKey, Face, FaceKey, FaceSide, FaceSplit, Vertex, VertexKey, VertexPosition,
+    Edge, EdgeKey, Face, FaceKey, FaceSide, FaceSplit, PlaneRef, Vertex, VertexKey, VertexPosition,
     WingedMesh,
 };

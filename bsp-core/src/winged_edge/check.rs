@@ -1,6 +1,6 @@
 //! The invariants of a winged-edge mesh, checked exactly.
 
-use super::WingedMesh;
+use super::{PlaneRef, WingedMesh};
 use crate::predicates::Side;
 
 impl<F: Clone, E: Clone> WingedMesh<F, E> {
@@ -100,11 +100,24 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         Ok(())
     }
 
-    /// Every plane of the table is held exactly as often as implicit
-    /// vertices name it, and every vertex's planes are held.
+    /// Every plane the implicit vertices name is held at least as often
+    /// (the user's holds, [`Self::hold_plane`], come on top: see
+    /// [`Self::check_plane_holds`]).
     fn check_plane_counts(&self) -> Result<(), String> {
-        let mut named: std::collections::HashMap<super::PlaneRef, u32> =
-            std::collections::HashMap::new();
+        let held: std::collections::HashMap<PlaneRef, u32> = self.planes.held().collect();
+        for (r, count) in self.vertex_planes() {
+            if held.get(&r).is_none_or(|&h| h < count) {
+                return Err(format!(
+                    "plane table: {r:?} named {count} times, held fewer"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// How often the implicit vertices name each plane of the table.
+    fn vertex_planes(&self) -> std::collections::HashMap<PlaneRef, u32> {
+        let mut named = std::collections::HashMap::new();
         for (_, v) in &self.vertices {
             if let super::StoredPosition::Implicit { planes, .. } = v.at {
                 for r in planes {
@@ -112,10 +125,24 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 }
             }
         }
-        let held: std::collections::HashMap<super::PlaneRef, u32> = self.planes.held().collect();
+        named
+    }
+
+    /// Checks that the table holds exactly the vertices' planes and the
+    /// user's holds `user` (each plane as often as named), nothing more.
+    pub fn check_plane_holds(
+        &self,
+        user: impl IntoIterator<Item = PlaneRef>,
+    ) -> Result<(), String> {
+        let mut named = self.vertex_planes();
+        for r in user {
+            *named.entry(r).or_default() += 1;
+        }
+        let held: std::collections::HashMap<PlaneRef, u32> = self.planes.held().collect();
         if held != named {
+            let extra = held.iter().filter(|(r, c)| named.get(r) != Some(c)).count();
             return Err(format!(
-                "plane table: {} planes held, {} named by vertices (or counts differ)",
+                "plane table: {} planes held, {} named; {extra} counts differ",
                 held.len(),
                 named.len()
             ));

@@ -5,20 +5,27 @@
 //! splitting planes cut many of its faces, and every vertex made by a cut
 //! lies on the face's support plane, the cut edge's line plane and the
 //! splitting plane. Kept by value, the three planes were 144 of a vertex's
-//! 200 bytes and the line plane 48 of an edge's 120; kept here once and
-//! named by a 4-byte [`PlaneRef`], a vertex takes 64 bytes and an edge 80.
+//! 200 bytes; kept here once and named by 4-byte [`PlaneRef`]s, a vertex
+//! takes 64 bytes. The mesh's user may hold planes in the table too
+//! ([`WingedMesh::hold_plane`]): a BSP over the mesh names its splitting
+//! lines so, the very planes its cuts' vertices lie on.
 //!
-//! Every vertex and edge holds counted references: a plane no vertex or
-//! edge names any more is dropped and its slot reused, so that a mesh
-//! edited frame after frame (objects moving over a receiver) does not keep
-//! every plane it ever saw.
+//! Every vertex holds counted references, as does every hold of the
+//! user's: a plane no one names any more is dropped and its slot reused, so
+//! that a mesh edited frame after frame (objects moving over a receiver)
+//! does not keep every plane it ever saw.
+//!
+//! [`WingedMesh::hold_plane`]: super::WingedMesh::hold_plane
 
 use crate::Plane;
 use rustc_hash::FxHashMap;
 
-/// The number of a plane in its mesh's [`PlaneTable`].
+/// The number of a plane in a mesh's table of planes, while held
+/// ([`WingedMesh::hold_plane`]); it means nothing in another mesh.
+///
+/// [`WingedMesh::hold_plane`]: super::WingedMesh::hold_plane
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub(super) struct PlaneRef(u32);
+pub struct PlaneRef(u32);
 
 /// Counted planes, each once; see the module docs.
 #[derive(Debug, Clone, Default)]

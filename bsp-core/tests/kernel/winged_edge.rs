@@ -74,6 +74,7 @@ proptest! {
     fn random_operations_keep_every_invariant(polygon in convex_polygon(4000), ops in prop::collection::vec(op(), 1..30)) {
         let mut mesh: WingedMesh = WingedMesh::from_polygon(&polygon, (), ());
         mesh.check_invariants().map_err(TestCaseError::fail)?;
+            mesh.check_plane_holds([]).map_err(TestCaseError::fail)?;
         let area = polygon.area();
         for op in ops {
             match op {
@@ -128,6 +129,7 @@ proptest! {
                 }
             }
             mesh.check_invariants().map_err(TestCaseError::fail)?;
+            mesh.check_plane_holds([]).map_err(TestCaseError::fail)?;
             check_face_sides(&mesh)?;
             let now = total_area(&mesh);
             prop_assert!((now - area).abs() <= 1e-9 * area, "area {now} vs {area}");
@@ -150,6 +152,7 @@ proptest! {
             mesh.remove_vertex_if_collinear(start);
             mesh.remove_vertex_if_collinear(end);
             mesh.check_invariants().map_err(TestCaseError::fail)?;
+            mesh.check_plane_holds([]).map_err(TestCaseError::fail)?;
             prop_assert_eq!(mesh.counts(), original);
             // The cut's planes went with its vertices.
             prop_assert_eq!(mesh.vertex_plane_count(), planes);
@@ -371,11 +374,13 @@ proptest! {
             let f = nth_face(&mesh, i);
             mesh.split_face(f, &p);
             mesh.check_invariants().map_err(TestCaseError::fail)?;
+            mesh.check_plane_holds([]).map_err(TestCaseError::fail)?;
         }
         for i in merges {
             let edges: Vec<_> = mesh.edges().map(|(k, _)| k).collect();
             let _ = mesh.merge_faces(edges[i % edges.len()]);
             mesh.check_invariants().map_err(TestCaseError::fail)?;
+            mesh.check_plane_holds([]).map_err(TestCaseError::fail)?;
         }
         let now = total_area(&mesh);
         prop_assert!((now - area).abs() <= 1e-9 * area);

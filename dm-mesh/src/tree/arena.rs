@@ -4,7 +4,7 @@
 
 use super::{Node, ReceiverDm, tracked};
 use crate::cell::Cell;
-use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, Side, Split};
+use bsp_core::{ConvexPolygon, FaceKey, FaceSplit, Plane, PlaneRef, Side, Split};
 
 /// No position in a unit's node list (a leaf, a free slot, or a node of
 /// an untracked unit).
@@ -89,6 +89,14 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// Stores `node` at `n` (keeping the unit lists right); a leaf's face
     /// is pointed back at it.
     pub(super) fn set_node(&mut self, n: u32, node: Node) {
+        // Each split node holds its line in the mesh's table: the new one
+        // is held before the old one goes (they may be one plane).
+        if let Node::Split { line, .. } = node {
+            self.mesh.retain_plane(line);
+        }
+        if let Node::Split { line, .. } = self.nodes[n as usize] {
+            self.mesh.release_plane(line);
+        }
         self.unlist(n);
         self.nodes[n as usize] = node;
         self.list(n);
@@ -115,6 +123,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
 
     /// Frees node `n` (its children, if any, are the caller's business).
     pub(super) fn free_node(&mut self, n: u32) {
+        if let Node::Split { line, .. } = self.nodes[n as usize] {
+            self.mesh.release_plane(line);
+        }
         self.unlist(n);
         self.nodes[n as usize] = Node::Free;
         self.free.push(n);
@@ -182,16 +193,29 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         };
         let b = self.alloc(Node::Leaf(back), leaf);
         let f = self.alloc(Node::Leaf(front), leaf);
+        self.set_split(leaf, plane, unit, b, f);
+        Ok((b, f))
+    }
+
+    /// Makes node `n` a split by `plane` (held in the mesh's table).
+    pub(super) fn set_split(&mut self, n: u32, plane: &Plane, unit: u32, back: u32, front: u32) {
+        let line = self.mesh.hold_plane(plane);
         self.set_node(
-            leaf,
+            n,
             Node::Split {
-                line: *plane,
+                line,
                 unit,
-                back: b,
-                front: f,
+                back,
+                front,
             },
         );
-        Ok((b, f))
+        self.mesh.release_plane(line);
+    }
+
+    /// The plane of a split node's line.
+    #[inline]
+    pub(super) fn line(&self, line: PlaneRef) -> &Plane {
+        self.mesh.plane(line)
     }
 
     /// Filters `piece` (inside `node`'s cell) down to the leaves it covers
@@ -237,11 +261,11 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     }
                     Node::Split {
                         line, back, front, ..
-                    } => match piece.split(line) {
+                    } => match piece.split(self.line(*line)) {
                         Split::Back => (n, cut) = (*back, false),
                         Split::Front => (n, cut) = (*front, false),
                         Split::Both(b, f) => {
-                            let (to_back, to_front) = divide(carried, line);
+                            let (to_back, to_front) = divide(carried, self.line(*line));
                             stack.push((*front, f, to_front, true));
                             (n, piece, carried, cut) = (*back, b, to_back, true);
                         }

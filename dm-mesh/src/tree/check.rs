@@ -11,10 +11,16 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// cuts its cell, the faces cover the receiver's area, every face is a
     /// leaf, parent links and the units' node lists are right, cells list
     /// only live units, construction lines of the receiver itself (light
-    /// planes, tiles) are above every other node, and the mesh's own
-    /// invariants hold.
+    /// planes, tiles) are above every other node, the mesh's own
+    /// invariants hold, and its table of planes holds the vertices' planes
+    /// and the nodes' lines, nothing more.
     pub fn check_invariants(&self) -> Result<(), String> {
         self.mesh.check_invariants()?;
+        self.mesh
+            .check_plane_holds(self.nodes.iter().filter_map(|node| match node {
+                Node::Split { line, .. } => Some(*line),
+                _ => None,
+            }))?;
         let mut leaves = 0;
         let mut area = 0.0;
         let mut stack = vec![(self.root, self.polygon.clone(), false)];
@@ -68,7 +74,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                             return Err(format!("node {n} missing from unit {unit}'s list"));
                         }
                     }
-                    let (b, f) = match cell.split(line) {
+                    let (b, f) = match cell.split(self.mesh.plane(*line)) {
                         Split::Both(b, f) => (b, f),
                         _ => return Err(format!("node {n}: its line does not cut its cell")),
                     };

@@ -38,7 +38,7 @@ use crate::cell::{Cell, CellClass};
 use crate::hash::KeySet;
 use area_shadow::{AreaSource, SourceSide};
 use bsp_core::predicates::Side;
-use bsp_core::{Behind, ConvexPolygon, FaceKey, Plane, WingedMesh};
+use bsp_core::{Behind, ConvexPolygon, FaceKey, Plane, PlaneRef, WingedMesh};
 
 mod arena;
 mod check;
@@ -76,9 +76,11 @@ pub(crate) enum Node {
     /// A cell: a face of the mesh.
     Leaf(FaceKey),
     /// A split of the node's cell by `line` (the receiver cut by that
-    /// plane): `back` behind it, `front` in front.
+    /// plane, held in the mesh's table of planes, where the vertices its
+    /// cuts made name it too: 4 bytes instead of 48): `back` behind it,
+    /// `front` in front.
     Split {
-        line: Plane,
+        line: PlaneRef,
         unit: u32,
         back: u32,
         front: u32,
@@ -273,7 +275,9 @@ impl<K: Copy + Ord> ReceiverDm<K> {
     /// light planes', tiles' or construction nodes).
     pub(crate) fn unit_lines(&self) -> impl Iterator<Item = (u32, &Plane)> + '_ {
         self.nodes.iter().filter_map(|n| match n {
-            Node::Split { line, unit, .. } if tracked(*unit) => Some((*unit, line)),
+            Node::Split { line, unit, .. } if tracked(*unit) => {
+                Some((*unit, self.mesh.plane(*line)))
+            }
             _ => None,
         })
     }

@@ -68,7 +68,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             };
             // (A node's line cuts its cell; were the cell on one side, it
             // would all go there.)
-            match polygon.split(line) {
+            match polygon.split(self.mesh.plane(*line)) {
                 Split::Both(b, f) => {
                     stack.push((*front, f));
                     stack.push((*back, b));

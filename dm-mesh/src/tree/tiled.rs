@@ -16,7 +16,7 @@ use super::arena::UNLISTED;
 use super::{Node, Reach, ReceiverDm, clip};
 use crate::cell::Cell;
 use crate::critical::UnitPlanes;
-use bsp_core::{ConvexPolygon, FaceKey, WingedMesh};
+use bsp_core::{ConvexPolygon, FaceKey, Plane, WingedMesh};
 use rayon::prelude::*;
 
 /// Units from which on a new receiver's tiles are grown apart (below, a
@@ -230,6 +230,16 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
 
     /// Puts tile `tile`'s tree and mesh in place of leaf `t`.
     fn graft_tile(&mut self, t: u32, tile: ReceiverDm<K>) {
+        // The tile's lines are held in its mesh's table, which goes with
+        // the graft: by value, to be held in this one's.
+        let lines: Vec<Option<Plane>> = tile
+            .nodes
+            .iter()
+            .map(|node| match node {
+                Node::Split { line, .. } => Some(*tile.mesh.plane(*line)),
+                _ => None,
+            })
+            .collect();
         let faces = self
             .mesh
             .graft(self.face_of(t), tile.mesh)
@@ -246,28 +256,19 @@ impl<K: Copy + Ord + Send + Sync> ReceiverDm<K> {
         self.free.push(base + tile.root);
         for (k, node) in tile.nodes.iter().enumerate() {
             let (k, n) = (k as u32, at(k as u32));
-            let node = match *node {
-                Node::Leaf(f) => Node::Leaf(faces[f]),
-                Node::Split {
-                    line,
-                    unit,
-                    back,
-                    front,
-                } => Node::Split {
-                    line,
-                    unit,
-                    back: at(back),
-                    front: at(front),
-                },
-                Node::Free => {
-                    self.free.push(n);
-                    continue;
-                }
-            };
             if k != tile.root {
                 self.parent[n as usize] = at(tile.parent[k as usize]);
             }
-            self.set_node(n, node);
+            match (*node, &lines[k as usize]) {
+                (Node::Leaf(f), _) => self.set_node(n, Node::Leaf(faces[f])),
+                (
+                    Node::Split {
+                        unit, back, front, ..
+                    },
+                    Some(line),
+                ) => self.set_split(n, line, unit, at(back), at(front)),
+                _ => self.free.push(n),
+            }
         }
         for (u, &seed) in tile.seeds.iter().enumerate() {
             if let Some(&f) = faces.get(seed) {

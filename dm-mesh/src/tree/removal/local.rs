@@ -115,6 +115,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         else {
             return;
         };
+        // (By value: the node goes before its line is done with.)
+        let line = *self.line(line);
         let keep_front = self.keep_front(&line, back, front);
         let (a, b) = if keep_front {
             (front, back)
@@ -254,6 +256,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                     }
                     freed.push(j);
                     let (lb, lf) = (on_back.into_parts(back), on_front.into_parts(front));
+                    let line = *self.line(line);
                     let parts = self.join(&line, unit, &lb, &lf, planes, made);
                     results.push(Placed::Parts(parts));
                 }
@@ -280,7 +283,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 Node::Leaf(_) => out.push((m, f)),
                 Node::Split {
                     line, back, front, ..
-                } => match self.mesh.split_face(f, &line) {
+                } => match self.mesh.split_face(f, &self.line(line).clone()) {
                     FaceSplit::NotSplit(Side::Back) => stack.push((back, f)),
                     FaceSplit::NotSplit(_) => stack.push((front, f)),
                     FaceSplit::Split {
@@ -358,15 +361,18 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             self.merge_leaves(back, front);
             return back;
         }
+        // (Held for the making: the new node holds it too.)
+        let held = self.mesh.hold_plane(line);
         let node = self.alloc(
             Node::Split {
-                line: *line,
+                line: held,
                 unit,
                 back,
                 front,
             },
             back,
         );
+        self.mesh.release_plane(held);
         self.parent[back as usize] = node;
         self.parent[front as usize] = node;
         if unit == CONSTRUCTION {
@@ -410,15 +416,7 @@ impl<K: Copy + Ord> ReceiverDm<K> {
         let kept = self.alloc(Node::Leaf(self.face_of(leaf)), leaf);
         let (back, front) = if kept_front { (sub, kept) } else { (kept, sub) };
         let unit = owner.unwrap_or(CONSTRUCTION);
-        self.set_node(
-            leaf,
-            Node::Split {
-                line,
-                unit,
-                back,
-                front,
-            },
-        );
+        self.set_split(leaf, &line, unit, back, front);
         self.parent[sub as usize] = leaf;
         if unit == CONSTRUCTION {
             made.push(leaf);
@@ -471,7 +469,8 @@ impl<K: Copy + Ord> ReceiverDm<K> {
             if !self.may_merge(back, front) {
                 continue;
             }
-            if let Some(owner) = self.owner_of_line(&line, &[back], planes, true) {
+            let plane = *self.line(line);
+            if let Some(owner) = self.owner_of_line(&plane, &[back], planes, true) {
                 self.set_node(
                     n,
                     Node::Split {
