@@ -283,18 +283,22 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                 Node::Leaf(_) => out.push((m, f)),
                 Node::Split {
                     line, back, front, ..
-                } => match self.mesh.split_face(f, &self.line(line).clone()) {
-                    FaceSplit::NotSplit(Side::Back) => stack.push((back, f)),
-                    FaceSplit::NotSplit(_) => stack.push((front, f)),
-                    FaceSplit::Split {
-                        back: fb,
-                        front: ff,
-                        ..
-                    } => {
-                        stack.push((front, ff));
-                        stack.push((back, fb));
+                } => {
+                    // (By value: the split edits the mesh that holds it.)
+                    let line = *self.line(line);
+                    match self.mesh.split_face(f, &line) {
+                        FaceSplit::NotSplit(Side::Back) => stack.push((back, f)),
+                        FaceSplit::NotSplit(_) => stack.push((front, f)),
+                        FaceSplit::Split {
+                            back: fb,
+                            front: ff,
+                            ..
+                        } => {
+                            stack.push((front, ff));
+                            stack.push((back, fb));
+                        }
                     }
-                },
+                }
                 Node::Free => {}
             }
         }
