@@ -68,9 +68,61 @@ enum Cover {
     Occluders(SmallVec<[u32; 4]>),
 }
 
+/// The covers of a vertex's lights as its value keeps them, to tell
+/// whether they changed: per light in order, [`Self::FREE`], [`Self::DARK`],
+/// or the number of occluders and then their units. Inline up to six
+/// words (two lights with four occluders between them): 32 bytes, where a
+/// list of [`Cover`]s took 72 (a value per vertex, over a million on a big
+/// receiver).
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct CoverKey(SmallVec<[u32; 6]>);
+
+impl CoverKey {
+    /// Case 1 for a light.
+    const FREE: u32 = u32::MAX;
+    /// Case 2 for a light.
+    const DARK: u32 = u32::MAX - 1;
+
+    fn of(covers: &[Cover]) -> Self {
+        let mut words = SmallVec::new();
+        for cover in covers {
+            match cover {
+                Cover::Free => words.push(Self::FREE),
+                Cover::Dark => words.push(Self::DARK),
+                Cover::Occluders(units) => {
+                    // (Fewer units than a unit number: no clash with the
+                    // two cases.)
+                    words.push(units.len() as u32);
+                    words.extend_from_slice(units);
+                }
+            }
+        }
+        Self(words)
+    }
+
+    /// How many lights are in cases 1, 2 and 3.
+    fn cases(&self) -> [usize; 3] {
+        let mut counts = [0; 3];
+        let mut words = self.0.iter();
+        while let Some(&word) = words.next() {
+            match word {
+                Self::FREE => counts[0] += 1,
+                Self::DARK => counts[1] += 1,
+                units => {
+                    counts[2] += 1;
+                    for _ in 0..units {
+                        words.next();
+                    }
+                }
+            }
+        }
+        counts
+    }
+}
+
 #[derive(Debug, Clone)]
 struct VertexValue {
-    covers: SmallVec<[Cover; 2]>,
+    covers: CoverKey,
     irradiance: f64,
     /// Bit `i`: light `i` gives the vertex nothing.
     dark: u32,
@@ -226,20 +278,16 @@ impl IllumStats {
     /// The figures of evaluating one vertex with `covers`, clipping
     /// `comparisons` occluder polygons (kept apart from the values: a first
     /// call evaluates millions of vertices).
-    fn of_evaluation(covers: &[Cover], comparisons: usize) -> Self {
-        let mut stats = Self {
+    fn of_evaluation(covers: &CoverKey, comparisons: usize) -> Self {
+        let [unoccluded, dark, visibility] = covers.cases();
+        Self {
             evaluated: 1,
+            unoccluded,
+            dark,
+            visibility,
+            comparisons,
             ..Self::default()
-        };
-        for cover in covers {
-            match cover {
-                Cover::Dark => stats.dark += 1,
-                Cover::Free => stats.unoccluded += 1,
-                Cover::Occluders(_) => stats.visibility += 1,
-            }
         }
-        stats.comparisons = comparisons;
-        stats
     }
 
     pub(crate) fn add(mut self, other: Self) -> Self {
@@ -440,14 +488,15 @@ pub(crate) fn illuminate_receiver(
                 }
             })
             .collect();
-        if values.get(v).is_some_and(|value| value.covers == covers) {
+        let key = CoverKey::of(&covers);
+        if values.get(v).is_some_and(|value| value.covers == key) {
             return None;
         }
         let (irradiance, dark, comparisons) = evaluate(
             lights, pieces, dm, &position, normal, sided, &covers, scratch,
         );
         let value = VertexValue {
-            covers,
+            covers: key,
             irradiance,
             dark,
         };
@@ -595,4 +644,47 @@ fn is_trace(
 ) -> bool {
     let bound = 4.0 * std::f64::consts::PI * light.radiance();
     value <= DARK_FRACTION * bound && value <= DARK_FRACTION * light.irradiance(p, normal, sided)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{Cover, CoverKey, IllumStats, VertexValue};
+    use smallvec::smallvec;
+
+    /// Covers kept as words tell the same cases apart as the covers, and
+    /// changes of them, and a vertex's value stays within 48 bytes.
+    #[test]
+    fn cover_keys_keep_what_tells_covers_apart() {
+        let lists: Vec<Vec<Cover>> = vec![
+            vec![Cover::Free, Cover::Dark],
+            vec![Cover::Dark, Cover::Free],
+            vec![Cover::Occluders(smallvec![]), Cover::Free],
+            vec![Cover::Occluders(smallvec![3]), Cover::Free],
+            vec![Cover::Occluders(smallvec![3, 7]), Cover::Dark],
+            vec![
+                Cover::Occluders(smallvec![3]),
+                Cover::Occluders(smallvec![7]),
+            ],
+            vec![
+                Cover::Occluders(smallvec![3, 7]),
+                Cover::Occluders(smallvec![]),
+            ],
+            vec![Cover::Occluders(smallvec![1, 2, 3, 4, 5, 6, 7, 8])],
+        ];
+        for (i, a) in lists.iter().enumerate() {
+            let key = CoverKey::of(a);
+            for (j, b) in lists.iter().enumerate() {
+                assert_eq!(key == CoverKey::of(b), i == j, "{a:?} against {b:?}");
+            }
+            let stats = IllumStats::of_evaluation(&key, 0);
+            let count = |f: fn(&Cover) -> bool| a.iter().filter(|c| f(c)).count();
+            assert_eq!(stats.unoccluded, count(|c| matches!(c, Cover::Free)));
+            assert_eq!(stats.dark, count(|c| matches!(c, Cover::Dark)));
+            assert_eq!(
+                stats.visibility,
+                count(|c| matches!(c, Cover::Occluders(_)))
+            );
+        }
+        assert!(std::mem::size_of::<VertexValue>() <= 48);
+    }
 }
