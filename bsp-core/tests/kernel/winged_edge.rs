@@ -140,7 +140,7 @@ proptest! {
     fn merging_undoes_a_split(polygon in convex_polygon(4000), p in plane(1500)) {
         let mut mesh: WingedMesh<u8, u8> = WingedMesh::from_polygon(&polygon, 7, 1);
         let original = mesh.counts();
-        let planes = mesh.vertex_plane_count();
+        let planes = mesh.plane_count();
         let face = mesh.faces().next().unwrap().0;
         if let FaceSplit::Split { back, front, edge } = mesh.split_face(face, &p) {
             prop_assert_eq!(mesh.face(front).unwrap().data, 7);
@@ -155,7 +155,7 @@ proptest! {
             mesh.check_plane_holds([]).map_err(TestCaseError::fail)?;
             prop_assert_eq!(mesh.counts(), original);
             // The cut's planes went with its vertices.
-            prop_assert_eq!(mesh.vertex_plane_count(), planes);
+            prop_assert_eq!(mesh.plane_count(), planes);
             let f = mesh.faces().next().unwrap().0;
             let rebuilt = mesh.face_polygon(f, 0).unwrap();
             prop_assert!((rebuilt.area() - polygon.area()).abs() <= 1e-9 * polygon.area());

@@ -40,8 +40,13 @@ impl<K: Copy + Ord> ReceiverDm<K> {
                         return Err(format!("leaf {n} culled a removed unit"));
                     }
                     for v in self.mesh.face_vertices(*f) {
-                        let p = self.mesh.vertex(v).ok_or("face vertex")?.position;
-                        if cell.edges().any(|e| p.side(e) == Side::Front) {
+                        if !self.mesh.contains_vertex(v) {
+                            return Err(format!("leaf {n}: a face vertex is missing"));
+                        }
+                        if cell
+                            .edges()
+                            .any(|e| self.mesh.vertex_side(v, e) == Some(Side::Front))
+                        {
                             return Err(format!("leaf {n}: a face vertex outside its cell"));
                         }
                     }
