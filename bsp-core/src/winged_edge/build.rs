@@ -34,8 +34,10 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             planes: PlaneTable::default(),
             edges: SlotMap::with_key(),
             faces: SlotMap::with_key(),
-            supports: vec![*polygon.support()],
+            supports: Vec::new(),
         };
+        let support = mesh.planes.intern(*polygon.support());
+        mesh.supports.push(support);
         let n = polygon.len();
         let vertices: Vec<VertexKey> = (0..n)
             .map(|i| {
@@ -119,7 +121,8 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 keys.push(key);
             }
             let plane = *plane_of.entry(*polygon.support()).or_insert_with(|| {
-                mesh.supports.push(*polygon.support());
+                let support = mesh.planes.intern(*polygon.support());
+                mesh.supports.push(support);
                 (mesh.supports.len() - 1) as u32
             });
             let face = mesh.faces.insert(Face {

@@ -100,12 +100,12 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         Ok(())
     }
 
-    /// Every plane the implicit vertices name is held at least as often
+    /// Every plane the mesh names is held at least as often
     /// (the user's holds, [`Self::hold_plane`], come on top: see
     /// [`Self::check_plane_holds`]).
     fn check_plane_counts(&self) -> Result<(), String> {
         let held: std::collections::HashMap<PlaneRef, u32> = self.planes.held().collect();
-        for (r, count) in self.vertex_planes() {
+        for (r, count) in self.mesh_planes() {
             if held.get(&r).is_none_or(|&h| h < count) {
                 return Err(format!(
                     "plane table: {r:?} named {count} times, held fewer"
@@ -115,9 +115,13 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         Ok(())
     }
 
-    /// How often the implicit vertices name each plane of the table.
-    fn vertex_planes(&self) -> std::collections::HashMap<PlaneRef, u32> {
+    /// How often the mesh names each plane of the table: once per face
+    /// support, and per implicit vertex.
+    fn mesh_planes(&self) -> std::collections::HashMap<PlaneRef, u32> {
         let mut named = std::collections::HashMap::new();
+        for &r in &self.supports {
+            *named.entry(r).or_default() += 1;
+        }
         for (_, v) in &self.vertices {
             if let super::StoredPosition::Implicit { planes, .. } = v.at {
                 for r in planes {
@@ -128,13 +132,14 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         named
     }
 
-    /// Checks that the table holds exactly the vertices' planes and the
-    /// user's holds `user` (each plane as often as named), nothing more.
+    /// Checks that the table holds exactly the mesh's planes (supports and
+    /// the vertices') and the user's holds `user` (each plane as often as
+    /// named), nothing more.
     pub fn check_plane_holds(
         &self,
         user: impl IntoIterator<Item = PlaneRef>,
     ) -> Result<(), String> {
-        let mut named = self.vertex_planes();
+        let mut named = self.mesh_planes();
         for r in user {
             *named.entry(r).or_default() += 1;
         }

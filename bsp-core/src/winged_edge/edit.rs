@@ -103,9 +103,10 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
         let m = walk.len();
         let mut edges: SmallVec<[EdgeKey; 16]> = SmallVec::with_capacity(m + 2);
         let mut sides: SmallVec<[Side; 16]> = SmallVec::with_capacity(m + 2);
-        // The support's and the plane's numbers in the plane table, shared
-        // by the (two) new vertices.
-        let mut shared: Option<[PlaneRef; 2]> = None;
+        // The support's number in the plane table, and the plane's once
+        // looked up, shared by the (two) new vertices.
+        let on_support = self.supports[self.faces[f].plane as usize];
+        let mut on_plane: Option<PlaneRef> = None;
         for i in 0..m {
             let (e, s) = walk[i];
             let t = walk[(i + 1) % m].1;
@@ -115,14 +116,16 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
                 let line = edge.line;
                 let point = ImplicitPoint::new(support, line, *plane)
                     .expect("an edge with ends on both sides meets the plane");
-                let [on_support, on_plane] = match shared {
-                    Some(refs) => refs.map(|r| self.planes.retain(r)),
-                    None => {
-                        *shared.insert([self.planes.intern(support), self.planes.intern(*plane)])
-                    }
+                let held = match on_plane {
+                    Some(r) => self.planes.retain(r),
+                    None => *on_plane.insert(self.planes.intern(*plane)),
                 };
                 let at = StoredPosition::Implicit {
-                    planes: [on_support, self.planes.intern(line), on_plane],
+                    planes: [
+                        self.planes.retain(on_support),
+                        self.planes.intern(line),
+                        held,
+                    ],
                     filter: *point.filter(),
                 };
                 let (_, second) = self.split_edge_at(e, at);

@@ -200,12 +200,14 @@ pub enum FaceSplit {
 #[derive(Debug, Clone)]
 pub struct WingedMesh<F = (), E = ()> {
     vertices: SlotMap<VertexKey, StoredVertex>,
-    /// The planes of the implicit vertices, each once.
+    /// The planes of the faces' supports and the implicit vertices, each
+    /// once.
     planes: PlaneTable,
     edges: SlotMap<EdgeKey, Edge<E>>,
     faces: SlotMap<FaceKey, Face<F>>,
-    /// The faces' support planes, each once.
-    supports: Vec<Plane>,
+    /// The faces' support planes, each once, held in `planes` for the
+    /// mesh's life (every cut's vertices name their face's).
+    supports: Vec<PlaneRef>,
 }
 
 impl<F: Clone, E: Clone> WingedMesh<F, E> {
@@ -231,7 +233,7 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
 
     /// The support plane of a face of the mesh.
     fn support(&self, face: &Face<F>) -> &Plane {
-        &self.supports[face.plane as usize]
+        self.planes.get(self.supports[face.plane as usize])
     }
 
     /// A face.
@@ -276,8 +278,9 @@ impl<F: Clone, E: Clone> WingedMesh<F, E> {
             .map(|stored| self.side_at(&stored.at, plane))
     }
 
-    /// Number of distinct planes in the mesh's table: those its implicit
-    /// vertices lie on, and those held by [`Self::hold_plane`].
+    /// Number of distinct planes in the mesh's table: its faces' supports,
+    /// those its implicit vertices lie on, and those held by
+    /// [`Self::hold_plane`].
     pub fn plane_count(&self) -> usize {
         self.planes.len()
     }

@@ -10,8 +10,9 @@
 //! ([`WingedMesh::hold_plane`]): a BSP over the mesh names its splitting
 //! lines so, the very planes its cuts' vertices lie on.
 //!
-//! Every vertex holds counted references, as does every hold of the
-//! user's: a plane no one names any more is dropped and its slot reused, so
+//! Every vertex holds counted references, as does each face support (for
+//! the mesh's life: a cut's vertices retain it without a lookup) and
+//! every hold of the user's: a plane no one names any more is dropped and its slot reused, so
 //! that a mesh edited frame after frame (objects moving over a receiver)
 //! does not keep every plane it ever saw.
 //!
